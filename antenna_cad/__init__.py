@@ -1,0 +1,3 @@
+"""antenna_cad: physics spec of a microwave antenna -> solids, cutting templates and a cut list."""
+
+__version__ = "0.1.0"

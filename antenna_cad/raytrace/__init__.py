@@ -1,0 +1,1 @@
+"""Geometrical-optics ray tracing (numpy): Snell refraction, path lengths, aperture phase."""

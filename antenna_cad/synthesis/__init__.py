@@ -1,0 +1,1 @@
+"""Pure physics (numpy/scipy only; never imports build123d/OCP). One module per seed system."""

@@ -1,0 +1,121 @@
+"""Slicing an axisymmetric lens into stock sheets with a pedestal (seed-000 §6.2), as plain numbers.
+
+The plan is the single description that both the 3-D model (``geometry``) and the 2-D templates
+(``fabrication.templates``) render, so a sheet's solid and its cutting outline cannot disagree.
+
+Sheet frame: the sheet plane is (x, y) with +Y up, the lens axis is +Z (DESIGN.md). Sheets are
+anchored at the lens vertex: sheet i spans z ∈ [(i−1)·t, i·t] (digest §6.2 step 4, §7.4 case 20).
+When the lens thickness d is not a multiple of t, the remainder N·t − d stays on the flat side as
+a uniform back slab: it adds only a constant phase (digest §7.3), so the flat face z = N·t is a
+sheet boundary and sanding never touches it. Each sheet's lens part is the disc of radius
+r(min(i·t, d)) — the smallest disc containing the ideal lens inside that slab — so sanding
+only ever removes material.
+
+Pedestal (digest §6.2 [INTERPRETATION], chosen here): a foot under every sheet, ``w`` wide,
+from y = −R − h up to the aperture circle r = R (a cradle the lens rests in), entirely outside the
+aperture cylinder. A sheet whose disc reaches r = R is one piece with its foot. Smaller discs are
+joined either by foam **dowels** (same material; disc and foot are two pieces, each pinned to its
+neighbours — nothing added in the aperture) or by a **neck** (one piece; a strip of foam inside the
+aperture, reported with its volume and phase cost).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+DOWEL_EDGE_CLEARANCE_MM = 10.0
+
+
+@dataclass(frozen=True)
+class Hole:
+    x_mm: float
+    y_mm: float
+    diameter_mm: float
+
+
+@dataclass(frozen=True)
+class SheetPlan:
+    index: int                  # 1 = nearest the feed
+    z_min_mm: float
+    z_max_mm: float
+    radius_mm: float            # lens disc radius (nominal part, before kerf)
+    has_neck: bool
+    lens_dowels: tuple[Hole, ...]
+    foot_dowels: tuple[Hole, ...]
+
+    @property
+    def label(self) -> str:
+        return f"sheet-{self.index:02d}"
+
+    @property
+    def thickness_mm(self) -> float:
+        return self.z_max_mm - self.z_min_mm
+
+
+@dataclass(frozen=True)
+class LayupPlan:
+    lens_radius_mm: float
+    sheet_thickness_mm: float
+    lens_thickness_mm: float        # synthesized (hyperbolic part)
+    back_slab_mm: float             # N·t − d, uniform flat slab on the shadow side
+    pedestal_width_mm: float
+    pedestal_height_mm: float
+    neck_width_mm: float
+    joining: str
+    kerf_mm: float
+    board_width_mm: float
+    board_length_mm: float
+    sheets: tuple[SheetPlan, ...]
+
+    @property
+    def count(self) -> int:
+        return len(self.sheets)
+
+    @property
+    def stack_thickness_mm(self) -> float:
+        return self.sheets[-1].z_max_mm
+
+    @property
+    def foot_bottom_y_mm(self) -> float:
+        return -self.lens_radius_mm - self.pedestal_height_mm
+
+    @property
+    def foot_corner_y_mm(self) -> float:
+        """y where the foot's sides meet the aperture circle (top corners of the cradle)."""
+        return -math.sqrt(self.lens_radius_mm**2 - (self.pedestal_width_mm / 2) ** 2)
+
+
+def plan_layup(*, radius_at, lens_thickness_mm: float, lens_radius_mm: float,
+               sheet_thickness_mm: float, pedestal_height_mm: float,
+               pedestal_width_mm: float | None, joining: str, dowel_diameter_mm: float,
+               neck_width_mm: float, kerf_mm: float, board_width_mm: float,
+               board_length_mm: float) -> LayupPlan:
+    """Slice a lens of revolution whose radius at depth z is ``radius_at(z)`` into sheets.
+
+    ``radius_at`` must be non-decreasing in z on [0, lens_thickness] (true for the collimator).
+    """
+    t = sheet_thickness_mm
+    count = max(1, math.ceil(lens_thickness_mm / t - 1e-9))
+    R = lens_radius_mm
+    width = pedestal_width_mm if pedestal_width_mm is not None else 0.6 * 2 * R
+    radii = [float(radius_at(min(i * t, lens_thickness_mm))) for i in range(1, count + 1)]
+    dowel_r = radii[0] / 2
+    if dowel_r - dowel_diameter_mm / 2 < DOWEL_EDGE_CLEARANCE_MM:
+        raise ValueError(f"fabrication.dowel_diameter_mm: {dowel_diameter_mm:g} mm dowels do not fit "
+                         f"in the first sheet's disc (radius {radii[0]:.1f} mm); use thicker sheets "
+                         f"or thinner dowels")
+    lens_dowels = tuple(Hole(round(dowel_r * math.cos(a), 6), round(dowel_r * math.sin(a), 6),
+                             dowel_diameter_mm) for a in (0.25 * math.pi, 0.75 * math.pi,
+                                                          1.25 * math.pi, 1.75 * math.pi))
+    foot_dowels = tuple(Hole(x, -R - pedestal_height_mm / 2, dowel_diameter_mm)
+                        for x in (-width / 4, width / 4))
+    sheets = tuple(SheetPlan(index=i, z_min_mm=(i - 1) * t, z_max_mm=i * t, radius_mm=r_i,
+                             has_neck=joining == "neck" and r_i < R - 1e-9,
+                             lens_dowels=lens_dowels, foot_dowels=foot_dowels)
+                   for i, r_i in enumerate(radii, start=1))
+    return LayupPlan(lens_radius_mm=R, sheet_thickness_mm=t, lens_thickness_mm=lens_thickness_mm,
+                     back_slab_mm=count * t - lens_thickness_mm, pedestal_width_mm=width,
+                     pedestal_height_mm=pedestal_height_mm, neck_width_mm=neck_width_mm,
+                     joining=joining, kerf_mm=kerf_mm, board_width_mm=board_width_mm,
+                     board_length_mm=board_length_mm, sheets=sheets)

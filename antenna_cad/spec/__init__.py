@@ -1,0 +1,86 @@
+"""Spec loading and validation: YAML → frozen pydantic model of the design kind.
+
+Errors come back as one line per problem: ``file: field.path: rule (got value)``.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Annotated, Union
+
+import yaml
+from pydantic import BaseModel, Field, TypeAdapter, ValidationError
+
+from antenna_cad.spec.collimator import CollimatorSpec
+from antenna_cad.spec.common import UNION_TAGS
+
+SPEC_MODELS: dict[str, type[BaseModel]] = {
+    "collimator": CollimatorSpec,
+}
+
+
+class SpecError(ValueError):
+    """A spec that cannot be used; ``lines`` holds one message per problem."""
+
+    def __init__(self, lines: list[str]):
+        super().__init__("\n".join(lines))
+        self.lines = lines
+
+
+_WORDING = (("Input should be ", "must be "), ("greater than or equal to ", "≥ "),
+            ("greater than ", "> "), ("less than or equal to ", "≤ "), ("less than ", "< "),
+            ("Field required", "required field is missing"))
+
+
+def _format(source: str, err: dict) -> str:
+    loc = ".".join(str(p) for p in err["loc"] if p not in UNION_TAGS)
+    msg = err["msg"].removeprefix("Value error, ")
+    for long, short in _WORDING:
+        msg = msg.replace(long, short)
+    got = "" if err["type"] in ("missing", "model_type") else f" (got {err.get('input')!r})"
+    if not loc and ": " in msg and msg.split(": ", 1)[0].replace("_", "").replace(".", "").isalnum():
+        loc, msg = msg.split(": ", 1)           # model validators name their field and the number
+        got = ""
+    if err["type"] == "extra_forbidden":
+        msg, got = "unknown key (not allowed here)", ""
+    return f"{source}: {loc or '<root>'}: {msg}{got}"
+
+
+def parse_spec(data: object, source: str = "<spec>") -> BaseModel:
+    """Validate a parsed YAML document; raise SpecError naming every bad field."""
+    if not isinstance(data, dict):
+        raise SpecError([f"{source}: <root>: must be a mapping of spec fields"])
+    kind = data.get("kind")
+    if kind not in SPEC_MODELS:
+        raise SpecError([f"{source}: kind: must be one of {', '.join(sorted(SPEC_MODELS))} (got {kind!r})"])
+    try:
+        return SPEC_MODELS[kind].model_validate(data)
+    except ValidationError as exc:
+        raise SpecError([_format(source, e) for e in exc.errors()]) from None
+
+
+def load_spec(path: str | Path) -> BaseModel:
+    """Read and validate a spec file (YAML, ``safe_load``)."""
+    path = Path(path)
+    try:
+        data = yaml.safe_load(path.read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise SpecError([f"{path}: cannot read: {exc.strerror}"]) from None
+    except yaml.YAMLError as exc:
+        raise SpecError([f"{path}: not valid YAML: {str(exc).splitlines()[0]}"]) from None
+    return parse_spec(data, str(path))
+
+
+def json_schema() -> dict:
+    """JSON Schema of every spec kind (discriminated on ``kind``)."""
+    models = tuple(SPEC_MODELS.values())
+    union = models[0] if len(models) == 1 else Annotated[Union[models], Field(discriminator="kind")]
+    schema = TypeAdapter(union).json_schema()
+    schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
+    schema["title"] = "antenna_cad lens spec"
+    return schema
+
+
+def json_schema_text() -> str:
+    return json.dumps(json_schema(), indent=2, sort_keys=True, ensure_ascii=False) + "\n"

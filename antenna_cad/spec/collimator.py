@@ -1,0 +1,39 @@
+"""Spec of the single-surface foam lens collimator (seed-000 §1.2, §7.1)."""
+
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import Field, model_validator
+
+from antenna_cad.spec.common import SheetLayupSpec, SpecBase, StrictModel
+
+
+class AntennaSpec(StrictModel):
+    """Antenna under test behind the flat face (edge-margin check of seed-000 §4.6)."""
+    aperture_mm: float = Field(gt=0)
+    distance_mm: float = Field(100.0, ge=0, description="flat face to antenna aperture, l_ant")
+
+
+class CollimatorDesign(StrictModel):
+    diameter_mm: float = Field(gt=0, le=20000)
+    focal_length_mm: float = Field(gt=0, le=200000, description="feed to lens vertex")
+    phase_error_budget_deg: float = Field(22.5, gt=0, le=180)
+    antenna: AntennaSpec | None = None
+
+
+class CollimatorSpec(SpecBase):
+    kind: Literal["collimator"]
+    design: CollimatorDesign
+
+    @model_validator(mode="after")
+    def _fits(self):
+        fab = self.fabrication
+        if isinstance(fab, SheetLayupSpec):
+            r = self.design.diameter_mm / 2
+            if fab.pedestal_width_mm is not None and fab.pedestal_width_mm >= self.design.diameter_mm:
+                raise ValueError(f"fabrication.pedestal_width_mm: must be < design.diameter_mm "
+                                 f"({fab.pedestal_width_mm:g} ≥ {self.design.diameter_mm:g})")
+            if fab.joining == "neck" and fab.neck_width_mm >= r:
+                raise ValueError(f"fabrication.neck_width_mm: must be < the lens radius ({r:g} mm)")
+        return self

@@ -1,0 +1,110 @@
+"""Spec blocks shared by every design kind (DESIGN.md "Spec skeleton").
+
+Units are in the field names. Models are frozen and forbid unknown keys; bounds live on fields.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Literal, Union
+
+from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, field_validator
+
+from antenna_cad.materials import LIBRARY, Material
+
+
+class StrictModel(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class InlineMaterial(StrictModel):
+    """A material given in the spec instead of a library name (e.g. from a board datasheet)."""
+    name: str = Field("custom", pattern=r"^[A-Za-z0-9_. -]+$")
+    eps_r: float = Field(ge=1.0, le=100.0)
+    tan_delta: float = Field(ge=0.0, lt=1.0)
+    density_kg_m3: float = Field(gt=0.0, le=25000.0)
+
+
+def _library_name(value: str) -> str:
+    if value not in LIBRARY:
+        raise ValueError(f"unknown material {value!r}; library: {', '.join(sorted(LIBRARY))}")
+    return value
+
+
+MaterialRef = Annotated[
+    Union[Annotated[str, Tag("library")], Annotated[InlineMaterial, Tag("inline")]],
+    Discriminator(lambda v: "library" if isinstance(v, str) else "inline"),
+    Field(description="a library material name, or inline {eps_r, tan_delta, density_kg_m3}")]
+UNION_TAGS = {"library", "inline", "sheet_layup", "solid"}   # stripped from error paths
+
+
+def resolve_material(ref: str | InlineMaterial) -> Material:
+    if isinstance(ref, str):
+        return LIBRARY[_library_name(ref)]
+    return Material(ref.name, ref.eps_r, ref.tan_delta, ref.density_kg_m3, "inline in the spec")
+
+
+class BoardSpec(StrictModel):
+    """Stock board size (seed-000 §3.1: XPS boards 600 × 1200 mm)."""
+    width_mm: float = Field(600.0, gt=0, le=5000)
+    length_mm: float = Field(1200.0, gt=0, le=10000)
+
+
+class BoxSpec(StrictModel):
+    """Clamping box around the pedestal (seed-000 §6.1 option 3); screws only in the box."""
+    material: MaterialRef = "plywood"
+    wall_thickness_mm: float = Field(12.0, gt=0, le=100)
+    clearance_mm: float = Field(0.0, ge=0, le=20)
+    screw_diameter_mm: float = Field(4.0, gt=0, le=20)
+    screw_spacing_mm: float = Field(150.0, gt=10, le=1000)
+    board: BoardSpec = BoardSpec(width_mm=1220.0, length_mm=2440.0)
+
+    @field_validator("material")
+    @classmethod
+    def _known(cls, v):
+        return _library_name(v) if isinstance(v, str) else v
+
+
+class SheetLayupSpec(StrictModel):
+    """Stepped layup of stock sheets with a pedestal clamped in a box (seed-000 §6)."""
+    method: Literal["sheet_layup"]
+    sheet_thickness_mm: float = Field(gt=0, le=200)
+    board: BoardSpec = BoardSpec()
+    pedestal_height_mm: float = Field(80.0, ge=50, le=1000)
+    pedestal_width_mm: float | None = Field(None, gt=0, description="default: 60 % of the lens diameter")
+    kerf_mm: float = Field(0.0, ge=0, le=10)
+    joining: Literal["dowels", "neck"] = Field(
+        "dowels", description="dowels: foam dowels tie each lens disc to its neighbours, no material "
+        "added in the aperture; neck: every sheet is one piece, small discs joined to the pedestal by "
+        "a neck inside the aperture (reported)")
+    dowel_diameter_mm: float = Field(20.0, gt=0, le=200)
+    neck_width_mm: float = Field(40.0, gt=0, le=500)
+    box: BoxSpec = BoxSpec()
+
+
+class SolidSpec(StrictModel):
+    """One machined (turned/milled) body from a solid blank."""
+    method: Literal["solid"]
+    stock_allowance_mm: float = Field(3.0, ge=0, le=100, description="blank oversize on every side")
+
+
+Fabrication = Annotated[Union[SheetLayupSpec, SolidSpec], Field(discriminator="method")]
+
+
+class OutputsSpec(StrictModel):
+    step: bool = True
+    stl: bool = True
+    templates: bool = True
+    mesh_tolerance_mm: float = Field(0.05, gt=0, le=5, description="absolute chord deviation of meshes")
+
+
+class SpecBase(StrictModel):
+    name: str = Field(pattern=r"^[a-z0-9_-]+$", max_length=100)
+    frequency_ghz: float = Field(gt=0, le=1000)
+    material: MaterialRef
+    fabrication: Fabrication
+    outputs: OutputsSpec = OutputsSpec()
+
+    @field_validator("material")
+    @classmethod
+    def _known_material(cls, v):
+        return _library_name(v) if isinstance(v, str) else v

@@ -40,5 +40,6 @@ class Check:
             status = "warn"
         else:
             status = "pass"
+        u = f" {unit}" if unit else ""
         return Check(name, status, float(value), float(limit), unit,
-                     f"{what}: {value:.4g} {unit} (limit {limit:.4g} {unit})".replace("  ", " "))
+                     f"{what}: {value:.4g}{u} (limit {limit:.4g}{u})")

@@ -1,0 +1,1 @@
+"""Writers: STEP assembly, per-part meshes, manifest."""

@@ -1,0 +1,1 @@
+"""Solids (build123d/OCP): the only package that imports CAD libraries."""

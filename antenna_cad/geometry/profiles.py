@@ -1,0 +1,41 @@
+"""Closed meridional profiles (r, z) revolved once about +Z into exact solids of revolution.
+
+Profiles live in the XZ plane (x = r ≥ 0); one closed wire is revolved once (DESIGN.md pitfall:
+no revolve-then-cut on the seam). Conic arcs are exact OCC curves, not approximations.
+"""
+
+from __future__ import annotations
+
+import math
+
+from build123d import Axis, Edge, Face, Solid, Wire, revolve
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
+from OCP.Geom import Geom_Hyperbola
+from OCP.gp import gp_Ax2, gp_Dir, gp_Hypr, gp_Pnt
+
+from antenna_cad.synthesis.collimator import hyperbola_axes_mm
+
+
+def hyperbola_edge(focal_length_mm: float, n: float, r_from_mm: float, r_to_mm: float) -> Edge:
+    """Exact arc of the collimator profile (seed-000 (1.9) corrected) between two radii.
+
+    The conic (z − z_c)²/A² − r²/B² = 1 is parametrized as z = z_c + A·cosh u, r = B·sinh u.
+    """
+    zc, a, b = hyperbola_axes_mm(focal_length_mm, n)
+    conic = Geom_Hyperbola(gp_Hypr(gp_Ax2(gp_Pnt(0, 0, zc), gp_Dir(0, 1, 0), gp_Dir(0, 0, 1)), a, b))
+    return Edge(BRepBuilderAPI_MakeEdge(conic, math.asinh(r_from_mm / b), math.asinh(r_to_mm / b)).Edge())
+
+
+def polyline_edges(points_rz: list[tuple[float, float]]) -> list[Edge]:
+    """Straight edges through (r, z) points, skipping zero-length ones."""
+    pts = [(r, 0.0, z) for r, z in points_rz]
+    return [Edge.make_line(a, b) for a, b in zip(pts, pts[1:])
+            if math.dist(a, b) > 1e-9]
+
+
+def revolve_closed(edges: list[Edge]) -> Solid:
+    """Revolve one closed (r, z) wire about the Z axis; asserts a valid solid."""
+    solid = revolve(Face(Wire(edges)), Axis.Z)
+    if not solid.is_valid:
+        raise RuntimeError("revolved profile is not a valid solid")
+    return solid

@@ -8,7 +8,8 @@ import math
 from build123d import Compound
 
 from antenna_cad.fabrication.layup import LayupPlan
-from antenna_cad.geometry.layup import box_panels, pedestal_solid, sheet_solid
+from antenna_cad.fabrication.box import Panel
+from antenna_cad.geometry.layup import panel_solid, pedestal_solid, sheet_solid
 from antenna_cad.geometry.model import Model, ModelPart, relative_volume_check
 from antenna_cad.geometry.profiles import hyperbola_edge, polyline_edges, revolve_closed
 from antenna_cad.materials import Material
@@ -47,7 +48,7 @@ def allowance_volume_mm3(design: CollimatorDesign, plan: LayupPlan) -> float:
 
 
 def build_model(design: CollimatorDesign, plan: LayupPlan | None, lens_material: Material,
-                box_material: Material | None = None, box: dict | None = None) -> Model:
+                box_material: Material | None = None, panels: tuple[Panel, ...] = ()) -> Model:
     """All labelled solids. ``plan`` None means a machined (solid) lens: the lens only."""
     slab = plan.back_slab_mm if plan else 0.0
     lens = lens_solid(design, slab)
@@ -66,5 +67,5 @@ def build_model(design: CollimatorDesign, plan: LayupPlan | None, lens_material:
                                         allowance_volume_mm3(design, plan),
                                         "sanding allowance (stack − lens) vs analytic volume"))
     parts.append(ModelPart("sanding-allowance", lens_material, "reference", allowance))
-    parts += [ModelPart(p.label, box_material, "fabricated", p.shape) for p in box_panels(plan, **box)]
+    parts += [ModelPart(p.label, box_material, "fabricated", panel_solid(p)) for p in panels]
     return Model(tuple(parts), tuple(checks))

@@ -30,7 +30,7 @@ class SpecError(ValueError):
 
 _WORDING = (("Input should be ", "must be "), ("greater than or equal to ", "≥ "),
             ("greater than ", "> "), ("less than or equal to ", "≤ "), ("less than ", "< "),
-            ("Field required", "required field is missing"))
+            ("Field required", "required field is missing"), ("String should match pattern", "must match the pattern"))
 
 
 def _format(source: str, err: dict) -> str:

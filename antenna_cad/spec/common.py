@@ -98,7 +98,7 @@ class OutputsSpec(StrictModel):
 
 
 class SpecBase(StrictModel):
-    name: str = Field(pattern=r"^[a-z0-9_-]+$", max_length=100)
+    name: str = Field(pattern=r"^[a-z0-9][a-z0-9._-]*$", max_length=100)
     frequency_ghz: float = Field(gt=0, le=1000)
     material: MaterialRef
     fabrication: Fabrication

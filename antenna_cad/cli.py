@@ -1,0 +1,129 @@
+"""``make-lens``: thin Typer front end over ``pipeline.build`` (no logic here).
+
+    make-lens SPEC [-o OUT]      build everything into OUT/<name>/ (default exports/)
+    make-lens validate SPEC      check the spec and its physics, write nothing
+    make-lens schema [-o FILE]   write the JSON Schema of specs
+    make-lens --version
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+from antenna_cad import __version__
+
+app = typer.Typer(add_completion=False, no_args_is_help=True,
+                  help="Physics spec of a microwave antenna → STEP/STL, 1:1 templates, cut list.")
+out_console = Console()
+err_console = Console(stderr=True, soft_wrap=True)
+COMMANDS = {"build", "validate", "schema"}
+STATUS_STYLE = {"pass": "green", "warn": "yellow", "fail": "red"}
+
+
+def _version(value: bool) -> None:
+    if value:
+        out_console.print(f"make-lens (antenna_cad) {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
+                                       help="Show the version and exit.")) -> None:
+    """make-lens SPEC builds a spec; see the commands below."""
+
+
+def _load(spec_path: Path):
+    """Spec + synthesis, or a clean exit 2 naming the field and the rule."""
+    from antenna_cad.registry import synthesize
+    from antenna_cad.spec import SpecError, load_spec
+    from antenna_cad.synthesis.checks import DesignError
+    try:
+        spec = load_spec(spec_path)
+        _, checks = synthesize(spec)
+    except SpecError as exc:
+        for line in exc.lines:
+            err_console.print(line, markup=False, highlight=False)
+        raise typer.Exit(2)
+    except DesignError as exc:
+        err_console.print(f"{spec_path}: {exc}", markup=False, highlight=False)
+        raise typer.Exit(2)
+    return spec, checks
+
+
+def _checks_table(checks) -> Table:
+    table = Table(title="checks", show_lines=False)
+    for col in ("check", "status", "value", "limit"):
+        table.add_column(col)
+    for c in checks:
+        table.add_row(c.name, f"[{STATUS_STYLE[c.status]}]{c.status}[/]", f"{c.value:.4g} {c.unit}",
+                      f"{c.limit:.4g} {c.unit}")
+    return table
+
+
+@app.command()
+def validate(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML")) -> None:
+    """Validate a spec and run its synthesis checks; writes nothing."""
+    spec, checks = _load(spec_path)
+    out_console.print(_checks_table(checks))
+    out_console.print(f"{spec_path}: valid {spec.kind} spec '{spec.name}'")
+
+
+@app.command()
+def build(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML"),
+          out: Path = typer.Option(Path("exports"), "-o", "--out", help="output root folder")) -> None:
+    """Build STEP/STL, templates, cut list and manifest into OUT/<name>/."""
+    from rich.progress import Progress
+
+    from antenna_cad.pipeline import build as run_build
+    from antenna_cad.synthesis.checks import DesignError
+    spec, _ = _load(spec_path)
+    try:
+        with Progress(console=err_console, transient=True) as bar:
+            task = bar.add_task(f"building {spec.name}", total=1.0)
+            result = run_build(spec, out, lambda stage, f: bar.update(task, completed=f,
+                                                                      description=f"{spec.name}: {stage}"))
+    except DesignError as exc:
+        err_console.print(f"{spec_path}: {exc}", markup=False, highlight=False)
+        raise typer.Exit(2)
+    out_console.print(_summary_table(result))
+    out_console.print(_checks_table(result.checks))
+    out_console.print(f"{len(result.files)} files in {result.out_dir} "
+                      f"({sum(result.seconds.values()):.1f} s after imports) — overall: "
+                      f"[{STATUS_STYLE[result.status]}]{result.status}[/]")
+    if result.status == "fail":
+        raise typer.Exit(1)
+
+
+def _summary_table(result) -> Table:
+    table = Table(title=f"{result.name} ({result.kind})")
+    table.add_column("figure")
+    table.add_column("value", justify="right")
+    for key, value in result.figures.items():
+        table.add_row(key, f"{value:.6g}" if isinstance(value, float) else str(value))
+    for material, count in result.boards.items():
+        table.add_row(f"boards {material}", str(count))
+    for label, kg in result.masses_kg.items():
+        table.add_row(f"mass {label} kg", f"{kg:.3f}")
+    return table
+
+
+@app.command()
+def schema(out: Path = typer.Option(Path("schemas/lens-spec.schema.json"), "-o", "--out")) -> None:
+    """Write the JSON Schema of lens specs."""
+    from antenna_cad.spec import json_schema_text
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(json_schema_text(), encoding="utf-8")
+    out_console.print(f"wrote {out}")
+
+
+def main() -> None:
+    """Console entry: ``make-lens SPEC`` means ``make-lens build SPEC``."""
+    args = sys.argv[1:]
+    if args and not args[0].startswith("-") and args[0] not in COMMANDS:
+        sys.argv.insert(1, "build")
+    app()

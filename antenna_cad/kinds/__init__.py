@@ -1,0 +1,1 @@
+"""One adapter module per design kind: spec → synthesis → layup plan → model → fabrication plan."""

@@ -1,0 +1,94 @@
+"""Adapters of the single-surface collimator (seed-000) between its spec and the stages."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from antenna_cad.fabrication.box import plan_box
+from antenna_cad.fabrication.layup import LayupPlan, plan_layup
+from antenna_cad.fabrication.outline import added_in_aperture_mm2
+from antenna_cad.spec.collimator import CollimatorSpec
+from antenna_cad.spec.common import SheetLayupSpec, resolve_material
+from antenna_cad.synthesis.checks import Check, DesignError
+from antenna_cad.synthesis.collimator import CollimatorDesign, synthesize_collimator
+
+
+def synthesize(spec: CollimatorSpec) -> CollimatorDesign:
+    m = resolve_material(spec.material)
+    fab = spec.fabrication
+    antenna = spec.design.antenna
+    return synthesize_collimator(
+        diameter_mm=spec.design.diameter_mm, focal_length_mm=spec.design.focal_length_mm,
+        eps_r=m.eps_r, tan_delta=m.tan_delta, frequency_ghz=spec.frequency_ghz,
+        phase_error_budget_deg=spec.design.phase_error_budget_deg,
+        antenna_aperture_mm=antenna.aperture_mm if antenna else None,
+        antenna_distance_mm=antenna.distance_mm if antenna else None,
+        sheet_thickness_mm=fab.sheet_thickness_mm if isinstance(fab, SheetLayupSpec) else None)
+
+
+def plan(spec: CollimatorSpec, design: CollimatorDesign):
+    """(LayupPlan, box panels) for a sheet layup; (None, ()) for a machined lens."""
+    fab = spec.fabrication
+    if not isinstance(fab, SheetLayupSpec):
+        return None, ()
+    try:
+        layup = plan_layup(
+            radius_at=design.radius_at, lens_thickness_mm=design.thickness_mm,
+            lens_radius_mm=design.diameter_mm / 2, sheet_thickness_mm=fab.sheet_thickness_mm,
+            pedestal_height_mm=fab.pedestal_height_mm, pedestal_width_mm=fab.pedestal_width_mm,
+            joining=fab.joining, dowel_diameter_mm=fab.dowel_diameter_mm,
+            neck_width_mm=fab.neck_width_mm, kerf_mm=fab.kerf_mm,
+            board_width_mm=fab.board.width_mm, board_length_mm=fab.board.length_mm)
+    except ValueError as exc:
+        field, _, message = str(exc).partition(": ")
+        raise DesignError(field, message) from None
+    b = fab.box
+    panels = plan_box(layup, wall_mm=b.wall_thickness_mm, clearance_mm=b.clearance_mm,
+                      screw_diameter_mm=b.screw_diameter_mm, screw_spacing_mm=b.screw_spacing_mm)
+    return layup, panels
+
+
+def model(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | None, panels):
+    from antenna_cad.geometry.collimator import build_model
+    fab = spec.fabrication
+    box_material = resolve_material(fab.box.material) if layup else None
+    return build_model(design, layup, resolve_material(spec.material), box_material, panels)
+
+
+def fabricate(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | None, panels):
+    m = resolve_material(spec.material)
+    if layup is None:
+        from antenna_cad.fabrication.machined import fabricate_machined
+        return fabricate_machined(design, m, spec.fabrication.stock_allowance_mm, spec.name)
+    from antenna_cad.fabrication.sheets import fabricate_sheets
+    b = spec.fabrication.box
+    return fabricate_sheets(layup, panels, m, resolve_material(b.material),
+                            (b.board.width_mm, b.board.length_mm), spec.name)
+
+
+def summary(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | None) -> dict[str, float]:
+    """Key figures for the manifest and the terminal table."""
+    figures = design.key_figures()
+    if layup is not None:
+        figures |= {"sheet_count": layup.count, "sheet_thickness_mm": layup.sheet_thickness_mm,
+                    "stack_thickness_mm": layup.stack_thickness_mm, "back_slab_mm": layup.back_slab_mm}
+    return figures
+
+
+def fabrication_checks(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | None) -> list[Check]:
+    """Sheet discs against the ideal lens (contain it, with no excess), and material the layup
+    adds inside the aperture (necks) as a warning with its volume."""
+    if layup is None:
+        return []
+    fit = 0.0
+    for s in layup.sheets:
+        z = np.linspace(s.z_min_mm, s.z_max_mm, 257)
+        fit = max(fit, abs(s.radius_mm - float(np.max(design.radius_at(z)))))
+    checks = [Check.upper("sheet_disc_fit", fit, 1e-6, "mm",
+                          "sheet disc radius vs largest lens radius in its slab (contains, no excess)")]
+    added = sum(added_in_aperture_mm2(layup, s) * s.thickness_mm for s in layup.sheets)
+    if added > 0:
+        checks.append(Check("material_in_aperture", "warn", added, 0.0, "mm3",
+                            f"necks add {added / 1e6:.3f} dm³ of foam inside the aperture cylinder "
+                            "(phase error where rays cross them; use joining: dowels to avoid it)"))
+    return checks

@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import Literal, Sequence
 
 import numpy as np
@@ -317,6 +318,11 @@ def nearest_grade(eps_target: float, grades: Sequence[float]) -> tuple[int, floa
 # GO aperture efficiency (seed-002 §2.5)
 # --------------------------------------------------------------------------------------------
 
+@lru_cache(maxsize=8)
+def _leggauss(n: int) -> tuple[np.ndarray, np.ndarray]:
+    return np.polynomial.legendre.leggauss(n)
+
+
 def feed_q_for_edge_taper(edge_taper_db: float, b_over_R: float) -> float:
     """Exponent q of a cos^q θ amplitude feed whose level toward the rim, θe = asin(R/b), is
     ``edge_taper_db`` (negative dB). seed-002 §2.5 rule: −10 … −15 dB."""
@@ -339,7 +345,7 @@ def go_efficiency(b_over_R: float, q: float, shape: Shape = "sphere",
     """
     b = float(b_over_R)
     te = math.asin(1.0 / b)
-    x, w = np.polynomial.legendre.leggauss(n_points)
+    x, w = _leggauss(n_points)
     th = 0.5 * te * (x + 1.0)
     wt = 0.5 * te * w
     c = np.cos(th)
@@ -679,7 +685,7 @@ class LuneburgDesign:
     layer_count_rule: int           # seed-002 §2.3 (may be ≤ 0 for D/λ ≤ 4)
     layers: tuple[Layer, ...]       # innermost first
     feed_q: float                   # cos^q θ amplitude feed used for the efficiency
-    edge_taper_db: float            # feed level toward the rim (−inf for b/R = 1)
+    edge_taper_db: float | None     # feed level toward the rim (None for b/R = 1: rim at 90°)
     efficiency_taper: float         # GO, ideal (continuous) lens, seed-002 §2.5
     efficiency_spillover: float
     efficiency: float               # taper × spillover
@@ -809,8 +815,8 @@ def synthesize_luneburg(*, diameter_mm: float, frequency_ghz: float,
     else:
         q = float(feed_q)
     ce = math.sqrt(max(1.0 - 1.0 / focal_distance_ratio**2, 0.0))
-    taper = 20.0 * q * math.log10(ce) if ce > 0 else -math.inf
-    if math.isfinite(taper):
+    taper = 20.0 * q * math.log10(ce) if ce > 0 else None
+    if taper is not None:
         ok = -15.0 - 1e-9 <= taper <= -10.0 + 1e-9
         checks.append(Check("feed_edge_taper", "pass" if ok else "warn", taper, -10.0, "dB",
                             f"feed level toward the rim {taper:.3g} dB (seed-002 §2.5 rule: −10 … −15 dB)"))

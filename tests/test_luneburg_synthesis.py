@@ -263,7 +263,7 @@ def test_go_efficiency_optimum_b11():
     eta_at_ref = np.prod(lb.go_efficiency(1.1, q_ref))
     assert abs(eta_at_ref - eta_ref) <= tol
     assert abs(20 * q_ref * math.log10(math.sqrt(1 - 1 / 1.21)) - (-9.5)) < 0.05
-    q = lb._best_q(1.1, "sphere")
+    q = lb.optimum_feed_q(1.1)
     assert abs(q - q_ref) <= qtol
     assert 0 <= np.prod(lb.go_efficiency(1.1, q)) - eta_at_ref < 1e-3
 
@@ -350,6 +350,9 @@ def test_tracer_single_homogeneous_sphere_tir_and_validation():
     # ε decreasing inward (non-monotone lens) → rays reflect at the inner interface, flagged
     tr = lb.trace_shells([50.0, 100.0], [1.0, 2.0], 150.0, impact_mm=[10.0, 60.0])
     assert not tr.tir[0] and tr.tir[1]
+    assert list(tr.turning_layer) == [0, 1]
+    tr = lb.trace_shells([50.0, 100.0], [2.0, 1.5], 150.0, impact_mm=[10.0, 90.0, 150.0])
+    assert list(tr.turning_layer) == [0, 1, -1] and not tr.valid[2]   # k = R misses the lens
     with pytest.raises(DesignError):
         lb.trace_shells([50.0, 100.0], [0.9, 1.5], 150.0)
     with pytest.raises(DesignError):
@@ -432,3 +435,15 @@ def test_design_errors(kw, field):
         lb.synthesize_luneburg(**base)
     assert e.value.field == field
     assert any(ch.isdigit() for ch in e.value.message)          # the number that broke
+
+
+def test_classic_feed_assumption_is_reported():
+    kw = dict(diameter_mm=300, frequency_ghz=10.0, law="classic", layer_count=8,
+              base_eps_r=2.55, base_tan_delta=1e-4)
+    d = lb.synthesize_luneburg(**kw)
+    assert d.feed_q == 1.0 and d.edge_taper_db is None
+    assert {c.name: c.status for c in d.checks}["feed_model"] == "warn"
+    d = lb.synthesize_luneburg(feed_q=2.0, **kw)
+    assert "feed_model" not in {c.name for c in d.checks}
+    # closed form for b = 1, cos^2 feed: A = cos^1.5 θ, ρ = sinθ ⇒ η_t = (1/3.5)² / (0.5/5), η_s = 1
+    assert d.efficiency == pytest.approx((1 / 3.5) ** 2 / (0.5 / 5), rel=1e-12)

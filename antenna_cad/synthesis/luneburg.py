@@ -394,7 +394,7 @@ class LayeredTrace:
     aperture_x_mm: np.ndarray      # where the ray crosses the aperture plane
     focus_miss_mm: np.ndarray      # reverse trace: signed miss of the focus by the ray entering parallel at k
     axial_focus_mm: np.ndarray     # reverse trace: distance from centre where it crosses the axis (NaN if it does not)
-    turning_layer: np.ndarray      # index (0 = core) of the layer holding the turning point
+    turning_layer: np.ndarray      # deepest layer reached (0 = core): turning point or reflection
     tir: np.ndarray                # ray reflected totally at an inner interface
     valid: np.ndarray
     aperture_z_mm: float
@@ -456,7 +456,7 @@ def trace_shells(r_outer_mm, eps_r, focal_distance_mm: float, impact_mm=None,
                   0.0)
     theta = 2.0 * dphi.sum(axis=1)
     Lin = 2.0 * dl.sum(axis=1)
-    turning = np.where(hits, M - 1 - np.argmax((reached & ~through)[:, ::-1], axis=1), -1)
+    turning = np.where(hits, np.argmax(reached, axis=1), -1)   # deepest layer reached
 
     kk = np.minimum(k, R)
     acR = np.arccos(kk / R)
@@ -721,7 +721,9 @@ class LuneburgDesign:
                 for L in self.layers]
 
 
-def _best_q(b_over_R: float, shape: str) -> float:
+def optimum_feed_q(b_over_R: float, shape: Shape = "sphere") -> float:
+    """q of the cos^q θ feed that maximises the GO η_taper·η_spill (§2.5: a flat maximum).
+    Degenerate for b/R = 1 (q = 1/2 gives a uniform aperture with no spillover in GO)."""
     res = optimize.minimize_scalar(lambda q: -np.prod(go_efficiency(b_over_R, q, shape)),
                                    bounds=(0.2, 30.0), method="bounded", options=dict(xatol=1e-4))
     return float(res.x)
@@ -746,7 +748,8 @@ def synthesize_luneburg(*, diameter_mm: float, frequency_ghz: float,
     traced (§2.1b) with the realised εr; the phase error and focus spread are relative to the
     continuous law, which is exact (uniform phase, zero spread). The feed is cos^q θ: ``feed_q``
     or, if None, the q giving ``edge_taper_db`` toward the rim (§2.5 rule −10…−15 dB); for
-    b/R = 1 (rim at 90°) the q of maximum GO efficiency.
+    b/R = 1 (rim at 90°, rule inapplicable) q = 1 with a warning Check. Figures marked "core"
+    use rays with k <= ``rim_fraction``·R (see :class:`ApertureFigures`).
     """
     if not diameter_mm > 0:
         raise DesignError("design.diameter_mm", f"must be > 0, got {diameter_mm:g}")
@@ -809,11 +812,18 @@ def synthesize_luneburg(*, diameter_mm: float, frequency_ghz: float,
                    for i in range(len(radii)))
     b_mm = focal_distance_ratio * R
     # feed and GO efficiency (§2.5)
-    if feed_q is None:
-        q = (_best_q(focal_distance_ratio, shape) if focal_distance_ratio <= 1.0 + 1e-12
-             else feed_q_for_edge_taper(edge_taper_db, focal_distance_ratio))
-    else:
+    if feed_q is not None:
+        if not feed_q > 0:
+            raise DesignError("feed.q", f"cos^q feed exponent must be > 0, got {feed_q:g}")
         q = float(feed_q)
+    elif focal_distance_ratio > 1.0 + 1e-12:
+        q = feed_q_for_edge_taper(edge_taper_db, focal_distance_ratio)
+    else:
+        q = 1.0
+        checks.append(Check("feed_model", "warn", q, q, "",
+                            "b/R = 1 puts the rim at 90° from the feed, so the −10…−15 dB edge rule "
+                            "(seed-002 §2.5) cannot fix the feed; a cos θ feed (q = 1) is assumed — "
+                            "give feed_q"))
     ce = math.sqrt(max(1.0 - 1.0 / focal_distance_ratio**2, 0.0))
     taper = 20.0 * q * math.log10(ce) if ce > 0 else None
     if taper is not None:

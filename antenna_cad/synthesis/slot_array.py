@@ -1,0 +1,757 @@
+"""Frequency-scanning planar multibeam waveguide-slot arrays with curved slot lines (seed 003).
+
+Pure physics (numpy/scipy only). Sources: ``shared/reference/seed-003.md`` (digest of Le Doan
+Trinh, PhD thesis, MIPT 2020), cited below as "seed-003 §N".
+
+Frame and units (one frame for everything this module returns)
+----------------------------------------------------------------
+* All layers are projected onto one plane. **x** runs across the guides, **y** along the guides,
+  in the direction the wave travels in the radiating guides (away from the last mirror / coupling
+  slot); **z** is the outward normal of the radiating (slotted) face, i.e. broadside = +Z, as in
+  seed-003 §2.6 row "3.1". Layers are stacked in z; which layer a curve belongs to is named.
+* The origin is the seed's own origin for each beam former: the mirror vertex O for the elliptic
+  mirror (§3.5) and the mirror–lens system (§3.4); the centre O between the two mirrors for the
+  two-mirror system (§3.3).
+* Lengths are millimetres at every interface (``_mm``), frequencies GHz (``_ghz``), angles
+  radians. Normalised constructions (D = 1) are scaled by ``scale_mm``.
+* β is the angle of the −1st-harmonic ray from the guide axis (+y); broadside is β = π/2 and
+  θ = π/2 − β is the elevation angle from broadside (seed-003 §3.1).
+
+The guide wave model is the unloaded TE10 mode, γ = sqrt(ε k² − (π/a)²) (seed-003 §3.1). The
+thesis's loaded (slotted) γ came from HFSS and is not available; the broadside frequency of a
+slotted guide is ≈ 1 % lower (10.7 vs 10.80 GHz, §3.1).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable, Sequence
+
+import numpy as np
+from scipy.interpolate import CubicHermiteSpline
+
+from antenna_cad.raytrace.snell import reflect, refract
+from antenna_cad.synthesis.checks import Check, DesignError
+
+C_MM_GHZ = 299.792458  # speed of light, mm·GHz (λ0[mm] = C_MM_GHZ / f[GHz])
+N_SIGMA_RAYS = 50       # rays for the RMS path error σ, seed-003 §3.3 eq. (2.7)
+
+LAYOUTS = ("longitudinal_4", "longitudinal_pair", "transverse_3")
+TAPER_LAWS = ("sin", "exp", "cos_pedestal", "uniform")
+BEAMFORMERS = ("single_mirror", "bifocal_two_mirror", "bifocal_mirror_lens")
+
+
+# --------------------------------------------------------------------------------------------
+# small helpers
+# --------------------------------------------------------------------------------------------
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    return v / np.linalg.norm(v, axis=-1, keepdims=True)
+
+
+def _normal_from_slope(slope: np.ndarray) -> np.ndarray:
+    s = np.asarray(slope, dtype=float)
+    return _unit(np.stack([-s, np.ones_like(s)], axis=-1))
+
+
+def _slope_from_normal(nv: np.ndarray) -> np.ndarray:
+    return -nv[..., 0] / nv[..., 1]
+
+
+def _lower(name: str, value: float, limit: float, unit: str, what: str,
+           warn_margin: float = 0.0) -> Check:
+    """Pass when ``value >= limit + warn_margin``, warn inside the margin, fail below ``limit``."""
+    if value < limit:
+        status = "fail"
+    elif value < limit + warn_margin:
+        status = "warn"
+    else:
+        status = "pass"
+    return Check(name, status, float(value), float(limit), unit,
+                 f"{what}: {value:.4g} {unit} (minimum {limit:.4g} {unit})")
+
+
+def raise_on_fail(checks: Sequence[Check], fields: dict[str, str] | None = None) -> None:
+    """Raise :class:`DesignError` for the first failed check (field from ``fields[name]``)."""
+    fields = fields or {}
+    for c in checks:
+        if c.status == "fail":
+            raise DesignError(fields.get(c.name, c.name), c.message)
+
+
+# --------------------------------------------------------------------------------------------
+# §3.1 dispersion and the harmonic (frequency-scan) relation
+# --------------------------------------------------------------------------------------------
+
+def wavenumber_per_mm(f_ghz):
+    """Free-space k = 2π/λ0 (rad/mm)."""
+    return 2.0 * np.pi * np.asarray(f_ghz, dtype=float) / C_MM_GHZ
+
+
+def guide_gamma_per_mm(f_ghz, width_mm: float, eps_r: float):
+    """TE10 propagation constant γ (rad/mm) of a filled guide, NaN below cut-off (seed-003 §3.1)."""
+    k = wavenumber_per_mm(f_ghz)
+    g2 = eps_r * k**2 - (np.pi / width_mm) ** 2
+    return np.sqrt(np.where(g2 > 0.0, g2, np.nan))
+
+
+def guide_wavelength_mm(f_ghz, width_mm: float, eps_r: float):
+    return 2.0 * np.pi / guide_gamma_per_mm(f_ghz, width_mm, eps_r)
+
+
+def harmonic_direction_cosine(f_ghz, width_mm: float, eps_r: float, period_mm: float,
+                              m: int = -1):
+    """Direction cosine along the guide, (γ + 2πm/p)/k, of spatial harmonic m (seed-003 §3.1).
+
+    For m = −1 this is cos β of eq. (3.1): cos β = (γp − 2π)/(kp). The harmonic radiates
+    where its magnitude is ≤ 1.
+    """
+    k = wavenumber_per_mm(f_ghz)
+    return (guide_gamma_per_mm(f_ghz, width_mm, eps_r) + 2.0 * np.pi * m / period_mm) / k
+
+
+def broadside_frequency_ghz(width_mm: float, eps_r: float, period_mm: float) -> float:
+    """Frequency where the −1st harmonic is broadside, γp = 2π, i.e. p = λg (seed-003 §3.1)."""
+    k2 = ((2.0 * np.pi / period_mm) ** 2 + (np.pi / width_mm) ** 2) / eps_r
+    return float(np.sqrt(k2) * C_MM_GHZ / (2.0 * np.pi))
+
+
+def period_for_angle_mm(f_ghz: float, width_mm: float, eps_r: float,
+                        beta_rad: float = np.pi / 2) -> float:
+    """Slot period giving the −1st harmonic at angle β from the guide axis at ``f_ghz``.
+
+    From (3.1): p = 2π/(γ − k cos β); broadside (β = π/2) gives p = λg.
+    """
+    g = float(guide_gamma_per_mm(f_ghz, width_mm, eps_r))
+    if not np.isfinite(g):
+        raise DesignError("band.design_ghz", f"{f_ghz:.4g} GHz is below the TE10 cut-off of the "
+                          f"{width_mm:.4g} mm guide (eps_r {eps_r:.4g})")
+    return float(2.0 * np.pi / (g - float(wavenumber_per_mm(f_ghz)) * np.cos(beta_rad)))
+
+
+def ideal_gain_dbi(width_mm: float, length_mm: float, f_ghz: float,
+                   aperture_efficiency: float = 1.0) -> float:
+    """4πS/λ² · КИП in dBi (seed-003 §3.9, R12)."""
+    lam = C_MM_GHZ / f_ghz
+    return float(10.0 * np.log10(aperture_efficiency * 4.0 * np.pi * width_mm * length_mm / lam**2))
+
+
+@dataclass(frozen=True)
+class ScanFigures:
+    """Harmonic bookkeeping over the band (seed-003 §3.1, §8.3).
+
+    ``frequencies_ghz`` is the sampled band; per frequency: ``cos_beta`` of the −1st harmonic,
+    ``theta_rad`` its angle from broadside (NaN where it does not radiate), ``n_guide`` = γ/k.
+    """
+    frequencies_ghz: np.ndarray
+    cos_beta: np.ndarray
+    theta_rad: np.ndarray
+    n_guide: np.ndarray
+    design_ghz: float
+    period_mm: float
+    broadside_ghz: float
+    beta_design_rad: float
+    n_guide_design: float
+    guide_wavelength_design_mm: float
+    te10_cutoff_ghz: float
+    te20_cutoff_ghz: float
+    te01_cutoff_ghz: float
+    checks: tuple[Check, ...]
+
+
+def scan_figures(*, min_ghz: float, max_ghz: float, design_ghz: float, width_mm: float,
+                 height_mm: float, eps_r: float, period_mm: float,
+                 layer_heights_mm: Sequence[tuple[str, float, float]] = (),
+                 n_freq: int = 161) -> ScanFigures:
+    """Frequency-scan relation over the band with the mode/harmonic checks of seed-003 §8.3.
+
+    ``layer_heights_mm``: (name, height_mm, refractive index) of each parallel-plate layer; a
+    warning is raised when its first higher mode (cut-off c/(2hn)) is below ``max_ghz``.
+    """
+    if not (0 < min_ghz <= design_ghz <= max_ghz):
+        raise DesignError("band", f"need 0 < min_ghz <= design_ghz <= max_ghz "
+                          f"(got {min_ghz}, {design_ghz}, {max_ghz})")
+    f = np.linspace(min_ghz, max_ghz, n_freq)
+    k = wavenumber_per_mm(f)
+    gam = guide_gamma_per_mm(f, width_mm, eps_r)
+    cb = harmonic_direction_cosine(f, width_mm, eps_r, period_mm, -1)
+    theta = np.where(np.abs(cb) <= 1.0, np.arcsin(np.clip(cb, -1, 1)), np.nan)
+    sq = np.sqrt(eps_r)
+    fc10 = C_MM_GHZ / (2 * width_mm * sq)
+    fc20 = C_MM_GHZ / (width_mm * sq)
+    fc01 = C_MM_GHZ / (2 * height_mm * sq)
+    fb = broadside_frequency_ghz(width_mm, eps_r, period_mm)
+    checks = [
+        _lower("te10_cutoff_margin", min_ghz - fc10, 0.0, "GHz",
+               f"band minimum above TE10 cut-off ({fc10:.4g} GHz) of waveguide.width_mm"),
+        Check.upper("te20_in_band", max_ghz - fc20, 0.0, "GHz",
+                    f"TE20 cut-off {fc20:.4g} GHz vs band maximum (negative = outside band)")
+        if fc20 > max_ghz else
+        Check("te20_in_band", "warn", float(max_ghz - fc20), 0.0, "GHz",
+              f"TE20 propagates above {fc20:.4g} GHz, inside the band (max {max_ghz:.4g} GHz): "
+              f"reduce waveguide.width_mm"),
+        Check("te01_in_band", "warn" if fc01 < max_ghz else "pass", float(max_ghz - fc01), 0.0,
+              "GHz", f"TE01 cut-off {fc01:.4g} GHz vs band maximum {max_ghz:.4g} GHz "
+                     f"(waveguide.height_mm)"),
+    ]
+    for name, h, n_idx in layer_heights_mm:
+        fpp = C_MM_GHZ / (2 * h * n_idx)
+        checks.append(Check("parallel_plate_" + name, "warn" if fpp < max_ghz else "pass",
+                            float(max_ghz - fpp), 0.0, "GHz",
+                            f"{name}: first higher parallel-plate mode at {fpp:.4g} GHz vs band "
+                            f"maximum {max_ghz:.4g} GHz (layer_height_mm)"))
+    rad = np.abs(cb) <= 1.0
+    checks.append(Check("minus1_radiates", "pass" if rad.all() else ("warn" if rad.any() else "fail"),
+                        float(np.mean(rad)), 1.0, "",
+                        f"−1st harmonic radiates over {100 * np.mean(rad):.0f} % of the band"))
+    c0 = gam / k                                     # m = 0 (fast wave if < 1)
+    cm2 = harmonic_direction_cosine(f, width_mm, eps_r, period_mm, -2)
+    extra = (np.abs(c0) < 1.0) | (np.abs(cm2) < 1.0)
+    fx = f[extra & np.isfinite(gam)]
+    checks.append(Check("extra_harmonics", "warn" if fx.size else "pass", float(fx.size), 0.0, "",
+                        ("harmonics 0 or −2 radiate at "
+                         f"{fx.min():.4g}–{fx.max():.4g} GHz (grating lobes): change slots.period_mm")
+                        if fx.size else "only the −1st harmonic radiates in the band"))
+    checks.append(Check("broadside_frequency", "warn" if min_ghz <= fb <= max_ghz else "pass",
+                        fb, max_ghz, "GHz",
+                        f"broadside (p = λg, 'normal effect' S11 peak) at {fb:.4g} GHz"
+                        + (" inside the band" if min_ghz <= fb <= max_ghz else " outside the band")))
+    cbd = float(harmonic_direction_cosine(design_ghz, width_mm, eps_r, period_mm, -1))
+    if abs(cbd) > 1.0:
+        raise DesignError("slots.period_mm", f"−1st harmonic does not radiate at design "
+                          f"{design_ghz:.4g} GHz (cos β = {cbd:.4g})")
+    gd = float(guide_gamma_per_mm(design_ghz, width_mm, eps_r))
+    return ScanFigures(f, cb, theta, gam / k, float(design_ghz), float(period_mm), fb,
+                       float(np.arccos(cbd)), gd / float(wavenumber_per_mm(design_ghz)),
+                       2 * np.pi / gd, fc10, fc20, fc01, tuple(checks))
+
+
+# --------------------------------------------------------------------------------------------
+# §3.2 leaky-wave amplitude taper, eq. (1.1) corrected (erratum §7.1)
+# --------------------------------------------------------------------------------------------
+
+def taper_alpha_np_per_m(y_mm, length_mm: float, law: str = "sin", eta: float = 0.9,
+                         pedestal: float = 0.3):
+    """Leaky-wave attenuation α(y) (Np/m) that radiates a prescribed |A(y)|² (seed-003 §3.2).
+
+    α = ½|A|² / [η⁻¹ ∫₀ᴸ|A|² − ∫₀ʸ|A|²], η = radiated fraction (P_L = load power; erratum §7.1).
+    Laws: ``sin`` |A|² = sin(πy/L) (Table 1.1, closed form as in the digest); ``cos_pedestal``
+    |A| = pedestal + (1 − pedestal)·sin(πy/L) (Table 3.1 shape; pedestal not given in the seed);
+    ``exp``/``uniform``: constant α = −ln(1 − η)/(2L), exponential field decay.
+    """
+    y = np.asarray(y_mm, dtype=float)
+    L = float(length_mm)
+    if not 0.0 < eta < 1.0:
+        raise DesignError("slots.taper.eta", f"must be in (0, 1) (got {eta})")
+    if law == "sin":
+        num = np.sin(np.pi * y / L)
+        den = (2 * L / np.pi) / eta - (L / np.pi) * (1.0 - np.cos(np.pi * y / L))
+    elif law == "cos_pedestal":
+        q = pedestal
+        g = lambda u: (q * q * u + 2 * q * (1 - q) * (L / np.pi) * (1 - np.cos(np.pi * u / L))
+                       + (1 - q) ** 2 * (u / 2 - L / (4 * np.pi) * np.sin(2 * np.pi * u / L)))
+        num = (q + (1 - q) * np.sin(np.pi * y / L)) ** 2
+        den = g(L) / eta - g(y)
+    elif law in ("exp", "uniform"):
+        return np.full_like(y, -np.log(1.0 - eta) / (2 * L) * 1e3)
+    else:
+        raise DesignError("slots.taper.law", f"unknown law {law!r} (use one of {TAPER_LAWS})")
+    return 0.5e3 * num / den
+
+
+def slot_length_from_alpha_mm(alpha_np_per_m, a0: float = 0.0078, b0: float = 2.01):
+    """Invert the cell fit α(L1) = a0·exp(b0·L1) (28 GHz, set 1; seed-003 §3.2)."""
+    return np.log(np.asarray(alpha_np_per_m, dtype=float) / a0) / b0
+
+
+def taper_slot_lengths_mm(n_cells: int, period_mm: float, length_mm: float, law: str = "sin",
+                          eta: float = 0.9, a0: float = 0.0078, b0: float = 2.01,
+                          pedestal: float = 0.3) -> np.ndarray:
+    """L1 of every cell, evaluated at the cell centres y = (m + ½)p (seed-003 §3.2, R3)."""
+    y = (np.arange(n_cells) + 0.5) * period_mm
+    return slot_length_from_alpha_mm(taper_alpha_np_per_m(y, length_mm, law, eta, pedestal), a0, b0)
+
+
+# --------------------------------------------------------------------------------------------
+# curves and ray tracing through them
+# --------------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Curve:
+    """A synthesised 2-D curve y(x) as points with unit tangents (pointing to +x).
+
+    ``layer`` names the parallel-plate layer the curve bounds; CAD fits a C¹ spline through
+    ``points_mm`` with ``tangents``. :meth:`y_at` / :meth:`slope_at` evaluate the cubic Hermite
+    interpolant through the same data.
+    """
+    name: str
+    layer: str
+    points_mm: np.ndarray     # (N, 2) x, y in mm, x strictly increasing
+    tangents: np.ndarray      # (N, 2) unit tangents
+
+    @property
+    def slopes(self) -> np.ndarray:
+        return self.tangents[:, 1] / self.tangents[:, 0]
+
+    def _spline(self) -> CubicHermiteSpline:
+        return CubicHermiteSpline(self.points_mm[:, 0], self.points_mm[:, 1], self.slopes)
+
+    def y_at(self, x_mm):
+        return self._spline()(np.asarray(x_mm, dtype=float))
+
+    def slope_at(self, x_mm):
+        return self._spline().derivative()(np.asarray(x_mm, dtype=float))
+
+    @property
+    def x_range_mm(self) -> tuple[float, float]:
+        return float(self.points_mm[0, 0]), float(self.points_mm[-1, 0])
+
+
+def _make_curve(name: str, layer: str, x, y, slope, scale: float = 1.0) -> Curve:
+    x = np.asarray(x, float)
+    order = np.argsort(x, kind="stable")
+    x, y, s = x[order], np.asarray(y, float)[order], np.asarray(slope, float)[order]
+    keep = np.concatenate([[True], np.diff(x) > 1e-12 * max(1.0, np.abs(x).max())])
+    x, y, s = x[keep], y[keep], s[keep]
+    t = _unit(np.stack([np.ones_like(s), s], axis=-1))
+    return Curve(name, layer, np.stack([x, y], axis=-1) * scale, t)
+
+
+def intersect_rays_with_curve(origin: np.ndarray, direction: np.ndarray, curve: Curve,
+                              iterations: int = 30) -> tuple[np.ndarray, np.ndarray]:
+    """Vectorised Newton solve of origin + s·direction on the curve. Returns (points, ok)."""
+    spl = curve._spline()
+    dspl = spl.derivative()
+    o = np.asarray(origin, float)
+    d = _unit(np.asarray(direction, float))
+    s = (spl(o[:, 0]) - o[:, 1]) / d[:, 1]
+    x0, x1 = curve.x_range_mm
+    for _ in range(iterations):
+        x = o[:, 0] + s * d[:, 0]
+        g = spl(x) - (o[:, 1] + s * d[:, 1])
+        dg = dspl(x) * d[:, 0] - d[:, 1]
+        s = s - g / dg
+    p = o + s[:, None] * d
+    g = spl(p[:, 0]) - p[:, 1]
+    ok = (np.abs(g) < 1e-9 * max(1.0, abs(x1 - x0))) & (p[:, 0] >= x0) & (p[:, 0] <= x1) & (s > 0)
+    return p, ok
+
+
+def _rms(v: np.ndarray) -> float:
+    return float(np.sqrt(np.mean(np.square(v))))
+
+
+# --------------------------------------------------------------------------------------------
+# §3.5 elliptic mirror (bifocal single-mirror array)
+# --------------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class BeamFormer:
+    """A synthesised quasi-optical beam former, scaled to mm (frame: module docstring).
+
+    ``mirrors``/``lenses``: curves (points + tangents). ``foci_mm``: design foci (K, 2) in the
+    feed layer. ``beam_dirs``: (K, 2) unit direction in the xy-plane of the wave that focus k
+    launches into the guides' layer: its x component is the azimuth direction cosine of the
+    radiated beam. ``sigma_mm``: ray-traced RMS path error (2.7) per design focus (N = 50 rays
+    over the aperture), ``sigma_norm`` the same divided by ``aperture_mm``. ``guide_curve`` is
+    the curve along which the guides start (last mirror; its coupling slot is offset from it
+    toward +y). ``eikonal``: callable (x_mm, focus index) -> design path length (mm) from the
+    focus to the guide entry point on ``guide_curve``. ``focal_locus``: points of the feed arc,
+    ``params``: normalised construction figures (l0, δ, …).
+    """
+    type: str
+    mirrors: tuple[Curve, ...]
+    lenses: tuple[Curve, ...]
+    foci_mm: np.ndarray
+    beam_dirs: np.ndarray
+    sigma_mm: np.ndarray
+    sigma_norm: np.ndarray
+    aperture_mm: float
+    guide_curve: Curve
+    focal_locus_mm: np.ndarray
+    focal_locus_centre_mm: np.ndarray
+    eikonal: Callable = field(repr=False)
+    trace: Callable = field(repr=False)
+    params: dict = field(default_factory=dict)
+
+
+def ellipse_mirror(minor_semi_axis_mm: float, focal_separation_mm: float,
+                   half_width_mm: float, n_points: int = 201) -> BeamFormer:
+    """Elliptic mirror of the bifocal single-mirror array (seed-003 §3.5, eqs. 3.5–3.6).
+
+    b = r0 cos α (vertex O to the line of foci), c = 2 r0 sin α. The mirror
+    x² cos²α + y² − 2 r0 y cos α = 0 passes through O and is concave toward the foci
+    F, F′ = (∓r0 sin α, r0 cos α). Focus F (left) launches a wave with azimuth cosine +sin α.
+    Eikonal from F to the mirror point A: FA = r0 + x sin α (r + r′ = 2r0, r − r′ = 2x sin α).
+    """
+    b, c = float(minor_semi_axis_mm), float(focal_separation_mm)
+    if b <= 0 or c < 0:
+        raise DesignError("beamformer.minor_semi_axis_mm", f"need b > 0, c >= 0 (got {b}, {c})")
+    r0 = np.hypot(b, c / 2)
+    alpha = np.arctan2(c / 2, b)
+    if half_width_mm >= r0:
+        raise DesignError("beamformer.minor_semi_axis_mm",
+                          f"mirror half-width {half_width_mm:.4g} mm >= r0 {r0:.4g} mm")
+    x = np.linspace(-half_width_mm, half_width_mm, n_points)
+    root = np.sqrt(1.0 - (x / r0) ** 2)
+    y = b * (1.0 - root)
+    slope = b * x / (r0**2 * root)
+    mirror = _make_curve("mirror", "layer1-layer2", x, y, slope)
+    sa, ca = np.sin(alpha), np.cos(alpha)
+    foci = np.array([[-r0 * sa, r0 * ca], [r0 * sa, r0 * ca]])
+    dirs = np.array([[sa, 0.0], [-sa, 0.0]])   # azimuth cosines ±sin α (y part set by β)
+
+    def eikonal(x_mm, j):
+        return r0 + (1 if j == 0 else -1) * np.asarray(x_mm, float) * sa
+
+    def trace(j, x_hit):
+        """Path F_j → mirror point at x_hit (exact reflection-free: the mirror is the transition)."""
+        p = np.stack([x_hit, mirror.y_at(x_hit)], axis=-1)
+        return p, np.linalg.norm(p - foci[j], axis=-1)
+
+    sig = []
+    xs = np.linspace(-half_width_mm, half_width_mm, N_SIGMA_RAYS)
+    for j in range(2):
+        p, L = trace(j, xs)
+        sig.append(_rms(L - eikonal(xs, j)))
+    sig = np.array(sig)
+    phi = np.linspace(-np.pi / 3, np.pi / 3, 121)
+    locus = np.stack([r0 * np.sin(phi), r0 * np.cos(phi)], axis=-1)
+    return BeamFormer("single_mirror", (mirror,), (), foci, dirs, sig, sig / (2 * half_width_mm),
+                      2 * half_width_mm, mirror, locus, np.zeros(2), eikonal, trace,
+                      {"r0_mm": float(r0), "alpha_rad": float(alpha)})
+
+
+# --------------------------------------------------------------------------------------------
+# §3.3 bifocal two-mirror beam former (Kinber-type point-by-point construction, vector form)
+# --------------------------------------------------------------------------------------------
+
+def _remaining_to_point(P, e, G, L):
+    """t with |G − (P + t e)| = L − t (seed-003 §3.3, vector form)."""
+    w = G - P
+    return (np.sum(w * w, axis=-1) - L**2) / (2.0 * (np.sum(e * w, axis=-1) - L))
+
+
+def _monotone_prefix(seg):
+    """Keep the leading part of a new segment where x still increases (fold = divergence)."""
+    x = seg[0]
+    dx = np.diff(x)
+    typical = np.median(dx[dx > 0]) if np.any(dx > 0) else 0.0
+    bad = np.nonzero((dx <= 0) | (dx > 20.0 * typical))[0]      # fold or jump
+    if bad.size == 0:
+        return seg
+    k = int(bad[0]) + 1
+    return tuple(a[:k] for a in seg)
+
+
+def _monotone(seg_x: np.ndarray, what: str, field_name: str) -> None:
+    if not np.all(np.diff(seg_x) > 0):
+        raise DesignError(field_name, f"{what}: construction folded back (x not increasing); "
+                          f"the initial-segment parameters do not give a smooth surface")
+
+
+def bifocal_two_mirror(*, a0: float, a2: float, h1: float, b0: float, b2: float, h2: float,
+                       rho1: float, rho2: float = np.inf, half_width: float = 0.5,
+                       margin: float = 0.1, n_seg: int = 41, max_iter: int = 60,
+                       scale_mm: float = 1.0, field_prefix: str = "beamformer") -> BeamFormer:
+    """Bifocal two-mirror, three-layer beam former (seed-003 §3.3, eqs. 2.1–2.7).
+
+    Normalised (D = 1) inputs: initial segments y1 = a0 + a2 x² (|x| ≤ h1, mirror 1, layers 1→2)
+    and y2 = b0 + b2 x² (|x| ≤ h2, mirror 2, layers 2→3). Central ray F1 → A(−h1) → B(+h2) →
+    F3 (or a plane front when ``rho2`` is inf); its direction is taken from the coordinates of
+    A and B (erratum §7.3). F2, F4 are mirror images. Step A: F1 rays on the newest mirror-1
+    segment build the next mirror-2 segment; step B: F4 rays on the newest mirror-2 segment build
+    the next mirror-1 segment; the left halves follow by x → −x symmetry. Stops when both mirrors
+    cover |x| ≤ half_width + margin. All outputs are multiplied by ``scale_mm``.
+    """
+    fp = field_prefix
+    if h1 <= 0 or h2 <= 0 or rho1 <= 0 or rho2 <= 0:
+        raise DesignError(fp, f"h1, h2, rho1, rho2 must be > 0 (got {h1}, {h2}, {rho1}, {rho2})")
+    plane = not np.isfinite(rho2)
+    xs1 = np.linspace(-h1, h1, n_seg)
+    xs2 = np.linspace(-h2, h2, n_seg)
+    seg1 = (xs1, a0 + a2 * xs1**2, 2 * a2 * xs1)
+    seg2 = (xs2, b0 + b2 * xs2**2, 2 * b2 * xs2)
+    A = np.array([-h1, a0 + a2 * h1**2])
+    B = np.array([h2, b0 + b2 * h2**2])
+    eAB = _unit(B - A)
+    d_in = reflect(eAB, _normal_from_slope(np.array(-2 * a2 * h1)))
+    F1 = A - rho1 * d_in
+    e_out = reflect(eAB, _normal_from_slope(np.array(2 * b2 * h2)))
+    AB = float(np.linalg.norm(B - A))
+    F2 = F1 * np.array([-1.0, 1.0])
+    if plane:
+        u3 = e_out
+        u4 = u3 * np.array([-1.0, 1.0])
+        l0 = rho1 + AB - float(u3 @ B)
+        F3 = F4 = None
+    else:
+        F3 = B + rho2 * e_out
+        F4 = F3 * np.array([-1.0, 1.0])
+        l0 = rho1 + AB + rho2
+
+    def step_a(seg):               # F1 rays on mirror 1 -> new mirror-2 points
+        x, y, s = seg
+        P = np.stack([x, y], -1)
+        r1 = np.linalg.norm(P - F1, axis=-1)
+        e = reflect(_unit(P - F1), _normal_from_slope(s))
+        if plane:
+            t = (l0 - r1 + P @ u3) / (1.0 - e @ u3)
+            Q = P + t[:, None] * e
+            eo = np.broadcast_to(u3, Q.shape)
+        else:
+            t = _remaining_to_point(P, e, F3, l0 - r1)
+            Q = P + t[:, None] * e
+            eo = _unit(F3 - Q)
+        return Q[:, 0], Q[:, 1], _slope_from_normal(e - eo)
+
+    def step_b(seg):               # F4 rays (or the reversed plane wave u4) on mirror 2 -> mirror 1
+        x, y, s = seg
+        M = np.stack([x, y], -1)
+        if plane:
+            d = np.broadcast_to(-u4, M.shape)
+            L = l0 + M @ u4
+        else:
+            d = _unit(M - F4)
+            L = l0 - np.linalg.norm(M - F4, axis=-1)
+        e = reflect(d, _normal_from_slope(s))
+        t = _remaining_to_point(M, e, F2, L)
+        N = M + t[:, None] * e
+        return N[:, 0], N[:, 1], _slope_from_normal(e - _unit(F2 - N))
+
+    m1, m2 = [seg1], [seg2]
+    need = half_width + margin
+    for _ in range(max_iter):
+        if m1[-1][0][-1] >= need and m2[-1][0][-1] >= need:
+            break
+        n2, n1 = step_a(m1[-1]), step_b(m2[-1])
+        _monotone(n1[0], "mirror 1", fp)
+        _monotone(n2[0], "mirror 2", fp)
+        m1.append(n1)
+        m2.append(n2)
+    else:
+        raise DesignError(fp, f"mirrors did not reach |x| = {need:.3g} in {max_iter} iterations "
+                          f"(reached {m1[-1][0][-1]:.4g}, {m2[-1][0][-1]:.4g})")
+
+    # the initial segments hold both halves; later segments only x > 0 (mirror them)
+    mir1 = _assemble_symmetric(m1, "mirror_1", "layer1-layer2", scale_mm)
+    mir2 = _assemble_symmetric(m2, "mirror_2", "layer2-layer3", scale_mm)
+
+    sc = scale_mm
+    foci = np.array([F1, F2]) * sc
+    if plane:
+        dirs = np.array([u3, u4])
+    else:
+        dirs = np.array([_unit(F3 - np.array([0, b0])), _unit(F4 - np.array([0, b0]))])
+
+    def trace(j, x_hit_mm):
+        """Trace focus j via mirror-1 point at x_hit (mm). Returns (mirror-2 point, path mm, ok)."""
+        xh = np.asarray(x_hit_mm, float)
+        P = np.stack([xh, mir1.y_at(xh)], -1)
+        F = foci[j]
+        e = reflect(_unit(P - F), _normal_from_slope(mir1.slope_at(xh)))
+        Q, ok = intersect_rays_with_curve(P, e, mir2)
+        return Q, np.linalg.norm(P - F, axis=-1) + np.linalg.norm(Q - P, axis=-1), ok
+
+    sign = np.array([1.0, -1.0])
+
+    def eikonal(x_mm, j):
+        """Design path focus j → guide entry on mirror 2 (plane output only): l0 + u_j·Q."""
+        x = np.asarray(x_mm, float)
+        Q = np.stack([x, mir2.y_at(x)], -1)
+        return l0 * sc + Q @ dirs[j]
+
+    sig = []
+    xs = np.linspace(-half_width, half_width, N_SIGMA_RAYS) * sc
+    for j in range(2):
+        Q, L, ok = trace(j, xs)
+        if plane:
+            tot = L - Q @ dirs[j]
+            ref = l0 * sc
+        else:
+            F_out = (F3 if j == 0 else F4) * sc
+            tot = L + np.linalg.norm(F_out - Q, axis=-1)
+            ref = l0 * sc
+        if not ok.all():
+            raise DesignError(fp, f"focus {j + 1}: {int((~ok).sum())} of {ok.size} rays miss "
+                              "mirror 2; increase the construction margin")
+        sig.append(_rms(tot - ref))
+    sig = np.array(sig)
+    R = float(np.linalg.norm(F1)) * sc
+    phi0 = np.arctan2(F1[0], -F1[1])
+    phi = np.linspace(-max(2 * abs(phi0), np.pi / 3), max(2 * abs(phi0), np.pi / 3), 121)
+    locus = np.stack([R * np.sin(phi), -R * np.cos(phi)], -1)
+    params = {"l0": float(l0), "F1": F1.copy(), "iterations": len(m1) - 1, "plane_output": plane,
+              "beam_angle_rad": float(np.arctan2(dirs[0][0], dirs[0][1]))}
+    if not plane:
+        params["F3"] = F3.copy()
+    return BeamFormer("bifocal_two_mirror", (mir1, mir2), (), foci, dirs, sig, sig / sc,
+                      sc, mir2, locus, np.zeros(2), eikonal, trace, params)
+
+
+def _assemble_symmetric(segs, name, layer, scale):
+    """Join the initial (symmetric) segment and the right-hand segments; mirror to the left."""
+    x0, y0, s0 = segs[0]
+    xr = np.concatenate([s[0] for s in segs[1:]]) if len(segs) > 1 else np.empty(0)
+    yr = np.concatenate([s[1] for s in segs[1:]]) if len(segs) > 1 else np.empty(0)
+    sr = np.concatenate([s[2] for s in segs[1:]]) if len(segs) > 1 else np.empty(0)
+    x = np.concatenate([-xr[::-1], x0, xr])
+    y = np.concatenate([yr[::-1], y0, yr])
+    s = np.concatenate([-sr[::-1], s0, sr])
+    return _make_curve(name, layer, x, y, s, scale)
+
+
+# --------------------------------------------------------------------------------------------
+# §3.4 bifocal mirror–lens beam former
+# --------------------------------------------------------------------------------------------
+
+def _transfer_up(e_in: np.ndarray, slope: np.ndarray, ratio: float | np.ndarray) -> np.ndarray:
+    """Wave crossing a mirror-edge coupling slot into the other layer, travelling back (+y).
+
+    Tangential phase is conserved: e_out·τ = ratio·(e_in·τ) with ratio = n_in/n_out
+    (seed-003 §3.4, (2.10)/(2.12)/(2.15)); the normal part is taken with +y sign.
+    """
+    nrm = _normal_from_slope(slope)                     # has +y component
+    tau = np.stack([nrm[..., 1], -nrm[..., 0]], -1)
+    et = ratio * np.sum(e_in * tau, -1)
+    if np.any(np.abs(et) > 1.0):
+        raise DesignError("beamformer", "no transmitted wave at the mirror (|n sin| > 1)")
+    return et[..., None] * tau + np.sqrt(1.0 - et**2)[..., None] * nrm
+
+
+def bifocal_mirror_lens(*, lens_a2: float, lens_vertex: float, x0: float, p1: float, p2: float,
+                        f0: float, n: float, half_width: float = 0.5, margin: float = 0.05,
+                        n_seg: int = 41, max_iter: int = 80, scale_mm: float = 1.0,
+                        field_prefix: str = "beamformer") -> BeamFormer:
+    """Bifocal mirror–lens, two-layer beam former (seed-003 §3.4, eqs. 2.8–2.18, errata §7.4).
+
+    Normalised inputs: initial lens input surface y = lens_vertex + lens_a2·x² on |x| ≤ x0;
+    on-axis focus F(0, f0); lens index n; p1 = distance F1 → lens point A(−x0); p2 = reference
+    distance to the output front. Step 0 builds the initial mirror through O from F (plane wave
+    along +y, L0 = 2f0 + d(n − 1)); F1 follows by back-refraction of the ray A → D (D = right end
+    of the initial mirror) and the output direction δ from the tangential law at D. Then
+    alternately: F1 rays through the newest lens segment give the next mirror segment (2.13–2.15);
+    the reversed plane wave of F2 on the *previous* mirror segment gives the next lens segment
+    (2.16–2.18, C sign corrected).
+    """
+    fp = field_prefix
+    if n <= 1 or x0 <= 0 or f0 <= lens_vertex or p1 <= 0:
+        raise DesignError(fp, f"need n > 1, x0 > 0, f0 > lens vertex, p1 > 0 "
+                          f"(got n={n}, x0={x0}, f0={f0}, p1={p1})")
+    F = np.array([0.0, f0])
+    xl = np.linspace(-x0, x0, n_seg)
+    lens0 = (xl, lens_vertex + lens_a2 * xl**2, 2 * lens_a2 * xl)
+    L0 = 2 * f0 + lens_vertex * (n - 1)
+    K = np.stack([lens0[0], lens0[1]], -1)
+    e, ok = refract(_unit(K - F), _normal_from_slope(lens0[2]), 1.0, n)
+    e = _unit(e)
+    cosb = -e[:, 1]
+    KH = (L0 + K[:, 1] - f0 - np.linalg.norm(K - F, axis=-1)) / (n + cosb)
+    H = K + KH[:, None] * e
+    mir0 = (H[:, 0], H[:, 1], _slope_from_normal(n * e - np.array([0.0, 1.0])))
+    _monotone(mir0[0], "initial mirror", fp)
+    A = K[0]
+    D = H[-1]
+    eAD = _unit(D - A)
+    back, ok = refract(-eAD, _normal_from_slope(np.array(lens0[2][0])), n, 1.0)
+    F1 = A + p1 * _unit(back)
+    u1 = _transfer_up(eAD, np.array(mir0[2][-1]), n)
+    delta = float(np.arctan2(u1[0], u1[1]))
+    l0 = float(np.linalg.norm(D - A))
+    R0 = p1 + n * l0 + p2 - float(u1 @ D)
+    F2 = F1 * np.array([-1.0, 1.0])
+    u2 = u1 * np.array([-1.0, 1.0])
+
+    def step_mirror(seg):          # F1 rays through lens points -> new mirror points
+        x, y, s = seg
+        M = np.stack([x, y], -1)
+        e, ok = refract(_unit(M - F1), _normal_from_slope(s), 1.0, n)
+        if not ok.all():
+            raise DesignError(fp, "total reflection at the lens surface")
+        e = _unit(e)
+        l = (R0 - np.linalg.norm(M - F1, axis=-1) - p2 + M @ u1) / (n - e @ u1)
+        N = M + l[:, None] * e
+        return N[:, 0], N[:, 1], _slope_from_normal(n * e - u1)
+
+    def step_lens(seg):            # reversed plane wave of F2 on mirror points -> new lens points
+        x, y, s = seg
+        P = np.stack([x, y], -1)
+        e = _transfer_up(np.broadcast_to(-u2, P.shape), s, 1.0 / n)
+        DP = p2 - P @ u2
+        S = R0 - DP
+        w = F2 - P
+        a = n * n - 1.0
+        bq = np.sum(e * w, -1) - n * S
+        cq = S**2 - np.sum(w * w, -1)
+        disc = bq * bq - a * cq
+        if np.any(disc < 0):
+            raise DesignError(fp, "lens construction has no solution (negative discriminant)")
+        roots = np.stack([(-bq - np.sqrt(disc)) / a, (-bq + np.sqrt(disc)) / a], -1)
+        good = (roots > 0) & ((S[:, None] - n * roots) > 0)
+        l = np.where(good[:, 0], roots[:, 0], roots[:, 1])
+        if not good.any(axis=1).all():
+            raise DesignError(fp, "lens construction: no positive path root")
+        Q = P + l[:, None] * e
+        air = _unit(Q - F2)
+        return Q[:, 0], Q[:, 1], _slope_from_normal(air + n * e)
+
+    lenses, mirrors = [lens0], [mir0]
+    need = half_width + margin
+    for _ in range(max_iter):
+        if lenses[-1][0][-1] >= need and mirrors[-1][0][-1] >= need:
+            break
+        nm = _monotone_prefix(step_mirror(lenses[-1]))
+        nl = _monotone_prefix(step_lens(mirrors[-1]))
+        mirrors.append(nm)
+        lenses.append(nl)
+        if len(nm[0]) < n_seg or len(nl[0]) < n_seg:   # construction diverges (§3.4): stop
+            if min(nm[0][-1], nl[0][-1]) < half_width:
+                raise DesignError(fp, f"construction diverges at |x| = "
+                                  f"{min(nm[0][-1], nl[0][-1]):.4g} before covering the "
+                                  f"half-aperture {half_width:.4g}")
+            break
+    else:
+        raise DesignError(fp, f"surfaces did not reach |x| = {need:.3g} in {max_iter} iterations")
+    sc = scale_mm
+    mir = _assemble_symmetric(mirrors, "mirror", "layer1-layer2", sc)
+    lens = _assemble_symmetric(lenses, "lens", "layer1", sc)
+    foci = np.array([F1, F2]) * sc
+    dirs = np.array([u1, u2])
+    Rsc, p2sc = R0 * sc, p2 * sc
+
+    def trace(j, x_hit_mm):
+        """Focus j → lens point at x_hit (mm) → mirror. Returns (mirror point, path mm, ok)."""
+        xh = np.asarray(x_hit_mm, float)
+        Kp = np.stack([xh, lens.y_at(xh)], -1)
+        e, ok1 = refract(_unit(Kp - foci[j]), _normal_from_slope(lens.slope_at(xh)), 1.0, n)
+        Q, ok2 = intersect_rays_with_curve(Kp, _unit(e), mir)
+        path = np.linalg.norm(Kp - foci[j], axis=-1) + n * np.linalg.norm(Q - Kp, axis=-1)
+        return Q, path, ok1 & ok2
+
+    def eikonal(x_mm, j):
+        x = np.asarray(x_mm, float)
+        Q = np.stack([x, mir.y_at(x)], -1)
+        return Rsc - p2sc + Q @ dirs[j]
+
+    sig = []
+    xs = np.linspace(-half_width, half_width, N_SIGMA_RAYS) * sc
+    for j in range(2):
+        Q, L, ok = trace(j, xs)
+        if not ok.all():
+            raise DesignError(fp, f"focus {j + 1}: {int((~ok).sum())} rays miss the mirror")
+        sig.append(_rms(L + p2sc - Q @ dirs[j] - Rsc))
+    sig = np.array(sig)
+    # lens thickness over the aperture (lens above mirror)
+    xa = np.linspace(-half_width, half_width, 201) * sc
+    thick = lens.y_at(xa) - mir.y_at(xa)
+    Rl = float(np.linalg.norm(F1)) * sc
+    phi0 = np.arctan2(-F1[0], F1[1])
+    lim = max(2 * abs(phi0), np.pi / 3)
+    phi = np.linspace(-lim, lim, 121)
+    locus = np.stack([Rl * np.sin(phi), Rl * np.cos(phi)], -1)
+    params = {"delta_rad": delta, "F1": F1.copy(), "R0": float(R0), "L0": float(L0),
+              "iterations": len(lenses) - 1, "beam_angle_rad": delta, "n": float(n),
+              "min_lens_thickness_mm": float(thick.min()),
+              "initial_mirror_half_width": float(mir0[0][-1])}
+    return BeamFormer("bifocal_mirror_lens", (mir,), (lens,), foci, dirs, sig, sig / sc, sc,
+                      mir, locus, np.zeros(2), eikonal, trace, params)

@@ -204,14 +204,14 @@ def scan_figures(*, min_ghz: float, max_ghz: float, design_ghz: float, width_mm:
     checks.append(Check("minus1_radiates", "pass" if rad.all() else ("warn" if rad.any() else "fail"),
                         float(np.mean(rad)), 1.0, "",
                         f"−1st harmonic radiates over {100 * np.mean(rad):.0f} % of the band"))
-    c0 = gam / k                                     # m = 0 (fast wave if < 1)
-    cm2 = harmonic_direction_cosine(f, width_mm, eps_r, period_mm, -2)
-    extra = (np.abs(c0) < 1.0) | (np.abs(cm2) < 1.0)
-    fx = f[extra & np.isfinite(gam)]
-    checks.append(Check("extra_harmonics", "warn" if fx.size else "pass", float(fx.size), 0.0, "",
-                        ("harmonics 0 or −2 radiate at "
-                         f"{fx.min():.4g}–{fx.max():.4g} GHz (grating lobes): change slots.period_mm")
-                        if fx.size else "only the −1st harmonic radiates in the band"))
+    for m, name in ((0, "harmonic_0_radiates"), (-2, "harmonic_m2_radiates")):
+        cm = harmonic_direction_cosine(f, width_mm, eps_r, period_mm, m)
+        fx = f[np.isfinite(cm) & (np.abs(cm) < 1.0)]
+        checks.append(Check(name, "warn" if fx.size else "pass", float(fx.size / f.size), 0.0, "",
+                            (f"harmonic {m} is fast (radiates) at {fx.min():.4g}–{fx.max():.4g} GHz"
+                             " inside the band: extra beams unless the slot pattern cancels it"
+                             " (slots.period_mm, band)") if fx.size else
+                            f"harmonic {m} does not radiate in the band"))
     checks.append(Check("broadside_frequency", "warn" if min_ghz <= fb <= max_ghz else "pass",
                         fb, max_ghz, "GHz",
                         f"broadside (p = λg, 'normal effect' S11 peak) at {fb:.4g} GHz"
@@ -406,13 +406,14 @@ def ellipse_mirror(minor_semi_axis_mm: float, focal_separation_mm: float,
 
     def trace(j, x_hit):
         """Path F_j → mirror point at x_hit (exact reflection-free: the mirror is the transition)."""
+        x_hit = np.asarray(x_hit, float)
         p = np.stack([x_hit, mirror.y_at(x_hit)], axis=-1)
-        return p, np.linalg.norm(p - foci[j], axis=-1)
+        return p, np.linalg.norm(p - foci[j], axis=-1), np.ones(x_hit.shape, bool)
 
     sig = []
     xs = np.linspace(-half_width_mm, half_width_mm, N_SIGMA_RAYS)
     for j in range(2):
-        p, L = trace(j, xs)
+        p, L, _ = trace(j, xs)
         sig.append(_rms(L - eikonal(xs, j)))
     sig = np.array(sig)
     phi = np.linspace(-np.pi / 3, np.pi / 3, 121)
@@ -755,3 +756,498 @@ def bifocal_mirror_lens(*, lens_a2: float, lens_vertex: float, x0: float, p1: fl
               "initial_mirror_half_width": float(mir0[0][-1])}
     return BeamFormer("bifocal_mirror_lens", (mir,), (lens,), foci, dirs, sig, sig / sc, sc,
                       mir, locus, np.zeros(2), eikonal, trace, params)
+
+
+# --------------------------------------------------------------------------------------------
+# §3.5 (generalised) curved slot lines and their phase coherence
+# --------------------------------------------------------------------------------------------
+
+def slot_line_t_mm(bf: BeamFormer, x_mm, n_guide: float, cos_beta: float,
+                   t0_mm: float) -> np.ndarray:
+    """Distance t(x) along the guide from the guide entry (last mirror) to the slot-centre line.
+
+    Coherence for both design foci j = 1, 2 (seed-003 §3.5, §3.6 convention-free form):
+    Ψ_j = L_j(x) + n t − u_j·B = const, B = (x, y_Q(x) + t), u_j = (s_j, cos β), where L_j is
+    the design eikonal from focus j to the guide entry Q(x) and n = γ/k (erratum §7.8). Adding
+    the two equations (the x terms cancel for s_2 = −s_1) gives
+    t = t0 + [L̄(0) − L̄(x) + cos β (y_Q(x) − y_Q(0))]/(n − cos β), L̄ = (L_1 + L_2)/2.
+    For the ellipse L̄ = r0 and this is the corrected (3.7): t = t0 + y cos β/(n − cos β)
+    (erratum §7.5); at broadside the line is the mirror shifted by t0 (R5).
+    """
+    x = np.asarray(x_mm, float)
+    gc = bf.guide_curve
+    lbar = lambda xx: 0.5 * (bf.eikonal(xx, 0) + bf.eikonal(xx, 1))
+    num = (lbar(np.zeros(1))[0] - lbar(x)) + cos_beta * (gc.y_at(x) - float(gc.y_at(0.0)))
+    return t0_mm + num / (n_guide - cos_beta)
+
+
+def traced_eikonal_mm(bf: BeamFormer, j: int, x_mm, iterations: int = 12) -> np.ndarray:
+    """Ray-traced path (mm) from focus j to the guide entry point at x on the guide curve.
+
+    Independent of the construction: rays go through the interpolated curves with Snell /
+    reflection; the launch point on the first surface is found by a vectorised secant search.
+    """
+    x = np.asarray(x_mm, float)
+    if bf.type == "single_mirror":
+        return bf.trace(j, x)[1]
+    xh0 = x.copy()
+    Q0, L0, _ = bf.trace(j, xh0)
+    xh1 = x + 1e-3 * bf.aperture_mm
+    for _ in range(iterations):
+        Q1, L1, _ = bf.trace(j, xh1)
+        f0, f1 = Q0[:, 0] - x, Q1[:, 0] - x
+        den = np.where(np.abs(f1 - f0) > 0, f1 - f0, 1.0)
+        xh2 = xh1 - f1 * (xh1 - xh0) / den
+        xh0, Q0, L0, xh1 = xh1, Q1, L1, xh2
+        if np.max(np.abs(f1)) < 1e-12 * bf.aperture_mm:
+            break
+    Q, L, ok = bf.trace(j, xh1)
+    if not ok.all() or np.max(np.abs(Q[:, 0] - x)) > 1e-9 * bf.aperture_mm:
+        raise DesignError("beamformer", f"focus {j + 1}: could not trace rays to every guide entry")
+    return L
+
+
+def slot_phase_spread(bf: BeamFormer, x_mm, y_ref_mm, n_guide: float, cos_beta: float,
+                      wavelength_mm: float) -> np.ndarray:
+    """Peak-to-peak spread (in wavelengths) of the radiated −1st-harmonic phase per focus.
+
+    ``x_mm``, ``y_ref_mm``: cell reference points (slot-line point + m·p) on each guide. The path
+    is ray-traced to the guide entry, n·(y − y_Q) inside the guide, minus u_j·r toward the beam
+    (seed-003 §8.3 "phase coherence at the slots"), wrapped modulo λ.
+    """
+    x = np.asarray(x_mm, float)
+    y = np.asarray(y_ref_mm, float)
+    ux, inv = np.unique(x, return_inverse=True)
+    yq = bf.guide_curve.y_at(ux)[inv]
+    out = []
+    for j in range(2):
+        L = traced_eikonal_mm(bf, j, ux)[inv]
+        psi = L + n_guide * (y - yq) - bf.beam_dirs[j][0] * x - cos_beta * y
+        ph = 2 * np.pi * psi / wavelength_mm
+        mean = np.angle(np.mean(np.exp(1j * ph)))
+        dev = np.angle(np.exp(1j * (ph - mean)))
+        out.append((dev.max() - dev.min()) / (2 * np.pi))
+    return np.array(out)
+
+
+# --------------------------------------------------------------------------------------------
+# slot layout (per guide, per cell, per slot) and manufacturability checks (§8.1, §8.3)
+# --------------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class SlotLayout:
+    """Every slot of the array, flat arrays of equal length (frame: module docstring, mm).
+
+    Per slot: ``guide_index`` (0 = most negative x), ``cell_index`` (0 = nearest the coupling
+    slot), ``slot_in_cell``; centre ``x_mm``, ``y_mm``; ``length_mm`` (long side), ``width_mm``;
+    ``offset_mm`` = x_mm − guide axis x (signed); ``angle_rad`` = angle of the long side from +y
+    (0 longitudinal, π/2 transverse). Per guide: ``guide_x_mm`` (axis), ``guide_entry_y_mm``
+    (on the last mirror), ``t_mm`` (entry → slot line), ``slot_line_y_mm``, ``guide_end_y_mm``
+    (slot line + n_cells·period). Slots are rectangles length × width (round ends fit inside).
+    """
+    layout: str
+    guide_index: np.ndarray
+    cell_index: np.ndarray
+    slot_in_cell: np.ndarray
+    x_mm: np.ndarray
+    y_mm: np.ndarray
+    length_mm: np.ndarray
+    width_mm: np.ndarray
+    offset_mm: np.ndarray
+    angle_rad: np.ndarray
+    guide_x_mm: np.ndarray
+    guide_entry_y_mm: np.ndarray
+    t_mm: np.ndarray
+    slot_line_y_mm: np.ndarray
+    guide_end_y_mm: np.ndarray
+    period_mm: float
+    n_cells: int
+
+    @property
+    def count(self) -> int:
+        return int(self.x_mm.size)
+
+    def half_extents_mm(self) -> tuple[np.ndarray, np.ndarray]:
+        """(half size across the guide, half size along the guide) of every slot."""
+        c, s = np.abs(np.cos(self.angle_rad)), np.abs(np.sin(self.angle_rad))
+        hl, hw = self.length_mm / 2, self.width_mm / 2
+        return hl * s + hw * c, hl * c + hw * s
+
+    def as_table(self) -> np.ndarray:
+        """(N, 9) table: guide, cell, slot, x, y, length, width, offset, angle."""
+        return np.column_stack([self.guide_index, self.cell_index, self.slot_in_cell, self.x_mm,
+                                self.y_mm, self.length_mm, self.width_mm, self.offset_mm,
+                                self.angle_rad])
+
+
+def cell_pattern(layout: str, *, n_cells: int, period_mm: float, guide_width_mm: float,
+                 lengths_mm=None, l2_mm=None, l2_ratio: float = 0.68, offset_mm=None,
+                 pair_shift_mm: float | None = None,
+                 transverse_spacings_mm: Sequence[float] = (1.66, 1.62)):
+    """Slot pattern of one period: (dy (J,), offset (J,), lengths (n_cells, J), angle (J,)).
+
+    * ``longitudinal_4`` (seed-003 §2.1, Fig. 1.9 lost — ASSUMED geometry): four slots at p/4
+      spacing, offsets alternating +o, −o, +o, −o (o = ``offset_mm``, default a/4); the first has
+      length L1 (``lengths_mm`` per cell, from the taper), the other three L2 (``l2_mm`` scalar or
+      per cell, default ``l2_ratio``·L1; Table 1.1 upper rows have L2/L1 ≈ 0.68).
+    * ``longitudinal_pair`` (seed-003 §2.4): two slots at ±o (default a/4) shifted
+      ``pair_shift_mm`` (λg/2 at the design frequency) along the guide; length per cell.
+    * ``transverse_3`` (seed-003 §2.2): three transverse slots on the axis at 0, d1, d1 + d2
+      (centre spacings ``transverse_spacings_mm``), lengths s1..s3 (``lengths_mm``: 3 values).
+    """
+    a = guide_width_mm
+    o = a / 4 if offset_mm is None else float(offset_mm)
+    if layout == "longitudinal_4":
+        L1 = np.broadcast_to(np.asarray(lengths_mm, float), (n_cells,))
+        L2 = l2_ratio * L1 if l2_mm is None else np.broadcast_to(np.asarray(l2_mm, float), (n_cells,))
+        lengths = np.column_stack([L1, L2, L2, L2])
+        dy = np.arange(4) * period_mm / 4
+        off = o * np.array([1.0, -1.0, 1.0, -1.0])
+        ang = np.zeros(4)
+    elif layout == "longitudinal_pair":
+        L = np.broadcast_to(np.asarray(lengths_mm, float), (n_cells,))
+        lengths = np.column_stack([L, L])
+        dy = np.array([0.0, float(pair_shift_mm)])
+        off = o * np.array([1.0, -1.0])
+        ang = np.zeros(2)
+    elif layout == "transverse_3":
+        s = np.asarray(lengths_mm, float)
+        if s.shape != (3,):
+            raise DesignError("slots.lengths_mm", f"transverse_3 needs 3 lengths s1..s3 "
+                              f"(got shape {s.shape})")
+        d1, d2 = transverse_spacings_mm
+        lengths = np.broadcast_to(s, (n_cells, 3))
+        dy = np.array([0.0, d1, d1 + d2])
+        off = np.zeros(3)
+        ang = np.full(3, np.pi / 2)
+    else:
+        raise DesignError("slots.layout", f"unknown layout {layout!r} (use one of {LAYOUTS})")
+    if np.any(np.asarray(lengths) <= 0) or not np.all(np.isfinite(lengths)):
+        raise DesignError("slots.lengths_mm", f"slot lengths must be finite and > 0 "
+                          f"(min {np.nanmin(lengths):.4g} mm)")
+    return dy, off, np.asarray(lengths, float), ang
+
+
+def build_slot_layout(*, layout: str, guide_x_mm, guide_entry_y_mm, t_mm, n_cells: int,
+                      period_mm: float, width_mm: float, dy, off, lengths, ang) -> SlotLayout:
+    """Broadcast the cell pattern over guides × cells (vectorised, linear in slot count)."""
+    gx = np.asarray(guide_x_mm, float)
+    gy = np.asarray(guide_entry_y_mm, float)
+    t = np.asarray(t_mm, float)
+    G, M, J = gx.size, n_cells, len(dy)
+    line = gy + t
+    gi = np.broadcast_to(np.arange(G)[:, None, None], (G, M, J))
+    ci = np.broadcast_to(np.arange(M)[None, :, None], (G, M, J))
+    si = np.broadcast_to(np.arange(J)[None, None, :], (G, M, J))
+    y = line[:, None, None] + np.arange(M)[None, :, None] * period_mm + np.asarray(dy)[None, None, :]
+    offs = np.broadcast_to(np.asarray(off)[None, None, :], (G, M, J))
+    x = gx[:, None, None] + offs
+    L = np.broadcast_to(lengths[None, :, :], (G, M, J))
+    A = np.broadcast_to(np.asarray(ang)[None, None, :], (G, M, J))
+    f = lambda v: np.ascontiguousarray(v).reshape(-1)
+    return SlotLayout(layout, f(gi), f(ci), f(si), f(x), f(y), f(L), np.full(G * M * J, width_mm),
+                      f(offs), f(A), gx, gy, t, line, line + M * period_mm, float(period_mm), M)
+
+
+def check_slots_in_wall(slots: SlotLayout, guide_width_mm: float,
+                        clearance_mm: float = 0.0) -> Check:
+    """Every slot inside the broad wall: |offset| + half size across ≤ a/2 − clearance (§8.3)."""
+    hx, _ = slots.half_extents_mm()
+    ext = np.abs(slots.offset_mm) + hx
+    k = int(np.argmax(ext))
+    c = Check.upper("slots_inside_wall", float(ext[k]), guide_width_mm / 2 - clearance_mm, "mm",
+                    f"slot reach from guide axis (guide {slots.guide_index[k]}, cell "
+                    f"{slots.cell_index[k]}, slot {slots.slot_in_cell[k]}) vs a/2 − clearance")
+    return c
+
+
+def slot_webs_mm(slots: SlotLayout, neighbours: int = 4) -> np.ndarray:
+    """Signed web between each slot and its next ``neighbours`` slots along the same guide.
+
+    Rectangle distance: Euclidean gap when separated, negative penetration when overlapping.
+    Returns (N, neighbours) with +inf where no neighbour exists.
+    """
+    order = np.lexsort((slots.y_mm, slots.guide_index))
+    g = slots.guide_index[order]
+    x, y = slots.x_mm[order], slots.y_mm[order]
+    hx, hy = (h[order] for h in slots.half_extents_mm())
+    n = x.size
+    out = np.full((n, neighbours), np.inf)
+    for k in range(1, neighbours + 1):
+        i, j = np.arange(n - k), np.arange(k, n)
+        same = g[i] == g[j]
+        gx = np.abs(x[i] - x[j]) - (hx[i] + hx[j])
+        gy = np.abs(y[i] - y[j]) - (hy[i] + hy[j])
+        web = np.where((gx > 0) & (gy > 0), np.hypot(gx, gy), np.maximum(gx, gy))
+        out[i, k - 1] = np.where(same, web, np.inf)
+    res = np.empty_like(out)
+    res[order] = out
+    return res
+
+
+def check_slot_webs(slots: SlotLayout, min_web_mm: float) -> Check:
+    """No overlapping slots and a minimum metal web between neighbours on a guide (§8.3)."""
+    webs = slot_webs_mm(slots)
+    k, kk = np.unravel_index(int(np.argmin(webs)), webs.shape)
+    w = float(webs[k, kk])
+    what = ("slots OVERLAP" if w < 0 else "minimum web between slots") + \
+        f" (guide {slots.guide_index[k]}, cell {slots.cell_index[k]}, slot {slots.slot_in_cell[k]})"
+    return _lower("slot_web", w, min_web_mm, "mm", what)
+
+
+def check_coupling_clearance(slots: SlotLayout, guide_curve: Curve, coupling_slot_mm: float,
+                             min_gap_mm: float = 0.0) -> Check:
+    """Gap along the guide from the coupling slot (strip of width d along the last mirror,
+    on the guide side) to the nearest slot edge, ≥ ``min_gap_mm`` (§8.3; d2 = 7.8 mm in §2.4)."""
+    hx, hy = slots.half_extents_mm()
+    gaps = []
+    for sgn in (-1.0, 1.0):
+        xe = slots.x_mm + sgn * hx
+        s = guide_curve.slope_at(xe)
+        edge = guide_curve.y_at(xe) + coupling_slot_mm * np.sqrt(1.0 + s * s)
+        gaps.append(slots.y_mm - hy - edge)
+    gap = np.minimum(*gaps)
+    k = int(np.argmin(gap))
+    return _lower("coupling_slot_clearance", float(gap[k]), min_gap_mm, "mm",
+                  f"gap from coupling slot to slot (guide {slots.guide_index[k]}, cell "
+                  f"{slots.cell_index[k]}, slot {slots.slot_in_cell[k]})")
+
+
+# --------------------------------------------------------------------------------------------
+# feeds on the focal locus (§8.1 item 8)
+# --------------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class FeedSet:
+    """H-plane sectoral horns in the feed layer.
+
+    ``aperture_centres_mm`` (K, 2) lie on the focal locus (circle of radius ``locus_radius_mm``
+    about ``locus_centre_mm`` through the design foci, seed-003 §3.3/§3.5), symmetric about x = 0
+    at a chord pitch equal to the horn aperture; ``aim`` (K, 2) unit vectors from each aperture
+    centre to ``aim_point_mm`` (vertex of the first mirror/lens). The horn body extends from the
+    aperture back along −aim by ``length_mm``; throat and aperture are (H-plane, E-plane) mm.
+    """
+    aperture_centres_mm: np.ndarray
+    aim: np.ndarray
+    polar_angle_rad: np.ndarray
+    locus_radius_mm: float
+    locus_centre_mm: np.ndarray
+    aim_point_mm: np.ndarray
+    throat_mm: tuple[float, float]
+    aperture_mm: tuple[float, float]
+    length_mm: float
+
+
+def place_feeds(bf: BeamFormer, *, count: int, throat_mm, aperture_mm, length_mm: float,
+                aim_point_mm) -> FeedSet:
+    c = np.asarray(bf.focal_locus_centre_mm, float)
+    F = bf.foci_mm[0]
+    R = float(np.linalg.norm(F - c))
+    ap_h = float(aperture_mm[0])
+    if ap_h >= 2 * R:
+        raise DesignError("feeds.aperture_mm", f"horn aperture {ap_h:.4g} mm exceeds the focal "
+                          f"circle diameter {2 * R:.4g} mm")
+    dphi = 2 * np.arcsin(ap_h / (2 * R))
+    phi = (np.arange(count) - (count - 1) / 2) * dphi
+    up = 1.0 if F[1] > c[1] else -1.0           # side of the foci relative to the centre
+    pos = c + np.stack([R * np.sin(phi), up * R * np.cos(phi)], -1)
+    aim = _unit(np.asarray(aim_point_mm, float) - pos)
+    return FeedSet(pos, aim, phi, R, c, np.asarray(aim_point_mm, float),
+                   (float(throat_mm[0]), float(throat_mm[1])),
+                   (float(aperture_mm[0]), float(aperture_mm[1])), float(length_mm))
+
+
+# --------------------------------------------------------------------------------------------
+# the design
+# --------------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class SlotArrayDesign:
+    """Complete synthesis result (frame and units: module docstring).
+
+    ``slot_line``: Curve through the first-slot-line points (x, y_Q + t) over the aperture;
+    ``coupling_slot_mm``: width of the coupling strip along ``beamformer.guide_curve``;
+    ``figures``: scalar key figures (mm, GHz, dBi, rad); ``phase_spread_wavelengths``: per focus.
+    """
+    scan: ScanFigures
+    beamformer: BeamFormer
+    slots: SlotLayout
+    slot_line: Curve
+    feeds: FeedSet
+    guide_width_mm: float
+    guide_height_mm: float
+    wall_mm: float
+    fill_eps_r: float
+    layer_height_mm: float
+    coupling_slot_mm: float
+    phase_spread_wavelengths: np.ndarray
+    figures: dict
+    checks: tuple[Check, ...]
+
+
+_CHECK_FIELDS = {
+    "slots_inside_wall": "slots.width_mm",
+    "slot_web": "slots.period_mm",
+    "coupling_slot_clearance": "beamformer.slot_line_offset_mm",
+    "te10_cutoff_margin": "waveguide.width_mm",
+    "minus1_radiates": "slots.period_mm",
+    "guides_inside_aperture": "array.count",
+    "lens_thickness": "beamformer",
+}
+
+
+def synthesize_slot_array(
+        *, min_ghz: float, max_ghz: float, design_ghz: float,
+        guide_width_mm: float, guide_height_mm: float, fill_eps_r: float, wall_mm: float,
+        count: int, pitch_mm: float, length_mm: float,
+        layout: str, slot_width_mm: float, period_mm: float | None = None,
+        design_theta_rad: float = 0.0,
+        taper_law: str = "sin", taper_eta: float = 0.9, taper_a0: float | None = None,
+        taper_b0: float | None = None, taper_pedestal: float = 0.3,
+        lengths_mm=None, l2_mm=None, l2_ratio: float = 0.68, slot_offset_mm: float | None = None,
+        pair_shift_mm: float | None = None, transverse_spacings_mm=(1.66, 1.62),
+        beamformer_type: str = "single_mirror", beamformer_params: dict | None = None,
+        scale_mm: float | None = None, slot_line_offset_mm: float = 10.0,
+        layer_height_mm: float = 1.6, coupling_slot_mm: float = 1.1,
+        feed_count: int = 1, feed_throat_mm=(7.2, 1.6), feed_aperture_mm=(16.0, 1.6),
+        feed_length_mm: float = 30.0,
+        wall_clearance_mm: float = 0.2, min_web_mm: float = 0.3, min_coupling_gap_mm: float = 0.0,
+        strict: bool = True) -> SlotArrayDesign:
+    """Synthesise a frequency-scanning planar multibeam waveguide-slot array (seed-003).
+
+    Steps: period (given, or auto from (3.1) so that the −1st harmonic points at
+    ``design_theta_rad`` from broadside at ``design_ghz``: broadside ⇒ p = λg); scan figures and
+    mode/harmonic checks over the band (§3.1, §8.3); beam former (§3.3–§3.5) scaled to mm
+    (``scale_mm`` = physical size of the normalised D = 1; default pitch·count); curved slot line
+    t(x) at the design frequency (§3.5, erratum §7.5, guide index n = γ/k, erratum §7.8); slot
+    lengths from the taper (1.1, erratum §7.1) unless ``lengths_mm`` is given; the slot layout;
+    manufacturability checks. ``beamformer_params`` (normalised unless _mm):
+    single_mirror: minor_semi_axis_mm, focal_separation_mm; bifocal_two_mirror: a0, a2, h1, b0,
+    b2, h2, rho1 (rho2 = inf: plane output fronts are required to feed the guides);
+    bifocal_mirror_lens: lens_a2, lens_vertex, x0, p1, p2, f0, n. With ``strict`` a failed
+    manufacturability or physics check raises :class:`DesignError` naming the field.
+    """
+    bp = dict(beamformer_params or {})
+    a, eps = float(guide_width_mm), float(fill_eps_r)
+    if count < 1 or pitch_mm <= 0 or length_mm <= 0:
+        raise DesignError("array", f"need count >= 1, pitch_mm > 0, length_mm > 0 "
+                          f"(got {count}, {pitch_mm}, {length_mm})")
+    if pitch_mm < a + 2 * wall_mm - 1e-9:
+        raise DesignError("array.pitch_mm", f"pitch {pitch_mm:.4g} mm < guide width + 2 walls "
+                          f"{a + 2 * wall_mm:.4g} mm")
+    beta_design = np.pi / 2 - design_theta_rad
+    if period_mm is None:
+        period_mm = period_for_angle_mm(design_ghz, a, eps, beta_design)
+    period_mm = float(period_mm)
+    layers = [("layer1", layer_height_mm, 1.0)]
+    if beamformer_type == "bifocal_mirror_lens":
+        layers.append(("lens", layer_height_mm, float(bp.get("n", np.sqrt(2.2)))))
+    scan = scan_figures(min_ghz=min_ghz, max_ghz=max_ghz, design_ghz=design_ghz, width_mm=a,
+                        height_mm=guide_height_mm, eps_r=eps, period_mm=period_mm,
+                        layer_heights_mm=layers)
+    nw = scan.n_guide_design
+    cb = float(np.cos(scan.beta_design_rad))
+    lam = C_MM_GHZ / design_ghz
+
+    span = count * pitch_mm
+    guide_x = (np.arange(count) - (count - 1) / 2) * pitch_mm
+    checks = list(scan.checks)
+    if beamformer_type == "single_mirror":
+        D = span if scale_mm is None else float(scale_mm)
+        bf = ellipse_mirror(bp["minor_semi_axis_mm"], bp["focal_separation_mm"], D / 2)
+        aim_point = np.zeros(2)
+    elif beamformer_type == "bifocal_two_mirror":
+        if np.isfinite(bp.get("rho2", np.inf)):
+            raise DesignError("beamformer.rho2", "the guides need plane output fronts: rho2 must "
+                              f"be inf (got {bp['rho2']})")
+        D = span if scale_mm is None else float(scale_mm)
+        keys = ("a0", "a2", "h1", "b0", "b2", "h2", "rho1")
+        bf = bifocal_two_mirror(**{k: float(bp[k]) for k in keys}, half_width=0.5, scale_mm=D)
+        aim_point = np.array([0.0, bp["a0"] * D])
+    elif beamformer_type == "bifocal_mirror_lens":
+        D = span if scale_mm is None else float(scale_mm)
+        keys = ("lens_a2", "lens_vertex", "x0", "p1", "p2", "f0", "n")
+        bf = bifocal_mirror_lens(**{k: float(bp[k]) for k in keys}, half_width=0.5, scale_mm=D)
+        aim_point = np.array([0.0, bp["lens_vertex"] * D])
+        checks.append(_lower("lens_thickness", bf.params["min_lens_thickness_mm"], 0.0, "mm",
+                             "minimum lens thickness over the aperture"))
+    else:
+        raise DesignError("beamformer.type", f"unknown {beamformer_type!r} (use {BEAMFORMERS})")
+    half_guides = np.abs(guide_x).max() + a / 2 + wall_mm
+    x0c, x1c = bf.guide_curve.x_range_mm
+    checks.append(Check.upper("guides_inside_aperture", float(half_guides), float(min(-x0c, x1c)),
+                              "mm", "half-width of the guide array vs last-mirror half-width"))
+    if strict:
+        raise_on_fail(checks, _CHECK_FIELDS)
+
+    # curved slot line at the design frequency
+    t = slot_line_t_mm(bf, guide_x, nw, cb, slot_line_offset_mm)
+    entry = bf.guide_curve.y_at(guide_x)
+    n_cells = int(np.floor(length_mm / period_mm + 1e-9))
+    if n_cells < 1:
+        raise DesignError("array.length_mm", f"shorter than one period ({period_mm:.4g} mm)")
+
+    # slot lengths
+    if lengths_mm is None:
+        if layout != "longitudinal_4" and (taper_a0 is None or taper_b0 is None):
+            raise DesignError("slots.lengths_mm", f"layout {layout}: give lengths_mm or the cell "
+                              "fit taper a0/b0 (the α(L1) fit of seed-003 §3.2 is for the Ka "
+                              "4-longitudinal-slot cell only)")
+        lengths_mm = taper_slot_lengths_mm(n_cells, period_mm, length_mm, taper_law, taper_eta,
+                                           0.0078 if taper_a0 is None else taper_a0,
+                                           2.01 if taper_b0 is None else taper_b0, taper_pedestal)
+    elif layout != "transverse_3":
+        lengths_mm = np.asarray(lengths_mm, float)
+        if lengths_mm.ndim == 1 and lengths_mm.size != n_cells:
+            raise DesignError("slots.lengths_mm", f"{lengths_mm.size} lengths for {n_cells} cells")
+    if pair_shift_mm is None:
+        pair_shift_mm = 0.5 * 2 * np.pi / float(guide_gamma_per_mm(design_ghz, a, eps))
+    dy, off, lens_, ang = cell_pattern(layout, n_cells=n_cells, period_mm=period_mm,
+                                       guide_width_mm=a, lengths_mm=lengths_mm, l2_mm=l2_mm,
+                                       l2_ratio=l2_ratio, offset_mm=slot_offset_mm,
+                                       pair_shift_mm=pair_shift_mm,
+                                       transverse_spacings_mm=transverse_spacings_mm)
+    slots = build_slot_layout(layout=layout, guide_x_mm=guide_x, guide_entry_y_mm=entry, t_mm=t,
+                              n_cells=n_cells, period_mm=period_mm, width_mm=slot_width_mm,
+                              dy=dy, off=off, lengths=lens_, ang=ang)
+    mchecks = [check_slots_in_wall(slots, a, wall_clearance_mm),
+               check_slot_webs(slots, min_web_mm),
+               check_coupling_clearance(slots, bf.guide_curve, coupling_slot_mm,
+                                        min_coupling_gap_mm)]
+    # phase coherence at the cell reference points, every design focus (ray-traced)
+    gx = np.repeat(guide_x, n_cells)
+    gyref = (slots.slot_line_y_mm[:, None] + np.arange(n_cells)[None, :] * period_mm).reshape(-1)
+    spread = slot_phase_spread(bf, gx, gyref, nw, cb, lam)
+    for j, sp in enumerate(spread):
+        mchecks.append(Check.upper(f"slot_phase_coherence_focus{j + 1}", float(sp), 1e-3,
+                                   "λ", f"slot-phase spread for design focus {j + 1}"))
+    for j, sg in enumerate(bf.sigma_norm):
+        mchecks.append(Check.upper(f"sigma_design_focus{j + 1}", float(sg), 1e-6, "D",
+                                   f"RMS path error σ at design focus {j + 1} (2.7)"))
+    checks += mchecks
+    if strict:
+        raise_on_fail(checks, _CHECK_FIELDS)
+
+    xs = np.linspace(x0c, x1c, 201)
+    xs = xs[(xs >= -span / 2) & (xs <= span / 2)] if np.any(np.abs(xs) <= span / 2) else xs
+    xs = np.unique(np.concatenate([xs, [-span / 2, span / 2]]))
+    yl = bf.guide_curve.y_at(xs) + slot_line_t_mm(bf, xs, nw, cb, slot_line_offset_mm)
+    h = 1e-6 * span
+    sl = (bf.guide_curve.y_at(xs + h) + slot_line_t_mm(bf, xs + h, nw, cb, slot_line_offset_mm)
+          - bf.guide_curve.y_at(xs - h) - slot_line_t_mm(bf, xs - h, nw, cb, slot_line_offset_mm)) / (2 * h)
+    slot_line = _make_curve("slot_line", "guides", xs, yl, sl)
+    feeds = place_feeds(bf, count=feed_count, throat_mm=feed_throat_mm,
+                        aperture_mm=feed_aperture_mm, length_mm=feed_length_mm,
+                        aim_point_mm=aim_point)
+    figures = {
+        "period_mm": period_mm, "n_cells": n_cells, "slot_count": slots.count,
+        "broadside_ghz": scan.broadside_ghz, "beta_design_rad": scan.beta_design_rad,
+        "n_guide_design": nw, "guide_wavelength_design_mm": scan.guide_wavelength_design_mm,
+        "aperture_width_mm": span, "aperture_length_mm": n_cells * period_mm,
+        "ideal_gain_dbi": ideal_gain_dbi(span, length_mm, design_ghz),
+        "beam_azimuth_rad": float(np.arcsin(abs(bf.beam_dirs[0][0]))),
+        "slot_line_sag_mm": float(t.max() - t.min()),
+    }
+    return SlotArrayDesign(scan, bf, slots, slot_line, feeds, a, float(guide_height_mm),
+                           float(wall_mm), eps, float(layer_height_mm), float(coupling_slot_mm),
+                           spread, figures, tuple(checks))

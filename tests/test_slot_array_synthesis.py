@@ -428,3 +428,42 @@ def test_web_function_geometry():
                                 dy=np.array([0.0, 3.0]), off=np.array([0.2, -0.2]),
                                 lengths=np.array([[4.0, 4.0]]), ang=np.zeros(2))
     assert sa.slot_webs_mm(lay2)[0, 0] == pytest.approx(-0.6)   # overlap: max(−0.6, −1)
+
+
+def test_auto_period_design(ka):
+    d = sa.synthesize_slot_array(**dict(KA, period_mm=None, slot_line_offset_mm=9.0))
+    lg = sa.guide_wavelength_mm(30.0, 5.0, 2.2)
+    assert d.slots.period_mm == pytest.approx(lg, abs=1e-12)          # 9.117 mm
+    assert d.slots.n_cells == int(172.0 // lg) == 18
+    assert abs(np.cos(d.scan.beta_design_rad)) < 1e-12                 # broadside at 30 GHz
+    assert d.scan.broadside_ghz == pytest.approx(30.0, abs=1e-9)
+    assert np.all(d.phase_spread_wavelengths < 1e-3)
+
+
+def test_band_below_te10_cutoff_is_an_error():
+    with pytest.raises(DesignError) as e:
+        sa.synthesize_slot_array(**dict(KA, min_ghz=19.0))
+    assert e.value.field == "waveguide.width_mm" and "20.21 GHz" in e.value.message
+
+
+def test_coupling_slot_edge_is_normal_offset(ka):
+    g, e = ka.beamformer.guide_curve, ka.coupling_slot_edge
+    # every edge point is at distance d from the mirror curve (dense sampling of the mirror)
+    xs = np.linspace(*g.x_range_mm, 200001)
+    mp = np.stack([xs, g.y_at(xs)], -1)
+    for p in e.points_mm[::25]:
+        assert np.min(np.linalg.norm(mp - p, axis=-1)) == pytest.approx(1.1, abs=1e-4)
+    assert np.all(e.points_mm[:, 1] > g.y_at(e.points_mm[:, 0]))
+
+
+def test_two_mirror_feeds_on_focal_arc(ka):
+    f, bf = ka.feeds, ka.beamformer
+    R = np.linalg.norm(bf.foci_mm[0])
+    np.testing.assert_allclose(np.linalg.norm(f.aperture_centres_mm, axis=-1), R, atol=1e-9)
+    assert f.aperture_centres_mm.shape == (7, 2) and np.all(f.aperture_centres_mm[:, 1] < 0)
+    chord = np.linalg.norm(np.diff(f.aperture_centres_mm, axis=0), axis=-1)
+    np.testing.assert_allclose(chord, 16.0, atol=1e-9)
+    # aimed at the vertex of mirror 1 (0, a0·D)
+    to_vertex = sa._unit(np.array([0.0, 0.25 * 200.0]) - f.aperture_centres_mm)
+    np.testing.assert_allclose(f.aim, to_vertex, atol=1e-12)
+    np.testing.assert_allclose(bf.foci_mm[0], np.array([-0.14782, -0.94147]) * 200, atol=0.02)

@@ -136,6 +136,15 @@ def ideal_gain_dbi(width_mm: float, length_mm: float, f_ghz: float,
     return float(10.0 * np.log10(aperture_efficiency * 4.0 * np.pi * width_mm * length_mm / lam**2))
 
 
+def _mode_check(name: str, mode: str, cutoff_ghz: float, max_ghz: float, fix: str) -> Check:
+    """Warn when a higher mode's cut-off lies below the band maximum (seed-003 §8.3)."""
+    inside = cutoff_ghz < max_ghz
+    return Check(name, "warn" if inside else "pass", float(cutoff_ghz), float(max_ghz), "GHz",
+                 f"{mode} cut-off {cutoff_ghz:.4g} GHz "
+                 + (f"is inside the band (max {max_ghz:.4g} GHz): reduce {fix}" if inside
+                    else f"above the band maximum {max_ghz:.4g} GHz"))
+
+
 @dataclass(frozen=True)
 class ScanFigures:
     """Harmonic bookkeeping over the band (seed-003 §3.1, §8.3).
@@ -184,22 +193,13 @@ def scan_figures(*, min_ghz: float, max_ghz: float, design_ghz: float, width_mm:
     checks = [
         _lower("te10_cutoff_margin", min_ghz - fc10, 0.0, "GHz",
                f"band minimum above TE10 cut-off ({fc10:.4g} GHz) of waveguide.width_mm"),
-        Check.upper("te20_in_band", max_ghz - fc20, 0.0, "GHz",
-                    f"TE20 cut-off {fc20:.4g} GHz vs band maximum (negative = outside band)")
-        if fc20 > max_ghz else
-        Check("te20_in_band", "warn", float(max_ghz - fc20), 0.0, "GHz",
-              f"TE20 propagates above {fc20:.4g} GHz, inside the band (max {max_ghz:.4g} GHz): "
-              f"reduce waveguide.width_mm"),
-        Check("te01_in_band", "warn" if fc01 < max_ghz else "pass", float(max_ghz - fc01), 0.0,
-              "GHz", f"TE01 cut-off {fc01:.4g} GHz vs band maximum {max_ghz:.4g} GHz "
-                     f"(waveguide.height_mm)"),
+        _mode_check("te20_in_band", "TE20", fc20, max_ghz, "waveguide.width_mm"),
+        _mode_check("te01_in_band", "TE01", fc01, max_ghz, "waveguide.height_mm"),
     ]
     for name, h, n_idx in layer_heights_mm:
         fpp = C_MM_GHZ / (2 * h * n_idx)
-        checks.append(Check("parallel_plate_" + name, "warn" if fpp < max_ghz else "pass",
-                            float(max_ghz - fpp), 0.0, "GHz",
-                            f"{name}: first higher parallel-plate mode at {fpp:.4g} GHz vs band "
-                            f"maximum {max_ghz:.4g} GHz (layer_height_mm)"))
+        checks.append(_mode_check("parallel_plate_" + name, f"{name}: first higher "
+                                  "parallel-plate mode", fpp, max_ghz, "layer_height_mm"))
     rad = np.abs(cb) <= 1.0
     checks.append(Check("minus1_radiates", "pass" if rad.all() else ("warn" if rad.any() else "fail"),
                         float(np.mean(rad)), 1.0, "",
@@ -1000,13 +1000,13 @@ def check_coupling_clearance(slots: SlotLayout, guide_curve: Curve, coupling_slo
     """Gap along the guide from the coupling slot (strip of width d along the last mirror,
     on the guide side) to the nearest slot edge, ≥ ``min_gap_mm`` (§8.3; d2 = 7.8 mm in §2.4)."""
     hx, hy = slots.half_extents_mm()
+    edge = offset_curve(guide_curve, coupling_slot_mm, "coupling_slot_edge")
+    lo, hi = edge.x_range_mm
     gaps = []
-    for sgn in (-1.0, 1.0):
-        xe = slots.x_mm + sgn * hx
-        s = guide_curve.slope_at(xe)
-        edge = guide_curve.y_at(xe) + coupling_slot_mm * np.sqrt(1.0 + s * s)
-        gaps.append(slots.y_mm - hy - edge)
-    gap = np.minimum(*gaps)
+    for sgn in (-1.0, 0.0, 1.0):               # slot corners and centre across the guide
+        xe = np.clip(slots.x_mm + sgn * hx, lo, hi)
+        gaps.append(slots.y_mm - hy - edge.y_at(xe))
+    gap = np.minimum.reduce(gaps)
     k = int(np.argmin(gap))
     return _lower("coupling_slot_clearance", float(gap[k]), min_gap_mm, "mm",
                   f"gap from coupling slot to slot (guide {slots.guide_index[k]}, cell "
@@ -1065,14 +1065,16 @@ def place_feeds(bf: BeamFormer, *, count: int, throat_mm, aperture_mm, length_mm
 class SlotArrayDesign:
     """Complete synthesis result (frame and units: module docstring).
 
-    ``slot_line``: Curve through the first-slot-line points (x, y_Q + t) over the aperture;
-    ``coupling_slot_mm``: width of the coupling strip along ``beamformer.guide_curve``;
+    ``slot_line``: Curve through the first-slot-line points (x, y_Q + t) over the guide array;
+    ``coupling_slot_edge``: far edge of the coupling slot, the normal offset of
+    ``beamformer.guide_curve`` (slot near edge) by ``coupling_slot_mm`` toward +y;
     ``figures``: scalar key figures (mm, GHz, dBi, rad); ``phase_spread_wavelengths``: per focus.
     """
     scan: ScanFigures
     beamformer: BeamFormer
     slots: SlotLayout
     slot_line: Curve
+    coupling_slot_edge: Curve
     feeds: FeedSet
     guide_width_mm: float
     guide_height_mm: float
@@ -1228,14 +1230,8 @@ def synthesize_slot_array(
     if strict:
         raise_on_fail(checks, _CHECK_FIELDS)
 
-    xs = np.linspace(x0c, x1c, 201)
-    xs = xs[(xs >= -span / 2) & (xs <= span / 2)] if np.any(np.abs(xs) <= span / 2) else xs
-    xs = np.unique(np.concatenate([xs, [-span / 2, span / 2]]))
-    yl = bf.guide_curve.y_at(xs) + slot_line_t_mm(bf, xs, nw, cb, slot_line_offset_mm)
-    h = 1e-6 * span
-    sl = (bf.guide_curve.y_at(xs + h) + slot_line_t_mm(bf, xs + h, nw, cb, slot_line_offset_mm)
-          - bf.guide_curve.y_at(xs - h) - slot_line_t_mm(bf, xs - h, nw, cb, slot_line_offset_mm)) / (2 * h)
-    slot_line = _make_curve("slot_line", "guides", xs, yl, sl)
+    slot_line = _slot_line_curve(bf, span, nw, cb, slot_line_offset_mm)
+    coupling_edge = offset_curve(bf.guide_curve, coupling_slot_mm, "coupling_slot_edge")
     feeds = place_feeds(bf, count=feed_count, throat_mm=feed_throat_mm,
                         aperture_mm=feed_aperture_mm, length_mm=feed_length_mm,
                         aim_point_mm=aim_point)
@@ -1248,6 +1244,27 @@ def synthesize_slot_array(
         "beam_azimuth_rad": float(np.arcsin(abs(bf.beam_dirs[0][0]))),
         "slot_line_sag_mm": float(t.max() - t.min()),
     }
-    return SlotArrayDesign(scan, bf, slots, slot_line, feeds, a, float(guide_height_mm),
-                           float(wall_mm), eps, float(layer_height_mm), float(coupling_slot_mm),
-                           spread, figures, tuple(checks))
+    return SlotArrayDesign(scan, bf, slots, slot_line, coupling_edge, feeds, a,
+                           float(guide_height_mm), float(wall_mm), eps, float(layer_height_mm),
+                           float(coupling_slot_mm), spread, figures, tuple(checks))
+
+
+def _slot_line_curve(bf: BeamFormer, span_mm: float, n_guide: float, cos_beta: float,
+                     t0_mm: float, n_points: int = 201) -> Curve:
+    """First slot-centre line (x, y_Q(x) + t(x)) over the guide array, with tangents."""
+    xs = np.linspace(-span_mm / 2, span_mm / 2, n_points)
+    yl = lambda x: bf.guide_curve.y_at(x) + slot_line_t_mm(bf, x, n_guide, cos_beta, t0_mm)
+    h = 1e-6 * span_mm
+    return _make_curve("slot_line", "guides", xs, yl(xs), (yl(xs + h) - yl(xs - h)) / (2 * h))
+
+
+def offset_curve(curve: Curve, distance_mm: float, name: str) -> Curve:
+    """Normal offset of ``curve`` by ``distance_mm`` toward +y (the coupling-slot far edge, §8.1
+    item 5). Tangents are unchanged; raises if the offset self-intersects (x not increasing)."""
+    t = curve.tangents
+    nrm = np.stack([-t[:, 1], t[:, 0]], -1)               # +y side for tangents toward +x
+    p = curve.points_mm + distance_mm * nrm
+    if not np.all(np.diff(p[:, 0]) > 0):
+        raise DesignError("beamformer.coupling_slot_mm", f"offset {distance_mm:.4g} mm of "
+                          f"{curve.name} self-intersects")
+    return Curve(name, curve.layer, p, t.copy())

@@ -361,8 +361,9 @@ def test_x_band_single_mirror_layout(xb):
     assert np.max(np.abs(dy - 13.4)) < 0.05                       # λg/2 at 10 GHz
     np.testing.assert_allclose(s.length_mm.reshape(18, 12, 2)[0, :, 0], TABLE_3_1)
     assert np.all(xb.beamformer.sigma_norm < 1e-6)
-    # feeds on the circle of radius r0 about O, aimed at O, spaced by the 53 mm aperture
-    f = xb.feeds
+    # seed placement: feeds on the circle of radius r0 about O (L786), aimed at O, one 53 mm
+    # aperture apart
+    f = sa.synthesize_slot_array(**dict(XB, feed_placement="circle")).feeds
     r = np.linalg.norm(f.aperture_centres_mm, axis=-1)
     np.testing.assert_allclose(r, 247.853, atol=1e-3)
     chord = np.linalg.norm(np.diff(f.aperture_centres_mm, axis=0), axis=-1)
@@ -456,14 +457,43 @@ def test_coupling_slot_edge_is_normal_offset(ka):
     assert np.all(e.points_mm[:, 1] > g.y_at(e.points_mm[:, 0]))
 
 
-def test_two_mirror_feeds_on_focal_arc(ka):
-    f, bf = ka.feeds, ka.beamformer
-    R = np.linalg.norm(bf.foci_mm[0])
-    np.testing.assert_allclose(np.linalg.norm(f.aperture_centres_mm, axis=-1), R, atol=1e-9)
-    assert f.aperture_centres_mm.shape == (7, 2) and np.all(f.aperture_centres_mm[:, 1] < 0)
+@pytest.mark.parametrize("case", ["KA", "KA_ML", "XB"])
+def test_feed_placement(case):
+    kw = {"KA": KA, "KA_ML": KA_ML, "XB": XB}[case]
+    circ = sa.synthesize_slot_array(**dict(kw, feed_placement="circle"))
+    opt = sa.synthesize_slot_array(**kw)
+    f, bf = opt.feeds, opt.beamformer
+    n = kw["feed_count"]
+    assert f.aperture_centres_mm.shape == (n, 2)
+    # symmetric about x = 0, adjacent apertures exactly one H-plane aperture apart
+    np.testing.assert_allclose(f.aperture_centres_mm[::-1] * [-1, 1], f.aperture_centres_mm,
+                               atol=1e-9)
     chord = np.linalg.norm(np.diff(f.aperture_centres_mm, axis=0), axis=-1)
-    np.testing.assert_allclose(chord, 16.0, atol=1e-9)
-    # aimed at the vertex of mirror 1 (0, a0·D)
-    to_vertex = sa._unit(np.array([0.0, 0.25 * 200.0]) - f.aperture_centres_mm)
-    np.testing.assert_allclose(f.aim, to_vertex, atol=1e-12)
-    np.testing.assert_allclose(bf.foci_mm[0], np.array([-0.14782, -0.94147]) * 200, atol=0.02)
+    np.testing.assert_allclose(chord, kw["feed_aperture_mm"][0], atol=1e-9)
+    aim_pt = {"KA": [0, 0.25 * 200], "KA_ML": [0, 0.42 * 200], "XB": [0, 0]}[case]
+    np.testing.assert_allclose(f.aim, sa._unit(np.array(aim_pt, float) - f.aperture_centres_mm),
+                               atol=1e-12)
+    # circle placement: every feed on the circle through the design foci about O
+    R = np.linalg.norm(bf.foci_mm[0])
+    np.testing.assert_allclose(np.linalg.norm(circ.feeds.aperture_centres_mm, axis=-1), R,
+                               atol=1e-9)
+    # optimal radii never do worse than the circle (the centre feed has the same polar angle)
+    k = n // 2
+    assert f.phase_rms_wavelengths[k] <= circ.feeds.phase_rms_wavelengths[k] + 1e-9
+    assert np.all(np.isfinite(f.phase_rms_wavelengths))
+    assert np.nanmax(f.phase_rms_wavelengths) < 0.02
+    # beams scan in azimuth, in opposite order to the feed positions, symmetric
+    az = f.azimuth_rad
+    assert np.all(np.diff(az) < 0) and np.allclose(az, -az[::-1], atol=1e-9)
+
+
+def test_design_foci_have_zero_feed_aberration(ka):
+    sl, sc, bf = ka.slots, ka.scan, ka.beamformer
+    rms, s = sa.feed_phase_errors(bf, bf.foci_mm, sl.guide_x_mm, sl.t_mm, sc.n_guide_design,
+                                  np.cos(sc.beta_design_rad), sa.C_MM_GHZ / 30.0)
+    assert np.all(rms < 1e-9)
+    np.testing.assert_allclose(s, bf.beam_dirs[:, 0], atol=1e-12)
+    # a point off the focal arc is aberrated (the metric can fail)
+    rms_off, _ = sa.feed_phase_errors(bf, bf.foci_mm[0] * 0.9, sl.guide_x_mm, sl.t_mm,
+                                      sc.n_guide_design, np.cos(sc.beta_design_rad), 10.0)
+    assert rms_off[0] > 1e-3

@@ -25,16 +25,19 @@ slotted guide is ≈ 1 % lower (10.7 vs 10.80 GHz, §3.1).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Callable, Sequence
 
 import numpy as np
 from scipy.interpolate import CubicHermiteSpline
+from scipy.optimize import minimize_scalar
 
 from antenna_cad.raytrace.snell import reflect, refract
 from antenna_cad.synthesis.checks import Check, DesignError
 
 C_MM_GHZ = 299.792458  # speed of light, mm·GHz (λ0[mm] = C_MM_GHZ / f[GHz])
 N_SIGMA_RAYS = 50       # rays for the RMS path error σ, seed-003 §3.3 eq. (2.7)
+FEED_RMS_WARN = 1 / 16  # λ; RMS slot-phase aberration of a feed above this is reported (warn)
 
 LAYOUTS = ("longitudinal_4", "longitudinal_pair", "transverse_3")
 TAPER_LAWS = ("sin", "exp", "cos_pedestal", "uniform")
@@ -293,14 +296,16 @@ class Curve:
     def slopes(self) -> np.ndarray:
         return self.tangents[:, 1] / self.tangents[:, 0]
 
-    def _spline(self) -> CubicHermiteSpline:
-        return CubicHermiteSpline(self.points_mm[:, 0], self.points_mm[:, 1], self.slopes)
+    @cached_property
+    def _splines(self) -> tuple[CubicHermiteSpline, CubicHermiteSpline]:
+        spl = CubicHermiteSpline(self.points_mm[:, 0], self.points_mm[:, 1], self.slopes)
+        return spl, spl.derivative()
 
     def y_at(self, x_mm):
-        return self._spline()(np.asarray(x_mm, dtype=float))
+        return self._splines[0](np.asarray(x_mm, dtype=float))
 
     def slope_at(self, x_mm):
-        return self._spline().derivative()(np.asarray(x_mm, dtype=float))
+        return self._splines[1](np.asarray(x_mm, dtype=float))
 
     @property
     def x_range_mm(self) -> tuple[float, float]:
@@ -320,17 +325,19 @@ def _make_curve(name: str, layer: str, x, y, slope, scale: float = 1.0) -> Curve
 def intersect_rays_with_curve(origin: np.ndarray, direction: np.ndarray, curve: Curve,
                               iterations: int = 30) -> tuple[np.ndarray, np.ndarray]:
     """Vectorised Newton solve of origin + s·direction on the curve. Returns (points, ok)."""
-    spl = curve._spline()
-    dspl = spl.derivative()
+    spl, dspl = curve._splines
     o = np.asarray(origin, float)
     d = _unit(np.asarray(direction, float))
     s = (spl(o[:, 0]) - o[:, 1]) / d[:, 1]
     x0, x1 = curve.x_range_mm
+    scale = max(1.0, abs(x1 - x0))
     for _ in range(iterations):
         x = o[:, 0] + s * d[:, 0]
         g = spl(x) - (o[:, 1] + s * d[:, 1])
         dg = dspl(x) * d[:, 0] - d[:, 1]
         s = s - g / dg
+        if np.max(np.abs(g)) < 1e-14 * scale:
+            break
     p = o + s[:, None] * d
     g = spl(p[:, 0]) - p[:, 1]
     ok = (np.abs(g) < 1e-9 * max(1.0, abs(x1 - x0))) & (p[:, 0] >= x0) & (p[:, 0] <= x1) & (s > 0)
@@ -404,16 +411,16 @@ def ellipse_mirror(minor_semi_axis_mm: float, focal_separation_mm: float,
     def eikonal(x_mm, j):
         return r0 + (1 if j == 0 else -1) * np.asarray(x_mm, float) * sa
 
-    def trace(j, x_hit):
-        """Path F_j → mirror point at x_hit (exact reflection-free: the mirror is the transition)."""
+    def trace(src, x_hit):
+        """Path source → mirror point at x_hit (the mirror edge is the layer transition)."""
         x_hit = np.asarray(x_hit, float)
         p = np.stack([x_hit, mirror.y_at(x_hit)], axis=-1)
-        return p, np.linalg.norm(p - foci[j], axis=-1), np.ones(x_hit.shape, bool)
+        return p, np.linalg.norm(p - np.asarray(src, float), axis=-1), np.ones(x_hit.shape, bool)
 
     sig = []
     xs = np.linspace(-half_width_mm, half_width_mm, N_SIGMA_RAYS)
     for j in range(2):
-        p, L, _ = trace(j, xs)
+        p, L, _ = trace(foci[j], xs)
         sig.append(_rms(L - eikonal(xs, j)))
     sig = np.array(sig)
     phi = np.linspace(-np.pi / 3, np.pi / 3, 121)
@@ -545,11 +552,11 @@ def bifocal_two_mirror(*, a0: float, a2: float, h1: float, b0: float, b2: float,
     else:
         dirs = np.array([_unit(F3 - np.array([0, b0])), _unit(F4 - np.array([0, b0]))])
 
-    def trace(j, x_hit_mm):
-        """Trace focus j via mirror-1 point at x_hit (mm). Returns (mirror-2 point, path mm, ok)."""
+    def trace(src, x_hit_mm):
+        """Trace source point (mm) via mirror-1 point at x_hit (mm) -> (mirror-2 point, path, ok)."""
         xh = np.asarray(x_hit_mm, float)
         P = np.stack([xh, mir1.y_at(xh)], -1)
-        F = foci[j]
+        F = np.asarray(src, float)
         e = reflect(_unit(P - F), _normal_from_slope(mir1.slope_at(xh)))
         Q, ok = intersect_rays_with_curve(P, e, mir2)
         return Q, np.linalg.norm(P - F, axis=-1) + np.linalg.norm(Q - P, axis=-1), ok
@@ -565,7 +572,7 @@ def bifocal_two_mirror(*, a0: float, a2: float, h1: float, b0: float, b2: float,
     sig = []
     xs = np.linspace(-half_width, half_width, N_SIGMA_RAYS) * sc
     for j in range(2):
-        Q, L, ok = trace(j, xs)
+        Q, L, ok = trace(foci[j], xs)
         if plane:
             tot = L - Q @ dirs[j]
             ref = l0 * sc
@@ -720,13 +727,14 @@ def bifocal_mirror_lens(*, lens_a2: float, lens_vertex: float, x0: float, p1: fl
     dirs = np.array([u1, u2])
     Rsc, p2sc = R0 * sc, p2 * sc
 
-    def trace(j, x_hit_mm):
-        """Focus j → lens point at x_hit (mm) → mirror. Returns (mirror point, path mm, ok)."""
+    def trace(src, x_hit_mm):
+        """Source point (mm) → lens point at x_hit (mm) → mirror -> (mirror point, path, ok)."""
         xh = np.asarray(x_hit_mm, float)
         Kp = np.stack([xh, lens.y_at(xh)], -1)
-        e, ok1 = refract(_unit(Kp - foci[j]), _normal_from_slope(lens.slope_at(xh)), 1.0, n)
+        F = np.asarray(src, float)
+        e, ok1 = refract(_unit(Kp - F), _normal_from_slope(lens.slope_at(xh)), 1.0, n)
         Q, ok2 = intersect_rays_with_curve(Kp, _unit(e), mir)
-        path = np.linalg.norm(Kp - foci[j], axis=-1) + n * np.linalg.norm(Q - Kp, axis=-1)
+        path = np.linalg.norm(Kp - F, axis=-1) + n * np.linalg.norm(Q - Kp, axis=-1)
         return Q, path, ok1 & ok2
 
     def eikonal(x_mm, j):
@@ -737,7 +745,7 @@ def bifocal_mirror_lens(*, lens_a2: float, lens_vertex: float, x0: float, p1: fl
     sig = []
     xs = np.linspace(-half_width, half_width, N_SIGMA_RAYS) * sc
     for j in range(2):
-        Q, L, ok = trace(j, xs)
+        Q, L, ok = trace(foci[j], xs)
         if not ok.all():
             raise DesignError(fp, f"focus {j + 1}: {int((~ok).sum())} rays miss the mirror")
         sig.append(_rms(L + p2sc - Q @ dirs[j] - Rsc))
@@ -781,30 +789,56 @@ def slot_line_t_mm(bf: BeamFormer, x_mm, n_guide: float, cos_beta: float,
     return t0_mm + num / (n_guide - cos_beta)
 
 
-def traced_eikonal_mm(bf: BeamFormer, j: int, x_mm, iterations: int = 12) -> np.ndarray:
-    """Ray-traced path (mm) from focus j to the guide entry point at x on the guide curve.
+def traced_eikonal_mm(bf: BeamFormer, source, x_mm, iterations: int = 30) -> np.ndarray:
+    """Ray-traced path (mm) from a source to the guide entry point at x on the guide curve.
 
-    Independent of the construction: rays go through the interpolated curves with Snell /
-    reflection; the launch point on the first surface is found by a vectorised secant search.
+    ``source``: design-focus index (int) or a point (mm) in the feed layer. Independent of the
+    construction: rays go through the interpolated curves with Snell / reflection; the launch
+    point on the first surface is found by a vectorised secant search.
     """
+    src = bf.foci_mm[source] if np.ndim(source) == 0 else np.asarray(source, float)
     x = np.asarray(x_mm, float)
     if bf.type == "single_mirror":
-        return bf.trace(j, x)[1]
+        return bf.trace(src, x)[1]
+    tol = 1e-12 * bf.aperture_mm
     xh0 = x.copy()
-    Q0, L0, _ = bf.trace(j, xh0)
-    xh1 = x + 1e-3 * bf.aperture_mm
+    Q0, L0, _ = bf.trace(src, xh0)
+    xh1 = x - (Q0[:, 0] - x)
     for _ in range(iterations):
-        Q1, L1, _ = bf.trace(j, xh1)
+        Q1, L1, _ = bf.trace(src, xh1)
         f0, f1 = Q0[:, 0] - x, Q1[:, 0] - x
-        den = np.where(np.abs(f1 - f0) > 0, f1 - f0, 1.0)
-        xh2 = xh1 - f1 * (xh1 - xh0) / den
-        xh0, Q0, L0, xh1 = xh1, Q1, L1, xh2
-        if np.max(np.abs(f1)) < 1e-12 * bf.aperture_mm:
+        if np.max(np.abs(f1)) < tol:
             break
-    Q, L, ok = bf.trace(j, xh1)
+        den = np.where(np.abs(f1 - f0) > 0, f1 - f0, 1.0)
+        xh2 = np.where(np.abs(f1) < tol, xh1, xh1 - f1 * (xh1 - xh0) / den)
+        xh0, Q0, L0, xh1 = xh1, Q1, L1, xh2
+    Q, L, ok = bf.trace(src, xh1)
     if not ok.all() or np.max(np.abs(Q[:, 0] - x)) > 1e-9 * bf.aperture_mm:
-        raise DesignError("beamformer", f"focus {j + 1}: could not trace rays to every guide entry")
+        raise DesignError("beamformer", "could not trace rays from the source to every guide "
+                          "entry (source outside the usable field of view?)")
     return L
+
+
+def feed_phase_errors(bf: BeamFormer, sources_mm, x_mm, t_mm, n_guide: float, cos_beta: float,
+                      wavelength_mm: float) -> tuple[np.ndarray, np.ndarray]:
+    """Aberration of the slot-line phase for arbitrary feed positions (seed-003 §3.9, (3.41)).
+
+    For each source: Ψ(x_i) = L(x_i) + (n − cos β) t_i − cos β y_Q(x_i) at the slot line of every
+    guide; a linear fit a + s·x removes the constant and the beam tilt. Returns
+    (RMS residual in wavelengths, beam azimuth sin φ = s) per source. At a design focus the
+    residual is zero and s equals the design azimuth cosine.
+    """
+    x = np.asarray(x_mm, float)
+    t = np.asarray(t_mm, float)
+    yq = bf.guide_curve.y_at(x)
+    A = np.column_stack([np.ones_like(x), x])
+    rms, az = [], []
+    for src in np.atleast_2d(np.asarray(sources_mm, float)):
+        psi = traced_eikonal_mm(bf, src, x) + (n_guide - cos_beta) * t - cos_beta * yq
+        coef, *_ = np.linalg.lstsq(A, psi, rcond=None)
+        rms.append(_rms(psi - A @ coef) / wavelength_mm)
+        az.append(coef[1])
+    return np.array(rms), np.array(az)
 
 
 def slot_phase_spread(bf: BeamFormer, x_mm, y_ref_mm, n_guide: float, cos_beta: float,
@@ -1019,42 +1053,108 @@ def check_coupling_clearance(slots: SlotLayout, guide_curve: Curve, coupling_slo
 
 @dataclass(frozen=True)
 class FeedSet:
-    """H-plane sectoral horns in the feed layer.
+    """H-plane sectoral horns in the feed layer (seed-003 §8.1 item 8).
 
-    ``aperture_centres_mm`` (K, 2) lie on the focal locus (circle of radius ``locus_radius_mm``
-    about ``locus_centre_mm`` through the design foci, seed-003 §3.3/§3.5), symmetric about x = 0
-    at a chord pitch equal to the horn aperture; ``aim`` (K, 2) unit vectors from each aperture
-    centre to ``aim_point_mm`` (vertex of the first mirror/lens). The horn body extends from the
-    aperture back along −aim by ``length_mm``; throat and aperture are (H-plane, E-plane) mm.
+    Feeds are symmetric about x = 0, adjacent aperture centres exactly one H-plane aperture
+    apart (chord). ``placement``: ``circle`` puts them on the circle through the design foci
+    about ``locus_centre_mm`` (the seed's approximation of the focal curve, §3.3/§3.5);
+    ``optimal`` moves each feed radially (polar angle about ``locus_centre_mm`` chained so the
+    pitch stays one aperture) to the radius that minimises its RMS slot-phase aberration
+    (:func:`feed_phase_errors`). ``aim`` (K, 2): unit vectors from each aperture centre to
+    ``aim_point_mm`` (vertex of the first mirror/lens). The horn body extends from the aperture
+    back along −aim by ``length_mm``; throat and aperture are (H-plane, E-plane) mm.
+    ``phase_rms_wavelengths`` / ``azimuth_rad``: per feed, residual RMS aberration and beam
+    azimuth at the design frequency (NaN where rays miss). ``locus_mm``: the focal locus used
+    (circle points, or the optimal-radius locus sampled over the feeds' angular range).
     """
     aperture_centres_mm: np.ndarray
     aim: np.ndarray
     polar_angle_rad: np.ndarray
-    locus_radius_mm: float
+    radius_mm: np.ndarray
+    phase_rms_wavelengths: np.ndarray
+    azimuth_rad: np.ndarray
+    locus_mm: np.ndarray
     locus_centre_mm: np.ndarray
     aim_point_mm: np.ndarray
     throat_mm: tuple[float, float]
     aperture_mm: tuple[float, float]
     length_mm: float
+    placement: str
 
 
 def place_feeds(bf: BeamFormer, *, count: int, throat_mm, aperture_mm, length_mm: float,
-                aim_point_mm) -> FeedSet:
+                aim_point_mm, objective: Callable | None = None, placement: str = "circle",
+                radius_bounds: tuple[float, float] = (0.6, 1.4), n_locus: int = 9) -> FeedSet:
+    """Place ``count`` feeds; ``objective(point_mm) -> (rms_λ, sin φ)`` scores a feed position."""
+    if count < 1:
+        raise DesignError("feeds.count", f"must be >= 1 (got {count})")
+    if placement not in ("circle", "optimal"):
+        raise DesignError("feeds.placement", f"use circle or optimal (got {placement!r})")
     c = np.asarray(bf.focal_locus_centre_mm, float)
     F = bf.foci_mm[0]
-    R = float(np.linalg.norm(F - c))
-    ap_h = float(aperture_mm[0])
-    if ap_h >= 2 * R:
-        raise DesignError("feeds.aperture_mm", f"horn aperture {ap_h:.4g} mm exceeds the focal "
-                          f"circle diameter {2 * R:.4g} mm")
-    dphi = 2 * np.arcsin(ap_h / (2 * R))
-    phi = (np.arange(count) - (count - 1) / 2) * dphi
+    R0 = float(np.linalg.norm(F - c))
     up = 1.0 if F[1] > c[1] else -1.0           # side of the foci relative to the centre
-    pos = c + np.stack([R * np.sin(phi), up * R * np.cos(phi)], -1)
+    ap = float(aperture_mm[0])
+    if ap >= 2 * R0 * radius_bounds[0]:
+        raise DesignError("feeds.aperture_mm", f"horn aperture {ap:.4g} mm too large for the "
+                          f"focal circle (radius {R0:.4g} mm)")
+    pos_of = lambda R, phi: c + np.array([R * np.sin(phi), up * R * np.cos(phi)])
+
+    def score(p):
+        if objective is None:
+            return np.nan, np.nan
+        try:
+            r, z = objective(p)
+            return float(r), float(np.arcsin(np.clip(z, -1, 1)))
+        except DesignError:
+            return np.nan, np.nan
+
+    def best_radius(phi_of_R):
+        if placement == "circle" or objective is None:
+            return R0
+        f = lambda R: np.nan_to_num(score(pos_of(R, phi_of_R(R)))[0], nan=1e3)
+        res = minimize_scalar(f, bounds=(radius_bounds[0] * R0, radius_bounds[1] * R0),
+                              method="bounded", options={"xatol": 1e-5 * R0})
+        return float(res.x)
+
+    right = []                                    # (R, phi) of feeds with phi >= 0
+    if count % 2:
+        right.append((best_radius(lambda R: 0.0), 0.0))
+    else:
+        phi1 = lambda R: float(np.arcsin(ap / (2 * R)))
+        R = best_radius(phi1)
+        right.append((R, phi1(R)))
+    while 2 * len(right) - (count % 2) < count:
+        Rp, php = right[-1]
+        def phi_next(R, Rp=Rp, php=php):
+            cosd = (R * R + Rp * Rp - ap * ap) / (2 * R * Rp)
+            return php + float(np.arccos(np.clip(cosd, -1.0, 1.0)))
+        R = best_radius(phi_next)
+        right.append((R, phi_next(R)))
+    Rs = np.array([r for r, _ in right])
+    ph = np.array([p for _, p in right])
+    if count % 2:
+        Rs = np.concatenate([Rs[:0:-1], Rs])
+        ph = np.concatenate([-ph[:0:-1], ph])
+    else:
+        Rs = np.concatenate([Rs[::-1], Rs])
+        ph = np.concatenate([-ph[::-1], ph])
+    pos = np.array([pos_of(R, p) for R, p in zip(Rs, ph)])
     aim = _unit(np.asarray(aim_point_mm, float) - pos)
-    return FeedSet(pos, aim, phi, R, c, np.asarray(aim_point_mm, float),
-                   (float(throat_mm[0]), float(throat_mm[1])),
-                   (float(aperture_mm[0]), float(aperture_mm[1])), float(length_mm))
+    sc = np.array([score(p) for p in pos]).reshape(-1, 2)
+    lim = max(float(np.abs(ph).max()), float(abs(np.arctan2(F[0] - c[0], up * (F[1] - c[1])))))
+    lim = max(lim, np.radians(5.0))
+    if placement == "optimal" and objective is not None:
+        phis = np.linspace(-lim, lim, n_locus)
+        half = [best_radius(lambda R, q=q: q) for q in phis[phis >= 0]]
+        rl = np.concatenate([half[::-1][:-1] if phis.size % 2 else half[::-1], half])
+        locus = np.array([pos_of(R, q) for R, q in zip(rl, phis)])
+    else:
+        phis = np.linspace(-lim, lim, 121)
+        locus = np.array([pos_of(R0, q) for q in phis])
+    return FeedSet(pos, aim, ph, Rs, sc[:, 0], sc[:, 1], locus, c,
+                   np.asarray(aim_point_mm, float), (float(throat_mm[0]), float(throat_mm[1])),
+                   (float(aperture_mm[0]), float(aperture_mm[1])), float(length_mm), placement)
 
 
 # --------------------------------------------------------------------------------------------
@@ -1068,7 +1168,9 @@ class SlotArrayDesign:
     ``slot_line``: Curve through the first-slot-line points (x, y_Q + t) over the guide array;
     ``coupling_slot_edge``: far edge of the coupling slot, the normal offset of
     ``beamformer.guide_curve`` (slot near edge) by ``coupling_slot_mm`` toward +y;
-    ``figures``: scalar key figures (mm, GHz, dBi, rad); ``phase_spread_wavelengths``: per focus.
+    ``figures``: scalar key figures (mm, GHz, dBi, rad); ``phase_spread_wavelengths``: peak-to-
+    peak slot-phase spread per design focus (ray-traced); per-feed aberration and beam azimuth
+    are in ``feeds``.
     """
     scan: ScanFigures
     beamformer: BeamFormer
@@ -1112,7 +1214,7 @@ def synthesize_slot_array(
         scale_mm: float | None = None, slot_line_offset_mm: float = 10.0,
         layer_height_mm: float = 1.6, coupling_slot_mm: float = 1.1,
         feed_count: int = 1, feed_throat_mm=(7.2, 1.6), feed_aperture_mm=(16.0, 1.6),
-        feed_length_mm: float = 30.0,
+        feed_length_mm: float = 30.0, feed_placement: str = "optimal",
         wall_clearance_mm: float = 0.2, min_web_mm: float = 0.3, min_coupling_gap_mm: float = 0.0,
         strict: bool = True) -> SlotArrayDesign:
     """Synthesise a frequency-scanning planar multibeam waveguide-slot array (seed-003).
@@ -1232,9 +1334,17 @@ def synthesize_slot_array(
 
     slot_line = _slot_line_curve(bf, span, nw, cb, slot_line_offset_mm)
     coupling_edge = offset_curve(bf.guide_curve, coupling_slot_mm, "coupling_slot_edge")
+    objective = lambda p: tuple(v[0] for v in feed_phase_errors(bf, p, guide_x, t, nw, cb, lam))
     feeds = place_feeds(bf, count=feed_count, throat_mm=feed_throat_mm,
                         aperture_mm=feed_aperture_mm, length_mm=feed_length_mm,
-                        aim_point_mm=aim_point)
+                        aim_point_mm=aim_point, objective=objective, placement=feed_placement)
+    feed_rms = feeds.phase_rms_wavelengths
+    worst = float(np.nanmax(feed_rms)) if np.isfinite(feed_rms).any() else np.inf
+    checks.append(Check("feed_phase_rms", "warn" if not worst <= FEED_RMS_WARN else "pass",
+                        worst, FEED_RMS_WARN, "λ",
+                        f"worst RMS slot-phase aberration over {feed_count} feed(s): {worst:.3g} λ"
+                        + ("" if np.isfinite(feed_rms).all() else
+                           f"; rays from {int((~np.isfinite(feed_rms)).sum())} feed(s) miss")))
     figures = {
         "period_mm": period_mm, "n_cells": n_cells, "slot_count": slots.count,
         "broadside_ghz": scan.broadside_ghz, "beta_design_rad": scan.beta_design_rad,

@@ -497,3 +497,43 @@ def test_design_foci_have_zero_feed_aberration(ka):
     rms_off, _ = sa.feed_phase_errors(bf, bf.foci_mm[0] * 0.9, sl.guide_x_mm, sl.t_mm,
                                       sc.n_guide_design, np.cos(sc.beta_design_rad), 10.0)
     assert rms_off[0] > 1e-3
+
+
+def test_focal_output_eikonal_matches_trace(r7):
+    # for rho2 finite the design eikonal to mirror 2 is l0 − |Q F3|; the trace must agree
+    x = np.linspace(-0.45, 0.45, 11)
+    for j in range(2):
+        np.testing.assert_allclose(sa.traced_eikonal_mm(r7, j, x), r7.eikonal(x, j), atol=1e-9)
+
+
+def test_transverse_3_layout():
+    # seed-003 §2.2 variant (a): p 6.56, a 4, w 0.44, s 2.43/2.45/2.42, d1 1.66, d2 1.62 mm
+    dy, off, L, ang = sa.cell_pattern("transverse_3", n_cells=10, period_mm=6.56,
+                                      guide_width_mm=4.0, lengths_mm=(2.43, 2.45, 2.42),
+                                      transverse_spacings_mm=(1.66, 1.62))
+    lay = sa.build_slot_layout(layout="transverse_3", guide_x_mm=[0.0, 5.0],
+                               guide_entry_y_mm=[0.0, 1.0], t_mm=[5.0, 5.0], n_cells=10,
+                               period_mm=6.56, width_mm=0.44, dy=dy, off=off, lengths=L, ang=ang)
+    assert lay.count == 60
+    hx, hy = lay.half_extents_mm()
+    np.testing.assert_allclose(hx, lay.length_mm / 2)            # transverse: length across
+    np.testing.assert_allclose(hy, 0.22)
+    assert sa.check_slots_in_wall(lay, 4.0, 0.2).status == "pass"    # 1.225 <= 1.8
+    assert sa.check_slots_in_wall(lay, 4.0, 0.8).status == "fail"    # 1.225 >  1.2
+    web = sa.check_slot_webs(lay, 0.3)
+    assert web.status == "pass" and web.value == pytest.approx(1.62 - 0.44)
+    with pytest.raises(DesignError, match="slots.lengths_mm"):
+        sa.cell_pattern("transverse_3", n_cells=10, period_mm=6.56, guide_width_mm=4.0,
+                        lengths_mm=(2.43, 2.45))
+
+
+def test_bad_beamformer_parameters_raise():
+    with pytest.raises(DesignError, match="beamformer"):
+        sa.bifocal_two_mirror(**dict(R8_PARAMS, h1=0.0))
+    # the mirror–lens construction diverges near |x| ≈ 0.54 (§3.4): a wider aperture fails
+    with pytest.raises(DesignError, match="diverges"):
+        sa.bifocal_mirror_lens(**R9_PARAMS, half_width=0.7)
+    with pytest.raises(DesignError, match="beamformer.type"):
+        sa.synthesize_slot_array(**dict(KA, beamformer_type="trifocal_two_mirror"))
+    with pytest.raises(DesignError, match="slots.lengths_mm"):
+        sa.synthesize_slot_array(**dict(XB, lengths_mm=None))

@@ -564,10 +564,13 @@ def bifocal_two_mirror(*, a0: float, a2: float, h1: float, b0: float, b2: float,
     sign = np.array([1.0, -1.0])
 
     def eikonal(x_mm, j):
-        """Design path focus j → guide entry on mirror 2 (plane output only): l0 + u_j·Q."""
+        """Design path focus j → point Q on mirror 2: l0 + u_j·Q (plane output) or
+        l0 − |Q F_out| (focal output, F_out = F3 for F1, F4 for F2)."""
         x = np.asarray(x_mm, float)
         Q = np.stack([x, mir2.y_at(x)], -1)
-        return l0 * sc + Q @ dirs[j]
+        if plane:
+            return l0 * sc + Q @ dirs[j]
+        return l0 * sc - np.linalg.norm(Q - (F3 if j == 0 else F4) * sc, axis=-1)
 
     sig = []
     xs = np.linspace(-half_width, half_width, N_SIGMA_RAYS) * sc

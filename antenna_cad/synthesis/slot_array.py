@@ -1231,8 +1231,15 @@ def synthesize_slot_array(
     manufacturability checks. ``beamformer_params`` (normalised unless _mm):
     single_mirror: minor_semi_axis_mm, focal_separation_mm; bifocal_two_mirror: a0, a2, h1, b0,
     b2, h2, rho1 (rho2 = inf: plane output fronts are required to feed the guides);
-    bifocal_mirror_lens: lens_a2, lens_vertex, x0, p1, p2, f0, n. With ``strict`` a failed
-    manufacturability or physics check raises :class:`DesignError` naming the field.
+    bifocal_mirror_lens: lens_a2, lens_vertex, x0, p1, p2, f0, n. ``slot_line_offset_mm`` is
+    t0, the distance along the guide from the last mirror to the first slot line at x = 0.
+    Slots: ``lengths_mm`` (per cell for the longitudinal layouts, s1..s3 for transverse_3),
+    ``l2_mm``/``l2_ratio`` (other three slots of the 4-slot cell), ``slot_offset_mm`` (default
+    a/4), ``pair_shift_mm`` (default λg/2), ``transverse_spacings_mm`` (d1, d2); see
+    :func:`cell_pattern`. Feeds: ``feed_placement`` = optimal | circle (:func:`place_feeds`).
+    Manufacturability limits: ``wall_clearance_mm``, ``min_web_mm``, ``min_coupling_gap_mm``.
+    With ``strict`` a failed check raises :class:`DesignError` naming the spec field and the
+    number; with ``strict=False`` failures are returned in ``checks``.
     """
     bp = dict(beamformer_params or {})
     a, eps = float(guide_width_mm), float(fill_eps_r)

@@ -50,7 +50,7 @@ C0_MM_PER_NS = 299.792458          # speed of light, mm/ns → λ0[mm] = C0_MM_P
 __all__ = [
     "BifocalDesign", "KinberLens", "DefocusStudy", "equal_edge_ellipse", "thin_ray_rho2",
     "polar_polynomial", "synthesize_bifocal", "kinber_lens", "trace_bifocal", "aperture_phase",
-    "defocus_study", "single_surface_profile",
+    "defocus_study", "single_surface_profile", "kinber_rms", "kinber_focal_circle_rms",
 ]
 
 
@@ -429,7 +429,7 @@ class KinberLens:
 def kinber_lens(n: float, a0: float, a2: float, h1: float, b0: float, b2: float, h2: float | None,
                 rho1: float, rho2: float = np.inf, aperture: float = 1.0,
                 points_per_segment: int = 41, max_segments: int = 400,
-                allow_partial: bool = False) -> KinberLens:
+                allow_partial: bool = False, build_to: float = 1.02) -> KinberLens:
     """Kinber's exact stepwise bifocal synthesis, seed-001 §3.1, in the seed's frame.
 
     Central segments ``x1 = a0 + a2 y²`` (|y| ≤ h1) and ``x2 = b0 + b2 y²`` (|y| ≤ h2). If ``h2`` is None
@@ -488,7 +488,8 @@ def kinber_lens(n: float, a0: float, a2: float, h1: float, b0: float, b2: float,
         surf2_p.append(q[good_q]); surf2_n.append(qn[good_q])
         surf1_p.append(p[good_p]); surf1_n.append(pn[good_p])
         last1, last1n, last2, last2n = p[good_p], pn[good_p], q[good_q], qn[good_q]
-        if (np.min(np.abs(surf1_p[-1][:, 1])) > 1.02 * half and np.min(np.abs(surf2_p[-1][:, 1])) > 1.02 * half) \
+        if (np.min(np.abs(surf1_p[-1][:, 1])) > build_to * half
+                and np.min(np.abs(surf2_p[-1][:, 1])) > build_to * half) \
                 or not (good_q.all() and good_p.all()):
             break
     P1 = np.concatenate(surf1_p); N1 = np.concatenate(surf1_n)
@@ -500,6 +501,48 @@ def kinber_lens(n: float, a0: float, a2: float, h1: float, b0: float, b2: float,
                           f"{min(ya[-1], yb_[-1]):.4g} before the aperture edge {half:.4g} (TIR or no root)")
     return KinberLens(n, aperture, F1, F1p, k, omega_B, alpha_A, L,
                       np.stack([za, ya], -1), sa, np.stack([zb, yb_], -1), sb, segs)
+
+
+def kinber_rms(lens: KinberLens, source: np.ndarray, image: np.ndarray, n_rays: int = 100,
+               half_aperture: float | None = None) -> float:
+    """Eikonal RMS (3.10) of seed-001 §3.1 for a point source and a point image (seed frame):
+    ``σ = sqrt(Σ (L_i − L_0)² / N)``, L_i = |S − P_i| + n|P_i Q_i| + |Q_i − S'| along exactly traced
+    rays aimed uniformly in y at surface 1, L_0 the ray aimed at the surface-1 vertex (so σ includes
+    piston, as in the seed). Rays leaving |y| > half_aperture (default D/2) on either face are dropped."""
+    h = lens.aperture / 2.0 if half_aperture is None else half_aperture
+    s1 = Interface.from_points(lens.surface1[:, 1], lens.surface1[:, 0], lens.n, lens.slopes1)
+    s2 = Interface.from_points(lens.surface2[:, 1], lens.surface2[:, 0], 1.0, lens.slopes2)
+    S = np.asarray(source, float)
+    Sp = np.asarray(image, float)
+    yt = np.linspace(-h, h, n_rays)
+    tgt = np.stack([lens.x1(yt), yt], -1)
+    tr = trace(np.tile(S, (n_rays, 1)), _unit(tgt - S), [s1, s2], 1.0)
+    ok = tr.ok & (np.abs(tr.points[1][:, 1]) <= h) & (np.abs(tr.points[2][:, 1]) <= h)
+    Li = tr.opl[ok] + np.linalg.norm(tr.points[-1][ok] - Sp, axis=-1)
+    c = trace(S[None], _unit(np.array([[float(lens.x1(0.0)), 0.0]]) - S), [s1, s2], 1.0)
+    L0 = c.opl[0] + np.linalg.norm(c.points[-1][0] - Sp)
+    return float(np.sqrt(np.mean((Li - L0) ** 2)))
+
+
+def kinber_focal_circle_rms(lens: KinberLens, x_axis: float, half_view_deg: float = 20.0,
+                            num: int = 41) -> tuple[np.ndarray, np.ndarray]:
+    """RMS (3.10) vs source angle for sources on the circle through F1, F2 centred on the axis and
+    crossing it at ``x_axis`` (seed-001 §4.2); source angle measured from the surface-1 vertex; image
+    S' = −S (point symmetry of the two-plane-symmetric lens 1). Point-image lenses only."""
+    F = lens.F1
+    xc = (F[0] ** 2 + F[1] ** 2 - x_axis**2) / (2.0 * (F[0] - x_axis))
+    R = abs(x_axis - xc)
+    V = np.array([float(lens.x1(0.0)), 0.0])
+    phis = np.radians(np.linspace(-half_view_deg, half_view_deg, num))
+    out = []
+    for phi in phis:
+        d = np.array([-np.cos(phi), -np.sin(phi)])
+        w = V - np.array([xc, 0.0])
+        bq = w @ d
+        t = -bq + np.sqrt(bq * bq - (w @ w - R * R))
+        S = V + t * d
+        out.append(kinber_rms(lens, S, -S))
+    return np.degrees(phis), np.array(out)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -683,8 +726,13 @@ def _assemble(construction, shape, eps_r, n, yb, s, a, al, L, rho1, ill_h, sh_h,
         poly_illuminated=pi_, poly_shadow=ps_, poly_fit_residual_mm=max(ri, rs),
         residual_path_error_mm=(np.nan, np.nan), checks=tuple(checks), params=params)
     res = tuple(float(np.ptp(_design_focus_eikonal(design, k))) for k in (0, 1))
-    checks.append(Check.upper("bifocal_design_focus_path_error", max(res), 1e-6 * 2 * yb, "mm",
-                              "peak-to-peak eikonal error at the design foci (exact trace)"))
+    chk = Check.upper("bifocal_design_focus_path_error", max(res), 1e-6 * 2 * yb, "mm",
+                      "peak-to-peak eikonal error at the design foci (exact trace)")
+    if chk.status == "fail" or not np.isfinite(max(res)):
+        raise DesignError("design", f"{chk.message} — the {construction} construction did not give a "
+                          "focusing lens for this spec (faces fold or rays leave the aperture); change "
+                          "a, α, the edge or εr")
+    checks.append(chk)
     return _replace(design, residual_path_error_mm=res, checks=tuple(checks))
 
 

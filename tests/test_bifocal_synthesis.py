@@ -191,7 +191,7 @@ def test_kinber_exact_at_design_focus_and_rms_order():
 
 def test_kinber_design_scaled_plane_output():
     # seed-001 FEM lens: lens 3 scaled to D = 160 mm (37.5 GHz, λ ≈ 8 mm)
-    d = bf.synthesize_bifocal(edge_x_mm=0.0, edge_y_mm=80.0, eps_r=1.6**2, construction="kinber",
+    d = bf.synthesize_bifocal(edge_y_mm=80.0, eps_r=1.6**2, construction="kinber",
                               kinber=LENS3)
     assert max(d.residual_path_error_mm) < 1e-6 * 160.0
     close("s001-3", "focus_angle", np.degrees(d.beam_tilt_rad))
@@ -206,13 +206,37 @@ def test_kinber_design_scaled_plane_output():
 def test_trace2d_single_surface_hyperbola_focuses():
     f, D, eps = 5000.0, 1000.0, 2.08
     n = np.sqrt(eps)
-    d, zr = bf.single_surface_profile(f, D, eps)
+    d, zr, _ = bf._single_surface_lens(f, D, eps)        # private stand-in for collimator.py
     assert abs(zr(D / 2) - d) < 1e-9                             # (1.1) vs (1.9) corrected
     ys = np.linspace(-D / 2, D / 2, 2001)
-    front = Interface.from_points(ys, zr(ys), n)
+    front = Interface.from_points(ys, zr(ys), n)                 # spline path of the tracer
     tr = trace(np.tile([-f, 0.0], (101, 1)),
                np.stack([zr(np.linspace(-490, 490, 101)) + f, np.linspace(-490, 490, 101)], -1),
                [front, Interface.plane(d, 1.0)], 1.0, d + 100.0)
     assert tr.ok.all()
     assert np.ptp(tr.opl) < 1e-5                                  # exact collimation (spline faces)
     np.testing.assert_allclose(tr.directions[-1][:, 1], 0.0, atol=1e-6)
+
+
+def test_digest_rho1_does_not_close_the_chain():
+    """Why case 21 lands at ρ1 ≈ 8.7157 m, not the digest's 8.711: near the rim the chain is very
+    sensitive (±1 mm in ρ1 moves the rim by tens of mm). At 8.711 m the illuminated face folds back
+    ~77 mm short of X_B; our root drives the chain onto A1 (see test_exact_bifocal_table31_geometry)."""
+    s, a, al = bf.equal_edge_ellipse(9000.0, 500.0, beam_tilt_rad=np.radians(4.0))
+    u1 = np.array([np.cos(al), -np.sin(al)])
+    A1 = np.array([9000.0, 500.0])
+    o = bf._Optics(np.array([0.0, a]), np.sqrt(1.047), float(np.hypot(9000.0, 500.0 - a) - A1 @ u1), k=u1)
+    assert bf._closure(8711.0, o, 9000.0) < -50.0          # folds over before the rim
+    assert bf._closure(8720.0, o, 9000.0) > 50.0           # overshoots X_B
+
+
+def test_focus_offset_input_gives_same_lens(t31):
+    d = bf.synthesize_bifocal(edge_x_mm=9000.0, edge_y_mm=500.0, eps_r=1.047,
+                              focus_offset_mm=t31.focus_offset_mm, antenna_x_mm=9400.0, shape="cylindrical")
+    assert abs(np.degrees(d.beam_tilt_rad) - 4.0) < 1e-9
+    assert abs(d.rho1_mm - t31.rho1_mm) < 1e-6 and d.shape == "cylindrical"
+    pl_i, pl_s = d.polyline("illuminated", 101), d.polyline("shadow", 101)
+    np.testing.assert_allclose(pl_i[[0, -1]], pl_s[[0, -1]], atol=1e-9)     # faces meet at the rim
+    with pytest.raises(DesignError) as e:
+        bf.synthesize_bifocal(**{**T31, "shape": "conical"})
+    assert e.value.field == "design.shape"

@@ -29,7 +29,12 @@ Constructions
   central segments to the spec's foci and tilt (see :func:`synthesize_bifocal`).
 
 The single-surface hyperbolic comparison lens (seed-000 §2.1, (1.9) corrected, (1.1)) is a private
-helper here; it will be replaced by the shared ``synthesis/collimator.py`` at merge.
+helper here (``_single_surface_lens``); it will be replaced by the shared ``synthesis/collimator.py``
+at merge.
+
+3-D shape: the synthesis is the 2-D section (seed-000 §7.2 leaves the 3-D form open). ``cylindrical``
+extrudes it (exact in every section); ``revolved`` turns it about the axis, which smears the two foci
+into a ring of radius a — the design is then exact only for feeds in the meridional plane.
 """
 
 from __future__ import annotations
@@ -50,7 +55,7 @@ C0_MM_PER_NS = 299.792458          # speed of light, mm/ns → λ0[mm] = C0_MM_P
 __all__ = [
     "BifocalDesign", "KinberLens", "DefocusStudy", "equal_edge_ellipse", "thin_ray_rho2",
     "polar_polynomial", "synthesize_bifocal", "kinber_lens", "trace_bifocal", "aperture_phase",
-    "defocus_study", "single_surface_profile", "kinber_rms", "kinber_focal_circle_rms",
+    "defocus_study", "kinber_rms", "kinber_focal_circle_rms",
 ]
 
 
@@ -617,7 +622,7 @@ def _design_checks(n, xb, yb, a, al, c, rho1, rho2, y_dense, z_ill, z_sh, zero_r
     return checks
 
 
-def synthesize_bifocal(*, edge_x_mm: float, edge_y_mm: float, eps_r: float,
+def synthesize_bifocal(*, edge_y_mm: float, eps_r: float, edge_x_mm: float | None = None,
                        focus_offset_mm: float | None = None, beam_tilt_deg: float | None = None,
                        antenna_x_mm: float | None = None,
                        shape: Literal["revolved", "cylindrical"] = "revolved",
@@ -646,11 +651,14 @@ def synthesize_bifocal(*, edge_x_mm: float, edge_y_mm: float, eps_r: float,
     if not eps_r > 1.0:
         raise DesignError("material.eps_r", f"a decelerating lens needs εr > 1; got {eps_r:.6g}")
     n = float(np.sqrt(eps_r))
-    xb, yb = float(edge_x_mm), float(edge_y_mm)
+    yb = float(edge_y_mm)
     if construction == "kinber":
         return _kinber_design(n, eps_r, yb, kinber or {}, shape, antenna_x_mm, antenna_clearance_mm)
     if construction != "nikulina":
         raise DesignError("design.construction", f"must be 'nikulina' or 'kinber'; got {construction!r}")
+    if edge_x_mm is None:
+        raise DesignError("design.edge_x_mm", "the nikulina construction needs the rim position X_B")
+    xb = float(edge_x_mm)
     if beam_tilt_deg is not None:
         s, a, al = equal_edge_ellipse(xb, yb, beam_tilt_rad=np.radians(beam_tilt_deg))
         if focus_offset_mm is not None and abs(focus_offset_mm - a) > 5e-3 * a:
@@ -678,8 +686,7 @@ def synthesize_bifocal(*, edge_x_mm: float, edge_y_mm: float, eps_r: float,
     N1e, N2e, edge_res = _edge_normals(o, A1, N1g, N2g)
     yi, zi, si = _rim_profile(ip, inn, A1, N1e, yb)
     ys, zs, ss = _rim_profile(sp, sn, A1, N2e, yb)
-    fold = np.array([1.0, 1.0])
-    rim_gap = float(min(np.hypot(*(np.abs(ip[-1]) * fold - A1)), np.hypot(*(np.abs(sp[-1]) * fold - A1))))
+    rim_gap = float(min(np.hypot(*(np.abs(ip[-1]) - A1)), np.hypot(*(np.abs(sp[-1]) - A1))))
     edge_t = 0.0
     params.update(chain_points_illuminated=len(ip), chain_points_shadow=len(sp),
                   chain_rim_gap_mm=rim_gap, edge_normal_residual=edge_res)
@@ -812,32 +819,36 @@ def aperture_phase(tr: Trace2D, wavelength_mm: float) -> tuple[np.ndarray, np.nd
     return y, err, float(np.ptp(err))
 
 
-def single_surface_profile(f_mm: float, diameter_mm: float, eps_r: float) -> tuple[float, callable]:
-    """Private stand-in for ``synthesis/collimator.py`` (swapped at merge): seed-000 §2.1, (1.9)
-    corrected ``y² = (n²−1)z² + 2(n−1)f z`` (vertex z = 0, feed z = −f) and thickness (1.1).
-    Returns (thickness d in mm, z(r) callable)."""
+def _single_surface_lens(f_mm: float, diameter_mm: float, eps_r: float):
+    """PRIVATE stand-in for the shared ``synthesis/collimator.py`` (to be swapped at merge).
+    Seed-000 §2.1: profile (1.9) corrected ``y² = (n²−1)z² + 2(n−1)f z`` (vertex z = 0, feed at z = −f,
+    flat back at z = d) and thickness (1.1). Returns (d in mm, z(r), dz/dr)."""
     n = np.sqrt(eps_r)
     f, D = float(f_mm), float(diameter_mm)
     d = np.sqrt(f**2 / (n + 1) ** 2 + D**2 / (4 * (n**2 - 1))) - f / (n + 1)       # (1.1)
-    zr = lambda r: (-(n - 1) * f + np.sqrt((n - 1) ** 2 * f**2 + (n**2 - 1) * np.asarray(r, float) ** 2)) / (n**2 - 1)  # noqa: E731
-    return float(d), zr
+
+    def z_of_r(r):
+        r = np.asarray(r, float)
+        return (-(n - 1) * f + np.sqrt((n - 1) ** 2 * f**2 + (n**2 - 1) * r**2)) / (n**2 - 1)
+
+    def dz_dr(r):
+        r = np.asarray(r, float)
+        return r / np.sqrt((n - 1) ** 2 * f**2 + (n**2 - 1) * r**2)
+
+    return float(d), z_of_r, dz_dr
 
 
 def _single_lens_p2p(f_mm, D_mm, eps_r, feed_y_mm, back_mm, wavelength_mm, n_rays=201) -> float:
+    """Peak-to-peak aperture phase (deg) of the single-surface lens, feed at (−f, feed_y), phase on the
+    plane ``back_mm`` behind the flat face (seed-000 §4.2 with vector Snell)."""
     n = np.sqrt(eps_r)
-    d, zr = single_surface_profile(f_mm, D_mm, eps_r)
-    y = np.linspace(-D_mm / 2, D_mm / 2, 2001)
-    ys = np.linspace(-D_mm / 2, D_mm / 2, 4001)
-    from scipy.interpolate import CubicSpline
-    spl = CubicSpline(ys, zr(ys))
-    front = Interface(lambda q: spl(q), lambda q: spl.derivative()(q), n, d / 2)
-    back = Interface.plane(d, 1.0)
+    d, zr, dzr = _single_surface_lens(f_mm, D_mm, eps_r)
+    front = Interface(zr, dzr, n, d / 2)
     feed = np.array([-f_mm, feed_y_mm])
     yt = np.linspace(-0.999 * D_mm / 2, 0.999 * D_mm / 2, n_rays)
     dirs = _unit(np.stack([zr(yt), yt], -1) - feed)
-    tr = trace(np.tile(feed, (n_rays, 1)), dirs, [front, back], 1.0, d + back_mm)
+    tr = trace(np.tile(feed, (n_rays, 1)), dirs, [front, Interface.plane(d, 1.0)], 1.0, d + back_mm)
     ok = tr.ok & (np.abs(tr.points[2][:, 1]) <= D_mm / 2)
-    del y
     return aperture_phase(Trace2D(tr.points, tr.directions, tr.opl, ok), wavelength_mm)[2]
 
 
@@ -887,6 +898,6 @@ def defocus_study(design: BifocalDesign, budget_deg: float = 22.5, frequency_ghz
     ps = np.array([sgl(y) for y in feed_y_mm])
     rb = _first_crossing(bif, feed_y_mm, pb, budget_deg)
     rs = _first_crossing(sgl, feed_y_mm, ps, budget_deg)
-    d, _ = single_surface_profile(f, D, design.eps_r)
+    d = _single_surface_lens(f, D, design.eps_r)[0]
     return DefocusStudy(feed_y_mm, pb, ps, float(budget_deg), rb, rs,
                         float(np.degrees(np.arctan2(rb, f))), float(np.degrees(np.arctan2(rs, f))), d, lam)

@@ -1,0 +1,903 @@
+"""Bifocal (two-surface) homogeneous dielectric lens collimator — synthesis and GO verification.
+
+Sources: seed-000 (Nikulina 2021) §1.3, §2.3–§2.8, §5.8–§5.9, §7.4 and seed-001 (Ngiem 2018) §3.1
+(Kinber's method of steps). Cited below as ``seed-000 §x`` / ``seed-001 §x`` (the English digests in
+``shared/reference``).
+
+Frame (stated once, used everywhere in this module)
+--------------------------------------------------
+A 2-D meridional section. **z** is the optical axis (the seeds' *x*), pointing from the feeds toward
+the antenna under test (AUT); **y** is transverse (the seeds' *y*; the radial coordinate r for a revolved
+lens, the width coordinate for a cylindrical one). **Origin: on the axis in the plane of the feeds**
+(seed-000 §1.3). The two perfect foci are ``O1 = (0, +a)`` and ``O2 = (0, −a)``; a feed at O1 gives a plane
+front leaving in direction ``u1 = (cos α, −sin α)`` (toward −y), O2 gives ``u2 = (cos α, +sin α)``. The
+zero-thickness lens edge is ``A1 = (X_B, ±Y_B)`` and the AUT aperture is the plane ``z = c``. Points are
+stored as ``(z, y)`` rows in **millimetres**; angles are radians inside this module. Both surfaces are
+even in y; arrays hold the full profile (−Y_B … +Y_B), sorted by y.
+
+Constructions
+-------------
+* ``"nikulina"`` — seed-000 §3.2 made well posed (digest §2.7): Snell's law at every chain point makes
+  each step closed form; the single free parameter ρ1 (illuminated vertex) is found by shooting so that
+  the two surfaces meet (zero thickness) at the rim y = Y_B. The equal-edge ellipse (3.1)–(3.7) then puts
+  that rim at z = X_B. The point chain is joined by C¹ cubic Hermite profiles (slopes from the Snell
+  normals), the smooth representation handed to CAD.
+* ``"kinber"`` — seed-001 §3.1: central parabolic segments of both surfaces, foci from (3.1), then
+  alternating segment images (3.2)–(3.9) until the aperture is covered. Plane output (ρ2 = ∞) is the
+  digest's derived form. :func:`kinber_lens` is the faithful construction from the seed's own
+  parameters (a0, a2, h1, b0, b2, h2, ρ1, ρ2); ``synthesize_bifocal(construction="kinber")`` fits its
+  central segments to the spec's foci and tilt (see :func:`synthesize_bifocal`).
+
+The single-surface hyperbolic comparison lens (seed-000 §2.1, (1.9) corrected, (1.1)) is a private
+helper here (``_single_surface_lens``); it will be replaced by the shared ``synthesis/collimator.py``
+at merge.
+
+3-D shape: the synthesis is the 2-D section (seed-000 §7.2 leaves the 3-D form open). ``cylindrical``
+extrudes it (exact in every section); ``revolved`` turns it about the axis, which smears the two foci
+into a ring of radius a — the design is then exact only for feeds in the meridional plane.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Literal
+
+import numpy as np
+from scipy.interpolate import CubicHermiteSpline
+from scipy.optimize import brentq, least_squares
+
+from antenna_cad.raytrace.snell import refract
+from antenna_cad.raytrace.trace2d import Interface, Trace2D, trace
+from antenna_cad.synthesis.checks import Check, DesignError
+
+C0_MM_PER_NS = 299.792458          # speed of light, mm/ns → λ0[mm] = C0_MM_PER_NS / f[GHz]
+
+__all__ = [
+    "BifocalDesign", "KinberLens", "DefocusStudy", "equal_edge_ellipse", "thin_ray_rho2",
+    "polar_polynomial", "synthesize_bifocal", "kinber_lens", "trace_bifocal", "aperture_phase",
+    "defocus_study", "kinber_rms", "kinber_focal_circle_rms",
+]
+
+
+# --------------------------------------------------------------------------------------------------
+# Closed forms: equal-edge ellipse (3.1)–(3.7), thin-ray start (3.64), polynomial surfaces (1.11)
+# --------------------------------------------------------------------------------------------------
+
+def equal_edge_ellipse(edge_x_mm: float, edge_y_mm: float, beam_tilt_rad: float | None = None,
+                       focus_offset_mm: float | None = None) -> tuple[float, float, float]:
+    """Return ``(s_mm, a_mm, alpha_rad)`` of the equal-edge ellipse through A1 = (X_B, Y_B).
+
+    seed-000 §2.3: ``X_B² + Y_B² cos²α = a² ctg²α`` (1.10)/(3.1); ``s = −X_B + sqrt(X_B² + Y_B² cos²α)``
+    (3.7, "+" root); ``a = (s² + Y_B² cos²α)/(2 s ctg α)`` (3.6), which equals ``(X_B + s)·tg α``.
+    Give exactly one of α and a; the other is solved (α from a by root finding, (3.5) holds then).
+    """
+    xb, yb = float(edge_x_mm), float(edge_y_mm)
+    if not xb > 0.0:
+        raise DesignError("design.edge_x_mm", f"(3.8) needs 0 < X_B; got {xb:.6g} mm")
+    if not yb > 0.0:
+        raise DesignError("design.edge_y_mm", f"aperture half-size Y_B must be > 0; got {yb:.6g} mm")
+    if beam_tilt_rad is None and focus_offset_mm is None:
+        raise DesignError("design", "give beam_tilt_deg or focus_offset_mm (the other is solved by (3.6))")
+    if beam_tilt_rad is not None:
+        alpha = float(beam_tilt_rad)
+        if not 0.0 < alpha < np.pi / 2:
+            raise DesignError("design.beam_tilt_deg",
+                              f"(3.5) needs 0 < α < 90°; got {np.degrees(alpha):.6g}°")
+    else:
+        a_req = float(focus_offset_mm)
+        if not a_req > 0.0:
+            raise DesignError("design.focus_offset_mm", f"focus offset a must be > 0; got {a_req:.6g} mm")
+        g = lambda al: np.sqrt(xb**2 + yb**2 * np.cos(al) ** 2) * np.tan(al) - a_req  # noqa: E731
+        alpha = brentq(g, 1e-12, np.pi / 2 - 1e-9, xtol=1e-15, rtol=1e-15)
+    c2 = np.cos(alpha) ** 2
+    s = -xb + np.sqrt(xb**2 + yb**2 * c2)                                  # (3.7)
+    a = (s**2 + yb**2 * c2) / (2.0 * s / np.tan(alpha))                    # (3.6)
+    arg = np.sqrt(2.0 * xb * s + s**2) / yb                                # (3.5) argument
+    if not (s > 0.0 and arg <= 1.0 + 1e-12):
+        raise DesignError("design.beam_tilt_deg", f"(3.5) needs 0 < sqrt(2X_B s + s²)/Y_B ≤ 1; got {arg:.6g}")
+    return float(s), float(a), float(alpha)
+
+
+def thin_ray_rho2(rho1_mm: float, edge_x_mm: float, edge_y_mm: float, a_mm: float,
+                  alpha_rad: float, n: float) -> float:
+    """Thin-ray start point ρ2(ρ1), seed-000 §2.5 eq. (3.64) (c cancels; k2/k1 = n)."""
+    xb, yb, a, al = edge_x_mm, edge_y_mm, a_mm, alpha_rad
+    num = (np.hypot(xb, yb - a) - xb * np.cos(al) + yb * np.sin(al) - np.hypot(rho1_mm, a) + n * rho1_mm)
+    return float(num / (n - np.cos(al)))
+
+
+def polar_polynomial(rho0: float, A: float, B: float, theta: np.ndarray) -> np.ndarray:
+    """Seed-000 (1.11): ``ρ(θ) = ρ0 (1 + A θ² + B θ⁴)``, θ in radians about the origin."""
+    theta = np.asarray(theta, float)
+    return rho0 * (1.0 + A * theta**2 + B * theta**4)
+
+
+def _fit_polar(points: np.ndarray) -> tuple[tuple[float, float, float], float]:
+    """Least-squares (1.11) fit to (z, y) points; returns ((ρ0, A, B), max |Δρ| in the same unit)."""
+    rho = np.hypot(points[:, 0], points[:, 1])
+    th = np.arctan2(np.abs(points[:, 1]), points[:, 0])
+    M = np.stack([np.ones_like(th), th**2, th**4], axis=-1)
+    coef, *_ = np.linalg.lstsq(M, rho, rcond=None)
+    resid = float(np.max(np.abs(M @ coef - rho)))
+    return (float(coef[0]), float(coef[1] / coef[0]), float(coef[2] / coef[0])), resid
+
+
+# --------------------------------------------------------------------------------------------------
+# Shared closed-form steps (vector Snell, seed-000 §2.7; seed-001 §3.1 (3.2)–(3.9))
+# --------------------------------------------------------------------------------------------------
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    return v / np.linalg.norm(v, axis=-1, keepdims=True)
+
+
+def _mirror(p: np.ndarray) -> np.ndarray:
+    return p * np.array([1.0, -1.0])
+
+
+@dataclass(frozen=True)
+class _Optics:
+    """One feed F (left), its conjugate (plane direction k, or image point Fp), index n and the
+    eikonal constant L: ``|F−P| + n|PQ| + e(Q) = L`` with ``e(Q) = −k·Q`` (plane) or ``|Fp−Q|``."""
+
+    F: np.ndarray
+    n: float
+    L: float
+    k: np.ndarray | None = None
+    Fp: np.ndarray | None = None
+
+    def exit_dir(self, Q: np.ndarray) -> np.ndarray:
+        return np.broadcast_to(self.k, Q.shape) if self.k is not None else _unit(self.Fp - Q)
+
+    def e(self, Q: np.ndarray) -> np.ndarray:
+        return -(Q @ self.k) if self.k is not None else np.linalg.norm(self.Fp - Q, axis=-1)
+
+
+def _smallest_positive_root(A: float, B: np.ndarray, C: np.ndarray, budget: np.ndarray,
+                            n: float) -> np.ndarray:
+    """Root s > 0 of ``A s² + 2B s + C = 0`` with ``budget − n s > 0`` (NaN if none)."""
+    disc = B**2 - A * C
+    sq = np.sqrt(np.where(disc >= 0.0, disc, np.nan))
+    q = -(B + np.copysign(sq, B))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r1, r2 = q / A, C / q
+    good = lambda r: np.isfinite(r) & (r > 0.0) & (budget - n * r > 0.0)  # noqa: E731
+    r1 = np.where(good(r1), r1, np.inf)
+    r2 = np.where(good(r2), r2, np.inf)
+    r = np.minimum(r1, r2)
+    return np.where(np.isfinite(r), r, np.nan)
+
+
+def _fwd(P: np.ndarray, NP: np.ndarray, o: _Optics) -> tuple[np.ndarray, np.ndarray]:
+    """Ray F→P (surface 1, normal NP) refracted into the lens → exit point Q on surface 2 and the
+    surface-2 normal there (∥ n·v − w). Plane exit: t linear (seed-000 §2.7 step 2); point exit:
+    quadratic (seed-001 (3.4)–(3.5))."""
+    d = _unit(P - o.F)
+    v, ok = refract(d, NP, 1.0, o.n)
+    r1 = np.linalg.norm(P - o.F, axis=-1)
+    if o.k is not None:
+        t = (o.L - r1 + P @ o.k) / (o.n - v @ o.k)
+    else:
+        w0 = o.Fp - P
+        R0 = o.L - r1
+        t = _smallest_positive_root(1.0 - o.n**2, o.n * R0 - np.sum(v * w0, -1),
+                                    np.sum(w0 * w0, -1) - R0**2, R0, o.n)
+    t = np.where(ok & (t > 0.0), t, np.nan)
+    Q = P + t[:, None] * v
+    NQ = _unit(o.n * v - o.exit_dir(Q))
+    return Q, NQ
+
+
+def _back(Q: np.ndarray, NQ: np.ndarray, o: _Optics) -> tuple[np.ndarray, np.ndarray]:
+    """Inverse step: from a surface-2 point Q (normal NQ) trace the conjugate ray backwards into the
+    lens and find the surface-1 point P with the same eikonal (seed-000 §2.7 step 3, quadratic
+    ``(1−n²)s² + 2(w·d_b + nK)s + |w|² − K² = 0``; seed-001 (3.8)–(3.9))."""
+    vb, ok = refract(-o.exit_dir(Q), NQ, 1.0, o.n)
+    K = o.L - o.e(Q)
+    w = Q - o.F
+    s = _smallest_positive_root(1.0 - o.n**2, np.sum(w * vb, -1) + o.n * K, np.sum(w * w, -1) - K**2,
+                                K, o.n)
+    s = np.where(ok, s, np.nan)
+    P = Q + s[:, None] * vb
+    NP = _unit(_unit(P - o.F) + o.n * vb)          # ∥ d − n·v with v = −vb
+    return P, NP
+
+
+def _slopes(N: np.ndarray) -> np.ndarray:
+    """dz/dy of a profile z = f(y) from its normal (N ∥ (1, −f'))."""
+    return -N[:, 1] / N[:, 0]
+
+
+def _symmetric_profile(pts: np.ndarray, nrm: np.ndarray, y_max: float | None = None
+                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Fold points to y ≥ 0, mirror to a full even profile, sort, drop duplicates.
+    Returns (y, z, dz/dy) arrays, strictly increasing y."""
+    y = pts[:, 1].copy()
+    z = pts[:, 0].copy()
+    sl = _slopes(nrm)
+    neg = y < 0
+    y[neg], sl[neg] = -y[neg], -sl[neg]
+    keep = np.isfinite(y) & np.isfinite(z) & np.isfinite(sl)
+    if y_max is not None:
+        keep &= y <= y_max
+    y, z, sl = y[keep], z[keep], sl[keep]
+    order = np.argsort(y)
+    y, z, sl = y[order], z[order], sl[order]
+    uniq = np.concatenate([[True], np.diff(y) > 1e-9 * max(1.0, float(y[-1]) if len(y) else 1.0)])
+    y, z, sl = y[uniq], z[uniq], sl[uniq]
+    if y[0] <= 1e-12 * max(1.0, y[-1]):
+        y0, z0, s0 = y[:1] * 0.0, z[:1], sl[:1] * 0.0
+        y, z, sl = y[1:], z[1:], sl[1:]
+        return (np.concatenate([-y[::-1], y0, y]), np.concatenate([z[::-1], z0, z]),
+                np.concatenate([-sl[::-1], s0, sl]))
+    return np.concatenate([-y[::-1], y]), np.concatenate([z[::-1], z]), np.concatenate([-sl[::-1], sl])
+
+
+def _hermite(y: np.ndarray, z: np.ndarray, sl: np.ndarray) -> CubicHermiteSpline:
+    return CubicHermiteSpline(y, z, sl)
+
+
+# --------------------------------------------------------------------------------------------------
+# The design record
+# --------------------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class BifocalDesign:
+    """A synthesized bifocal lens in the module frame (z axial from the feed plane, y transverse, mm).
+
+    ``illuminated_mm`` / ``shadow_mm``: (N, 2) constructed points (z, y), full even profile sorted by y,
+    ending at the rim ±Y_B; ``*_normals``: unit normals there; ``*_slopes``: dz/dy. The smooth CAD
+    representation is the C¹ cubic Hermite profile through these points (:meth:`profile`,
+    :meth:`polyline`). ``poly_*`` are the seed's (1.11) coefficients (ρ_ν in mm, A_ν, B_ν with θ in
+    radians), least-squares fitted; ``poly_fit_residual_mm`` is the max radial deviation of that fit.
+    ``residual_path_error_mm``: peak-to-peak eikonal error of an exact trace through the Hermite
+    profiles from (O1, O2) to their plane fronts.
+    """
+
+    construction: str
+    shape: str
+    eps_r: float
+    n: float
+    edge_x_mm: float                 # X_B (rim position; Kinber: illuminated surface at y = Y_B)
+    edge_y_mm: float                 # Y_B (aperture half-size)
+    s_mm: float                      # (3.7)
+    focus_offset_mm: float           # a
+    beam_tilt_rad: float             # α
+    antenna_x_mm: float              # c
+    rho1_mm: float                   # illuminated vertex z
+    rho2_mm: float                   # shadow vertex z
+    thickness_mm: float              # ρ2 − ρ1
+    edge_thickness_mm: float         # 0 for nikulina
+    path_constant_mm: float          # L = |O1 P| + n|PQ| − u1·Q  (c-free eikonal)
+    foci_mm: np.ndarray              # (2, 2): O1, O2 as (z, y)
+    exit_directions: np.ndarray      # (2, 2): u1, u2
+    illuminated_mm: np.ndarray
+    illuminated_normals: np.ndarray
+    illuminated_slopes: np.ndarray
+    shadow_mm: np.ndarray
+    shadow_normals: np.ndarray
+    shadow_slopes: np.ndarray
+    poly_illuminated: tuple[float, float, float]
+    poly_shadow: tuple[float, float, float]
+    poly_fit_residual_mm: float
+    residual_path_error_mm: tuple[float, float]
+    checks: tuple[Check, ...]
+    params: dict = field(default_factory=dict)     # construction-specific inputs/outputs
+
+    # -- smooth representation -------------------------------------------------------------------
+    def profile(self, surface: Literal["illuminated", "shadow"], y_mm: np.ndarray) -> np.ndarray:
+        """z (mm) of the C¹ Hermite profile at transverse positions ``y_mm``."""
+        pts = self.illuminated_mm if surface == "illuminated" else self.shadow_mm
+        sl = self.illuminated_slopes if surface == "illuminated" else self.shadow_slopes
+        return _hermite(pts[:, 1], pts[:, 0], sl)(np.asarray(y_mm, float))
+
+    def polyline(self, surface: Literal["illuminated", "shadow"], num: int = 401) -> np.ndarray:
+        """Dense (z, y) polyline of one face from −Y_B to +Y_B (both faces share the rim points)."""
+        y = np.linspace(-self.edge_y_mm, self.edge_y_mm, num)
+        return np.stack([self.profile(surface, y), y], axis=-1)
+
+    def interfaces(self, which: Literal["spline", "polynomial"] = "spline") -> tuple[Interface, Interface]:
+        """The two faces as :class:`Interface` objects for :func:`antenna_cad.raytrace.trace2d.trace`."""
+        if which == "spline":
+            a = self.illuminated_mm
+            b = self.shadow_mm
+            return (Interface.from_points(a[:, 1], a[:, 0], self.n, self.illuminated_slopes),
+                    Interface.from_points(b[:, 1], b[:, 0], 1.0, self.shadow_slopes))
+        th_max = 1.3 * np.arctan2(self.edge_y_mm, self.edge_x_mm)
+        th = np.linspace(-th_max, th_max, 4001)
+        out = []
+        for coef, n_after in ((self.poly_illuminated, self.n), (self.poly_shadow, 1.0)):
+            r = polar_polynomial(*coef, th)
+            out.append(Interface.from_points(r * np.sin(th), r * np.cos(th), n_after))
+        return out[0], out[1]
+
+
+# --------------------------------------------------------------------------------------------------
+# Nikulina chain (seed-000 §3.2 with the digest's §2.7 completion)
+# --------------------------------------------------------------------------------------------------
+
+def _nikulina_chain(rho1: float, o: _Optics, max_steps: int = 4000):
+    """C = (ρ1, 0) → G → mirror → B → mirror → H → … (digest §2.7 steps 1–4), run until a step fails
+    (no root, TIR, or the faces would cross) or stalls at the rim. Returns (illuminated points,
+    normals, shadow points, normals) as the chain produced them (alternating signs of y)."""
+    C = np.array([[rho1, 0.0]])
+    NC = np.array([[-1.0, 0.0]])
+    ill_p, ill_n = [C[0]], [NC[0]]
+    sh_p, sh_n = [], []
+    G, NG = _fwd(C, NC, o)
+    if np.all(np.isfinite(G)):
+        sh_p.append(G[0])
+        sh_n.append(NG[0])
+        for _ in range(max_steps):
+            B, NB = _back(_mirror(G), _mirror(NG), o)
+            if not np.all(np.isfinite(B)) or abs(B[0, 1]) - abs(ill_p[-1][1]) <= 1e-13 * abs(B[0, 0]):
+                break
+            ill_p.append(B[0])
+            ill_n.append(NB[0])
+            G, NG = _fwd(_mirror(B), _mirror(NB), o)
+            if not np.all(np.isfinite(G)) or abs(G[0, 1]) - abs(sh_p[-1][1]) <= 1e-13 * abs(G[0, 0]):
+                break
+            sh_p.append(G[0])
+            sh_n.append(NG[0])
+    return (np.array(ill_p), np.array(ill_n), np.array(sh_p).reshape(-1, 2), np.array(sh_n).reshape(-1, 2))
+
+
+def _closure(rho1: float, o: _Optics, xb: float) -> float:
+    """Shooting function: farthest z the illuminated chain reaches, minus X_B. Below the closing ρ1
+    the faces fold over before the rim; above it the illuminated face overshoots X_B; at the root the
+    chain converges onto A1 = (X_B, Y_B) (the only zero-thickness point with equal eikonals, §2.3)."""
+    ip = _nikulina_chain(rho1, o)[0]
+    return float(np.max(ip[:, 0]) - xb)
+
+
+def _solve_rho1(o: _Optics, xb: float, lo: float, hi: float, num: int = 60) -> float:
+    grid = np.linspace(lo, hi, num + 2)[1:-1]
+    vals = np.array([_closure(r, o, xb) for r in grid])
+    for i in range(len(grid) - 1):
+        if vals[i] < 0.0 <= vals[i + 1]:
+            return float(brentq(_closure, grid[i], grid[i + 1], args=(o, xb), xtol=1e-13 * hi,
+                                rtol=1e-15, maxiter=300))
+    return np.nan
+
+
+def _edge_normals(o1: _Optics, A1: np.ndarray, N1g: np.ndarray, N2g: np.ndarray):
+    """Normals of both faces at the zero-thickness rim A1 (the digest's formalised Gent–Sternberg
+    condition, seed-000 §2.8): ``d_k − n t_k ∥ N1`` and ``n t_k − u_k ∥ N2`` for both feeds k."""
+    n = o1.n
+    F = [o1.F, _mirror(o1.F)]
+    U = [o1.k, _mirror(o1.k)]
+    D = [_unit(A1 - f) for f in F]
+    cr = lambda p, q: p[0] * q[1] - p[1] * q[0]  # noqa: E731
+    ang = lambda v: np.arctan2(v[1], v[0])  # noqa: E731
+    t0 = [refract(d[None], N1g[None], 1.0, n)[0][0] for d in D]
+    x0 = np.array([ang(N1g), ang(N2g), ang(t0[0]), ang(t0[1])])
+
+    def res(x):
+        N1 = np.array([np.cos(x[0]), np.sin(x[0])])
+        N2 = np.array([np.cos(x[1]), np.sin(x[1])])
+        T = [np.array([np.cos(x[2]), np.sin(x[2])]), np.array([np.cos(x[3]), np.sin(x[3])])]
+        return [cr(D[0] - n * T[0], N1), cr(D[1] - n * T[1], N1), cr(n * T[0] - U[0], N2),
+                cr(n * T[1] - U[1], N2)]
+
+    sol = least_squares(res, x0, xtol=1e-15, ftol=1e-15, gtol=1e-15)
+    N1 = np.array([np.cos(sol.x[0]), np.sin(sol.x[0])])
+    N2 = np.array([np.cos(sol.x[1]), np.sin(sol.x[1])])
+    return N1, N2, float(np.max(np.abs(sol.fun)))
+
+
+def _rim_profile(pts, nrm, A1, N_edge, yb, cut=1e-4):
+    """Even Hermite data from chain points (folded to y ≥ 0, kept for y < (1−cut)·Y_B) plus the rim A1."""
+    fy = np.abs(pts[:, 1]) < (1.0 - cut) * yb
+    p = np.concatenate([pts[fy], A1[None]])
+    m = np.concatenate([nrm[fy], N_edge[None]])
+    return _symmetric_profile(p, m)
+
+
+# --------------------------------------------------------------------------------------------------
+# Kinber's method of steps (seed-001 §3.1)
+# --------------------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class KinberLens:
+    """Seed-001 §3.1 lens in the seed's own frame (x axis = our z, origin at the lens centre O,
+    normalised units, D = aperture). ``F1`` below the axis; ``F1p`` its image point (None for a
+    plane output, then ``k`` is the output direction ω_B)."""
+
+    n: float
+    aperture: float
+    F1: np.ndarray
+    F1p: np.ndarray | None
+    k: np.ndarray | None
+    omega_B_rad: float
+    alpha_A_rad: float
+    L: float
+    surface1: np.ndarray            # (N, 2) full even profile (x, y), with slopes
+    slopes1: np.ndarray
+    surface2: np.ndarray
+    slopes2: np.ndarray
+    segments: int
+
+    def x1(self, y):
+        return _hermite(self.surface1[:, 1], self.surface1[:, 0], self.slopes1)(np.asarray(y, float))
+
+    def x2(self, y):
+        return _hermite(self.surface2[:, 1], self.surface2[:, 0], self.slopes2)(np.asarray(y, float))
+
+    def focus_angle_deg(self) -> float:
+        """"Angular position of the foci" as the digest reads it: the direction of F1' seen from the
+        surface-2 vertex (b0, 0), or ω_B for a plane output."""
+        if self.F1p is None:
+            return float(np.degrees(self.omega_B_rad))
+        b0 = float(self.x2(0.0))
+        return float(np.degrees(np.arctan2(self.F1p[1], self.F1p[0] - b0)))
+
+
+def kinber_lens(n: float, a0: float, a2: float, h1: float, b0: float, b2: float, h2: float | None,
+                rho1: float, rho2: float = np.inf, aperture: float = 1.0,
+                points_per_segment: int = 41, max_segments: int = 400,
+                allow_partial: bool = False, build_to: float = 1.02) -> KinberLens:
+    """Kinber's exact stepwise bifocal synthesis, seed-001 §3.1, in the seed's frame.
+
+    Central segments ``x1 = a0 + a2 y²`` (|y| ≤ h1) and ``x2 = b0 + b2 y²`` (|y| ≤ h2). If ``h2`` is None
+    it is set by A–O–B collinearity (``x_B/h2 = −x_A/h1``). Foci from (3.1); F1 rays through the newest
+    surface-1 segment give the next surface-2 segment (3.2)–(3.5); F2' rays through the newest
+    surface-2 segment give the next surface-1 segment (3.6)–(3.9) (computed as the mirror image of the
+    F1 backward step). ``rho2 = inf`` gives the plane-output lens (digest's derived form).
+    """
+    if h2 is None:                     # b2 h² + (x_A/h1) h + b0 = 0, root with h > 0
+        xa = a0 + a2 * h1**2
+        cq = [b2, xa / h1, b0] if abs(b2) > 0 else [xa / h1, b0]
+        roots = np.roots(cq)
+        roots = roots[np.isreal(roots) & (roots.real > 0)].real
+        if len(roots) == 0:
+            raise DesignError("design.kinber.h2", "A–O–B collinearity has no positive h2")
+        h2 = float(np.min(roots))
+    y1 = np.linspace(-h1, h1, points_per_segment)
+    y2 = np.linspace(-h2, h2, points_per_segment)
+    s1 = np.stack([a0 + a2 * y1**2, y1], -1)
+    n1 = _unit(np.stack([np.ones_like(y1), -2 * a2 * y1], -1))
+    s2 = np.stack([b0 + b2 * y2**2, y2], -1)
+    n2 = _unit(np.stack([np.ones_like(y2), -2 * b2 * y2], -1))
+    A, NA, B, NB = s1[:1], n1[:1], s2[-1:], n2[-1:]
+    v = _unit(B - A)
+    d_out, ok_a = refract(-v, NA, n, 1.0)        # from A back toward F1 (in air)
+    w, ok_b = refract(v, NB, n, 1.0)             # leaving B toward F1'
+    if not (ok_a.all() and ok_b.all()):
+        raise DesignError("design.kinber", "central ray A→B is totally reflected (3.1)")
+    F1 = (A + rho1 * d_out)[0]
+    omega_B = float(np.arctan2(w[0, 1], w[0, 0]))
+    alpha_A = float(np.arctan2(v[0, 1], v[0, 0]))
+    nab = n * float(np.linalg.norm(B - A))
+    if np.isinf(rho2):
+        k = w[0]
+        L = rho1 + nab - float(B[0] @ k)
+        o = _Optics(F1, n, L, k=k)
+        F1p = None
+    else:
+        k = None
+        F1p = (B + rho2 * w)[0]
+        L = rho1 + nab + rho2
+        o = _Optics(F1, n, L, Fp=F1p)
+    surf1_p, surf1_n = [s1], [n1]
+    surf2_p, surf2_n = [s2], [n2]
+    last1, last1n, last2, last2n = s1, n1, s2, n2
+    half = aperture / 2.0
+    segs = 0
+    for segs in range(1, max_segments + 1):
+        q, qn = _fwd(last1, last1n, o)                                   # new surface-2 segment
+        p, pn = _back(_mirror(last2), _mirror(last2n), o)                # F1 backward of mirror…
+        p, pn = _mirror(p), _mirror(pn)                                  # …mirrored = F2' step
+        good_q = np.all(np.isfinite(q), -1)
+        good_p = np.all(np.isfinite(p), -1)
+        if not (good_q.any() and good_p.any()):
+            break
+        surf2_p.append(q[good_q]); surf2_n.append(qn[good_q])
+        surf1_p.append(p[good_p]); surf1_n.append(pn[good_p])
+        last1, last1n, last2, last2n = p[good_p], pn[good_p], q[good_q], qn[good_q]
+        if (np.min(np.abs(surf1_p[-1][:, 1])) > build_to * half
+                and np.min(np.abs(surf2_p[-1][:, 1])) > build_to * half) \
+                or not (good_q.all() and good_p.all()):
+            break
+    P1 = np.concatenate(surf1_p); N1 = np.concatenate(surf1_n)
+    P2 = np.concatenate(surf2_p); N2 = np.concatenate(surf2_n)
+    ya, za, sa = _symmetric_profile(P1, N1)
+    yb_, zb, sb = _symmetric_profile(P2, N2)
+    if (ya[-1] < half or yb_[-1] < half) and not allow_partial:
+        raise DesignError("design.kinber", f"the method of steps stopped at |y| = "
+                          f"{min(ya[-1], yb_[-1]):.4g} before the aperture edge {half:.4g} (TIR or no root)")
+    return KinberLens(n, aperture, F1, F1p, k, omega_B, alpha_A, L,
+                      np.stack([za, ya], -1), sa, np.stack([zb, yb_], -1), sb, segs)
+
+
+def kinber_rms(lens: KinberLens, source: np.ndarray, image: np.ndarray, n_rays: int = 100,
+               half_aperture: float | None = None) -> float:
+    """Eikonal RMS (3.10) of seed-001 §3.1 for a point source and a point image (seed frame):
+    ``σ = sqrt(Σ (L_i − L_0)² / N)``, L_i = |S − P_i| + n|P_i Q_i| + |Q_i − S'| along exactly traced
+    rays aimed uniformly in y at surface 1, L_0 the ray aimed at the surface-1 vertex (so σ includes
+    piston, as in the seed). Rays leaving |y| > half_aperture (default D/2) on either face are dropped."""
+    h = lens.aperture / 2.0 if half_aperture is None else half_aperture
+    s1 = Interface.from_points(lens.surface1[:, 1], lens.surface1[:, 0], lens.n, lens.slopes1)
+    s2 = Interface.from_points(lens.surface2[:, 1], lens.surface2[:, 0], 1.0, lens.slopes2)
+    S = np.asarray(source, float)
+    Sp = np.asarray(image, float)
+    yt = np.linspace(-h, h, n_rays)
+    tgt = np.stack([lens.x1(yt), yt], -1)
+    tr = trace(np.tile(S, (n_rays, 1)), _unit(tgt - S), [s1, s2], 1.0)
+    ok = tr.ok & (np.abs(tr.points[1][:, 1]) <= h) & (np.abs(tr.points[2][:, 1]) <= h)
+    Li = tr.opl[ok] + np.linalg.norm(tr.points[-1][ok] - Sp, axis=-1)
+    c = trace(S[None], _unit(np.array([[float(lens.x1(0.0)), 0.0]]) - S), [s1, s2], 1.0)
+    L0 = c.opl[0] + np.linalg.norm(c.points[-1][0] - Sp)
+    return float(np.sqrt(np.mean((Li - L0) ** 2)))
+
+
+def kinber_focal_circle_rms(lens: KinberLens, x_axis: float, half_view_deg: float = 20.0,
+                            num: int = 41) -> tuple[np.ndarray, np.ndarray]:
+    """RMS (3.10) vs source angle for sources on the circle through F1, F2 centred on the axis and
+    crossing it at ``x_axis`` (seed-001 §4.2); source angle measured from the surface-1 vertex; image
+    S' = −S (point symmetry of the two-plane-symmetric lens 1). Point-image lenses only."""
+    F = lens.F1
+    xc = (F[0] ** 2 + F[1] ** 2 - x_axis**2) / (2.0 * (F[0] - x_axis))
+    R = abs(x_axis - xc)
+    V = np.array([float(lens.x1(0.0)), 0.0])
+    phis = np.radians(np.linspace(-half_view_deg, half_view_deg, num))
+    out = []
+    for phi in phis:
+        d = np.array([-np.cos(phi), -np.sin(phi)])
+        w = V - np.array([xc, 0.0])
+        bq = w @ d
+        t = -bq + np.sqrt(bq * bq - (w @ w - R * R))
+        S = V + t * d
+        out.append(kinber_rms(lens, S, -S))
+    return np.degrees(phis), np.array(out)
+
+
+# --------------------------------------------------------------------------------------------------
+# Synthesis entry point
+# --------------------------------------------------------------------------------------------------
+
+def _finish_profile(y: np.ndarray, z: np.ndarray, sl: np.ndarray, yb: float
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Cut a full even Hermite profile at ±Y_B, adding the rim points."""
+    spl = _hermite(y, z, sl)
+    der = spl.derivative()
+    inside = np.abs(y) < yb * (1 - 1e-9)
+    ye = np.concatenate([[-yb], y[inside], [yb]])
+    return ye, spl(ye), np.concatenate([[der(-yb)], sl[inside], [der(yb)]])
+
+
+def _design_checks(n, xb, yb, a, al, c, rho1, rho2, y_dense, z_ill, z_sh, zero_rim=True) -> list[Check]:
+    """Realizability conditions (3.8)–(3.15) as corrected in seed-000 §2.3; raise on the first failure."""
+    act = a / np.tan(al)
+    tg = np.tan(al)
+    checks: list[Check] = []
+
+    def need(name, value, limit, unit, what, field_, rule):
+        chk = Check.upper(name, value, limit, unit, what)
+        checks.append(chk)
+        if chk.status == "fail":
+            raise DesignError(field_, f"{rule}: {chk.message}")
+
+    # (3.14): a < ρ1·n  (refraction at the illuminated vertex is possible)
+    need("bifocal_3_14_vertex_refraction", a / (rho1 * n), 1.0, "", "a/(ρ1·n) at the illuminated vertex",
+         "design.focus_offset_mm", "(3.14) needs a < ρ1·n")
+    # (3.8): 0 < ρ1 < a·ctgα < ρ2 < c ; 0 < X_B < c
+    if not zero_rim:        # Kinber lens: the equal-edge ellipse relations do not apply
+        need("bifocal_shadow_vertex_before_antenna", rho2, c, "mm",
+             f"shadow vertex vs antenna plane c (move antenna_x_mm beyond {rho2:.1f} mm)",
+             "design.antenna_x_mm", "needs ρ2 < c")
+        reach = float(np.max(z_sh + abs(tg) * np.abs(y_dense)))
+        need("bifocal_3_15_shadow_before_front", reach, c, "mm", "max(z + |tgα||y|) of the shadow face vs c",
+             "design.antenna_x_mm", "(3.15) needs c > z + |tgα|·|y| on the shadow face")
+        tmin = float(np.min(z_sh - z_ill))
+        need("bifocal_positive_thickness", -tmin, 0.0, "mm", "negative of the minimum thickness",
+             "design", "faces must not cross inside the aperture")
+        return checks
+    need("bifocal_3_8_rho1_inside_ellipse", rho1, act, "mm", "illuminated vertex ρ1 vs a·ctgα",
+         "design.focus_offset_mm", "(3.8) needs ρ1 < a·ctgα")
+    need("bifocal_3_8_rho2_outside_ellipse", act, rho2, "mm", "a·ctgα vs shadow vertex ρ2",
+         "design.focus_offset_mm", "(3.8) needs a·ctgα < ρ2")
+    need("bifocal_3_8_edge_before_antenna", xb, c, "mm", "edge X_B vs antenna plane c",
+         "design.antenna_x_mm", "(3.8) needs X_B < c")
+    need("bifocal_3_8_shadow_vertex_before_antenna", rho2, c, "mm",
+         f"shadow vertex ρ2 vs antenna plane c (move antenna_x_mm beyond {rho2:.1f} mm)",
+         "design.antenna_x_mm", "(3.8) needs ρ2 < c")
+    # (3.11)/(3.12) corrected: A1P1 > 0  ⇔  X_B < c + Y_B·tgα
+    need("bifocal_3_12_edge_ray_forward", xb, c + yb * tg, "mm", "X_B vs c + Y_B·tgα",
+         "design.antenna_x_mm", "(3.11)/(3.12) corrected needs X_B < c + Y_B·tgα")
+    # (3.15) robust form: c > z + |tgα|·|y| for every shadow point
+    reach = float(np.max(z_sh + abs(tg) * np.abs(y_dense)))
+    need("bifocal_3_15_shadow_before_front", reach, c, "mm", "max(z + |tgα||y|) of the shadow face vs c",
+         "design.antenna_x_mm", "(3.15) needs c > z + |tgα|·|y| on the shadow face")
+    # (3.8) interpretation: illuminated face inside the edge ellipse, shadow face outside
+    inner = np.abs(y_dense) < yb * (1 - 1e-6)
+    e_ill = float(np.max((np.sqrt(z_ill**2 + y_dense**2 * np.cos(al) ** 2) - act)[inner]))
+    e_sh = float(np.max((act - np.sqrt(z_sh**2 + y_dense**2 * np.cos(al) ** 2))[inner]))
+    need("bifocal_3_8_illuminated_inside_ellipse", e_ill, 0.0, "mm",
+         "illuminated face outside the equal-edge ellipse by", "design", "(3.8)")
+    need("bifocal_3_8_shadow_outside_ellipse", e_sh, 0.0, "mm",
+         "shadow face inside the equal-edge ellipse by", "design", "(3.8)")
+    # positive thickness everywhere inside the rim
+    tmin = float(np.min((z_sh - z_ill)[inner]))
+    need("bifocal_positive_thickness", -tmin, 0.0, "mm", "negative of the minimum thickness",
+         "design", "faces must not cross inside the aperture")
+    return checks
+
+
+def synthesize_bifocal(*, edge_y_mm: float, eps_r: float, edge_x_mm: float | None = None,
+                       focus_offset_mm: float | None = None, beam_tilt_deg: float | None = None,
+                       antenna_x_mm: float | None = None,
+                       shape: Literal["revolved", "cylindrical"] = "revolved",
+                       construction: Literal["nikulina", "kinber"] = "nikulina",
+                       kinber: dict | None = None, antenna_clearance_mm: float = 100.0,
+                       ) -> BifocalDesign:
+    """Synthesize a bifocal collimator lens (frame and units: module docstring).
+
+    Inputs follow the spec's ``design`` block: rim ``(edge_x_mm, edge_y_mm) = (X_B, Y_B)``, focus offset
+    ``a`` and/or tilt ``α`` (give one; if both, they must agree with (3.6) to 0.5 %), the AUT plane
+    ``antenna_x_mm = c`` (None → ``antenna_clearance_mm`` beyond the lens's (3.15) limit).
+
+    ``construction="nikulina"`` (default): seed-000 §3.2 with the §2.7 completion; ρ1 by shooting for
+    zero thickness at the rim.
+
+    ``construction="kinber"``: seed-001 §3.1 plane-output lens from the seed's own central-segment
+    parameters ``kinber = {a0, a2, h1, b0, b2, h2 (None → A–O–B collinearity), rho1}`` in units of the
+    aperture D (the seed normalises D = 1), scaled by ``D = 2·edge_y_mm``. The foci (hence a), the tilt
+    α = ω_B and the rim position are *outputs* (``edge_x_mm``, ``focus_offset_mm``, ``beam_tilt_deg`` are
+    ignored); the rim has a finite thickness. Fitting Kinber's central segments to a zero-thickness
+    rim at a given (X_B, a, α) was tried and is unstable near the rim (segments fold over), so it is not
+    offered: use ``nikulina`` for that.
+    Raises :class:`DesignError` naming the violated realizability condition (3.5)–(3.15).
+    """
+    eps_r = float(eps_r)
+    if not eps_r > 1.0:
+        raise DesignError("material.eps_r", f"a decelerating lens needs εr > 1; got {eps_r:.6g}")
+    n = float(np.sqrt(eps_r))
+    yb = float(edge_y_mm)
+    if construction == "kinber":
+        return _kinber_design(n, eps_r, yb, kinber or {}, shape, antenna_x_mm, antenna_clearance_mm)
+    if construction != "nikulina":
+        raise DesignError("design.construction", f"must be 'nikulina' or 'kinber'; got {construction!r}")
+    if edge_x_mm is None:
+        raise DesignError("design.edge_x_mm", "the nikulina construction needs the rim position X_B")
+    xb = float(edge_x_mm)
+    if beam_tilt_deg is not None:
+        s, a, al = equal_edge_ellipse(xb, yb, beam_tilt_rad=np.radians(beam_tilt_deg))
+        if focus_offset_mm is not None and abs(focus_offset_mm - a) > 5e-3 * a:
+            raise DesignError("design.focus_offset_mm",
+                              f"(3.6) with α = {beam_tilt_deg:.6g}° needs a = {a:.6g} mm; got "
+                              f"{focus_offset_mm:.6g} mm (give only one of a, α)")
+    else:
+        s, a, al = equal_edge_ellipse(xb, yb, focus_offset_mm=focus_offset_mm)
+    u1 = np.array([np.cos(al), -np.sin(al)])
+    O1 = np.array([0.0, a])
+    A1 = np.array([xb, yb])
+    L = float(np.linalg.norm(A1 - O1) - A1 @ u1)         # (3.19)–(3.20) with c removed
+    o = _Optics(O1, n, L, k=u1)
+    act = a / np.tan(al)
+    params: dict = {}
+    lo = max(a / n, 1e-6 * act)                            # (3.14) lower bound
+    rho1 = _solve_rho1(o, xb, lo, act)
+    if not np.isfinite(rho1):
+        raise DesignError("design", "(3.8)/(3.14): no illuminated vertex ρ1 in (a/n, a·ctgα) = "
+                          f"({lo:.1f}, {act:.1f}) mm closes the point chain at the rim A1 "
+                          "(TIR or the faces never meet) — change a, α or the edge")
+    ip, inn, sp, sn = _nikulina_chain(rho1, o)
+    N1g = _mirror(inn[-1]) if ip[-1, 1] < 0 else inn[-1]
+    N2g = _mirror(sn[-1]) if sp[-1, 1] < 0 else sn[-1]
+    N1e, N2e, edge_res = _edge_normals(o, A1, N1g, N2g)
+    yi, zi, si = _rim_profile(ip, inn, A1, N1e, yb)
+    ys, zs, ss = _rim_profile(sp, sn, A1, N2e, yb)
+    rim_gap = float(min(np.hypot(*(np.abs(ip[-1]) - A1)), np.hypot(*(np.abs(sp[-1]) - A1))))
+    edge_t = 0.0
+    params.update(chain_points_illuminated=len(ip), chain_points_shadow=len(sp),
+                  chain_rim_gap_mm=rim_gap, edge_normal_residual=edge_res)
+
+    return _assemble("nikulina", shape, eps_r, n, yb, s, a, al, L, float(rho1), (yi, zi, si),
+                     (ys, zs, ss), edge_t, params, antenna_x_mm, antenna_clearance_mm, zero_rim=True)
+
+
+def _assemble(construction, shape, eps_r, n, yb, s, a, al, L, rho1, ill_h, sh_h, edge_t, params,
+              antenna_x_mm, clearance, zero_rim) -> BifocalDesign:
+    """Common tail: realizability checks, (1.11) fit, design record, exact-trace residuals."""
+    if shape not in ("revolved", "cylindrical"):
+        raise DesignError("design.shape", f"must be 'revolved' or 'cylindrical'; got {shape!r}")
+    yi, zi, si = ill_h
+    ys, zs, ss = sh_h
+    rho2 = float(_hermite(ys, zs, ss)(0.0))
+    ill = np.stack([zi, yi], -1)
+    sh = np.stack([zs, ys], -1)
+    nrm = lambda sl: _unit(np.stack([np.ones_like(sl), -sl], -1))  # noqa: E731
+    y_dense = np.linspace(-yb, yb, 801)
+    z_ill_d = _hermite(yi, zi, si)(y_dense)
+    z_sh_d = _hermite(ys, zs, ss)(y_dense)
+    if antenna_x_mm is None:
+        c = float(np.max(z_sh_d + abs(np.tan(al)) * np.abs(y_dense))) + clearance
+    else:
+        c = float(antenna_x_mm)
+    checks = _design_checks(n, float(zi[-1]), yb, a, al, c, rho1, rho2, y_dense, z_ill_d, z_sh_d,
+                            zero_rim)
+    checks.append(Check.upper("bifocal_rim_closure", params["chain_rim_gap_mm"], 1e-2 * yb, "mm",
+                              "closest approach of the constructed points to the rim",
+                              warn_margin=0.99e-2 * yb))
+    pi_, ri = _fit_polar(ill)
+    ps_, rs = _fit_polar(sh)
+    O1 = np.array([0.0, a])
+    u1 = np.array([np.cos(al), -np.sin(al)])
+    design = BifocalDesign(
+        construction=construction, shape=shape, eps_r=eps_r, n=n, edge_x_mm=float(zi[-1]),
+        edge_y_mm=yb, s_mm=s, focus_offset_mm=a, beam_tilt_rad=al, antenna_x_mm=c,
+        rho1_mm=float(rho1), rho2_mm=rho2, thickness_mm=rho2 - float(rho1), edge_thickness_mm=edge_t,
+        path_constant_mm=L, foci_mm=np.array([O1, _mirror(O1)]),
+        exit_directions=np.array([u1, _mirror(u1)]),
+        illuminated_mm=ill, illuminated_normals=nrm(si), illuminated_slopes=si,
+        shadow_mm=sh, shadow_normals=nrm(ss), shadow_slopes=ss,
+        poly_illuminated=pi_, poly_shadow=ps_, poly_fit_residual_mm=max(ri, rs),
+        residual_path_error_mm=(np.nan, np.nan), checks=tuple(checks), params=params)
+    res = tuple(float(np.ptp(_design_focus_eikonal(design, k))) for k in (0, 1))
+    chk = Check.upper("bifocal_design_focus_path_error", max(res), 1e-6 * 2 * yb, "mm",
+                      "peak-to-peak eikonal error at the design foci (exact trace)")
+    if chk.status == "fail" or not np.isfinite(max(res)):
+        raise DesignError("design", f"{chk.message} — the {construction} construction did not give a "
+                          "focusing lens for this spec (faces fold or rays leave the aperture); change "
+                          "a, α, the edge or εr")
+    checks.append(chk)
+    return _replace(design, residual_path_error_mm=res, checks=tuple(checks))
+
+
+def _kinber_design(n, eps_r, yb, kp, shape, antenna_x_mm, clearance) -> BifocalDesign:
+    """Seed-001 §3.1 plane-output lens from normalised parameters (D = 1), scaled to D = 2·Y_B and
+    moved into this module's frame (feed plane z = 0 through the foci)."""
+    need = ("a0", "a2", "h1", "b0", "b2", "rho1")
+    missing = [k for k in need if k not in kp]
+    if missing:
+        raise DesignError("design.kinber", f"missing Kinber parameters {missing} (seed-001 §3.1 table)")
+    lens = kinber_lens(n, kp["a0"], kp["a2"], kp["h1"], kp["b0"], kp["b2"], kp.get("h2"), kp["rho1"],
+                       np.inf, aperture=1.0)
+    scale = 2.0 * yb
+    shift = np.array([lens.F1[0], 0.0])
+    a = abs(float(lens.F1[1])) * scale
+    al = lens.omega_B_rad
+    if not 0.0 < al < np.pi / 2:
+        raise DesignError("design.kinber", f"output direction ω_B = {np.degrees(al):.4g}° is not in (0, 90°)")
+    P1 = (lens.surface1 - shift) * scale
+    P2 = (lens.surface2 - shift) * scale
+    ill_h = _finish_profile(P1[:, 1], P1[:, 0], lens.slopes1, yb)
+    sh_h = _finish_profile(P2[:, 1], P2[:, 0], lens.slopes2, yb)
+    L = scale * (lens.L + lens.k[0] * lens.F1[0])
+    rho1 = float(_hermite(*ill_h)(0.0))
+    params = {f"kinber_{k}": (None if kp.get(k) is None else float(kp[k])) for k in need + ("h2",)}
+    params.update(kinber_segments=lens.segments, chain_rim_gap_mm=0.0,
+                  kinber_omega_B_deg=float(np.degrees(al)), kinber_alpha_A_deg=float(np.degrees(lens.alpha_A_rad)))
+    edge_t = float(sh_h[1][-1] - ill_h[1][-1])
+    return _assemble("kinber", shape, eps_r, n, yb, float("nan"), a, al, L, rho1, ill_h, sh_h, edge_t,
+                     params, antenna_x_mm, clearance, zero_rim=False)
+
+
+def _replace(d: BifocalDesign, **kw) -> BifocalDesign:
+    from dataclasses import replace
+    return replace(d, **kw)
+
+
+# --------------------------------------------------------------------------------------------------
+# Verification: exact trace, aperture phase, defocus study, single-surface comparison
+# --------------------------------------------------------------------------------------------------
+
+def _aim(design: BifocalDesign, feed: np.ndarray, n_rays: int, margin: float = 0.999) -> np.ndarray:
+    yt = np.linspace(-margin * design.edge_y_mm, margin * design.edge_y_mm, n_rays)
+    tgt = np.stack([design.profile("illuminated", yt), yt], -1)
+    return _unit(tgt - feed)
+
+
+def trace_bifocal(design: BifocalDesign, feed_y_mm: float, feed_z_mm: float = 0.0, n_rays: int = 201,
+                  surfaces: Literal["spline", "polynomial"] = "spline",
+                  z_plane_mm: float | None = None) -> Trace2D:
+    """Exact 2-D trace from a feed at (feed_z_mm, feed_y_mm) through both faces to the AUT plane
+    ``z = c`` (or ``z_plane_mm``). Rays are aimed at the illuminated face uniformly in y over the
+    aperture; rays leaving the aperture (|y| > Y_B on either face) are flagged not ok."""
+    feed = np.array([feed_z_mm, feed_y_mm], float)
+    d = _aim(design, feed, n_rays)
+    zt = design.antenna_x_mm if z_plane_mm is None else z_plane_mm
+    tr = trace(np.tile(feed, (n_rays, 1)), d, design.interfaces(surfaces), 1.0, zt)
+    ok = tr.ok & (np.abs(tr.points[1][:, 1]) <= design.edge_y_mm) & (np.abs(tr.points[2][:, 1]) <= design.edge_y_mm)
+    return Trace2D(tr.points, tr.directions, tr.opl, ok)
+
+
+def _design_focus_eikonal(design: BifocalDesign, k: int, n_rays: int = 401) -> np.ndarray:
+    """Eikonal |O_k P| + n|PQ| − u_k·Q of rays from design focus k (c-free form of (3.16))."""
+    F = design.foci_mm[k]
+    tr = trace(np.tile(F, (n_rays, 1)), _aim(design, F, n_rays, 0.995), design.interfaces("spline"), 1.0)
+    Q = tr.points[-1][tr.ok]
+    return tr.opl[tr.ok] - Q @ design.exit_directions[k]
+
+
+def aperture_phase(tr: Trace2D, wavelength_mm: float) -> tuple[np.ndarray, np.ndarray, float]:
+    """Phase on the target plane (seed-000 §4.2 with vector Snell): returns (y on the plane, phase
+    error in degrees with the least-squares linear ramp removed, peak-to-peak in degrees)."""
+    y = tr.points[-1][tr.ok, 1]
+    ph = 360.0 * tr.opl[tr.ok] / wavelength_mm
+    lin = np.polyval(np.polyfit(y, ph, 1), y)
+    err = ph - lin
+    return y, err, float(np.ptp(err))
+
+
+def _single_surface_lens(f_mm: float, diameter_mm: float, eps_r: float):
+    """PRIVATE stand-in for the shared ``synthesis/collimator.py`` (to be swapped at merge).
+    Seed-000 §2.1: profile (1.9) corrected ``y² = (n²−1)z² + 2(n−1)f z`` (vertex z = 0, feed at z = −f,
+    flat back at z = d) and thickness (1.1). Returns (d in mm, z(r), dz/dr)."""
+    n = np.sqrt(eps_r)
+    f, D = float(f_mm), float(diameter_mm)
+    d = np.sqrt(f**2 / (n + 1) ** 2 + D**2 / (4 * (n**2 - 1))) - f / (n + 1)       # (1.1)
+
+    def z_of_r(r):
+        r = np.asarray(r, float)
+        return (-(n - 1) * f + np.sqrt((n - 1) ** 2 * f**2 + (n**2 - 1) * r**2)) / (n**2 - 1)
+
+    def dz_dr(r):
+        r = np.asarray(r, float)
+        return r / np.sqrt((n - 1) ** 2 * f**2 + (n**2 - 1) * r**2)
+
+    return float(d), z_of_r, dz_dr
+
+
+def _single_lens_p2p(f_mm, D_mm, eps_r, feed_y_mm, back_mm, wavelength_mm, n_rays=201) -> float:
+    """Peak-to-peak aperture phase (deg) of the single-surface lens, feed at (−f, feed_y), phase on the
+    plane ``back_mm`` behind the flat face (seed-000 §4.2 with vector Snell)."""
+    n = np.sqrt(eps_r)
+    d, zr, dzr = _single_surface_lens(f_mm, D_mm, eps_r)
+    front = Interface(zr, dzr, n, d / 2)
+    feed = np.array([-f_mm, feed_y_mm])
+    yt = np.linspace(-0.999 * D_mm / 2, 0.999 * D_mm / 2, n_rays)
+    dirs = _unit(np.stack([zr(yt), yt], -1) - feed)
+    tr = trace(np.tile(feed, (n_rays, 1)), dirs, [front, Interface.plane(d, 1.0)], 1.0, d + back_mm)
+    ok = tr.ok & (np.abs(tr.points[2][:, 1]) <= D_mm / 2)
+    return aperture_phase(Trace2D(tr.points, tr.directions, tr.opl, ok), wavelength_mm)[2]
+
+
+@dataclass(frozen=True)
+class DefocusStudy:
+    """Aperture phase error (peak-to-peak, linear fit removed) vs feed displacement along the focal
+    line, for the bifocal lens (feed plane z = 0) and a single-surface hyperbolic lens of the same
+    aperture 2·Y_B and focal distance X_B (feed line z = −f), both at ``wavelength_mm``."""
+
+    feed_y_mm: np.ndarray
+    p2p_deg: np.ndarray
+    single_p2p_deg: np.ndarray
+    budget_deg: float
+    usable_half_range_mm: float          # bifocal: largest |y_feed| with p2p ≤ budget on [0, y]
+    single_usable_half_range_mm: float
+    usable_half_angle_deg: float         # atan(range / X_B)
+    single_usable_half_angle_deg: float
+    single_thickness_mm: float
+    wavelength_mm: float
+
+
+def _first_crossing(fun, grid: np.ndarray, vals: np.ndarray, budget: float) -> float:
+    over = np.nonzero(~(vals <= budget))[0]
+    if len(over) == 0:
+        return float(grid[-1])
+    i = over[0]
+    if i == 0:
+        return 0.0
+    return float(brentq(lambda y: fun(y) - budget, grid[i - 1], grid[i], xtol=1e-6 * grid[-1]))
+
+
+def defocus_study(design: BifocalDesign, budget_deg: float = 22.5, frequency_ghz: float = 10.0,
+                  feed_y_mm: np.ndarray | None = None, n_rays: int = 201,
+                  surfaces: Literal["spline", "polynomial"] = "spline") -> DefocusStudy:
+    """Seed-000 §5.9 study by exact trace: p2p phase vs feed y on the line z = 0, the usable scan range
+    at ``budget_deg`` (default ΔΦ_m = π/8 = 22.5°), and the same for the single-surface lens
+    (seed-000 §2.1, §5.5) with f = X_B, D = 2Y_B and the same lens-to-AUT gap."""
+    lam = C0_MM_PER_NS / frequency_ghz
+    if feed_y_mm is None:
+        feed_y_mm = np.linspace(0.0, 6.0 * design.focus_offset_mm, 49)
+    feed_y_mm = np.asarray(feed_y_mm, float)
+    bif = lambda y: aperture_phase(trace_bifocal(design, y, n_rays=n_rays, surfaces=surfaces), lam)[2]  # noqa: E731
+    f, D = design.edge_x_mm, 2 * design.edge_y_mm
+    gap = design.antenna_x_mm - design.rho2_mm
+    sgl = lambda y: _single_lens_p2p(f, D, design.eps_r, y, gap, lam, n_rays)  # noqa: E731
+    pb = np.array([bif(y) for y in feed_y_mm])
+    ps = np.array([sgl(y) for y in feed_y_mm])
+    rb = _first_crossing(bif, feed_y_mm, pb, budget_deg)
+    rs = _first_crossing(sgl, feed_y_mm, ps, budget_deg)
+    d = _single_surface_lens(f, D, design.eps_r)[0]
+    return DefocusStudy(feed_y_mm, pb, ps, float(budget_deg), rb, rs,
+                        float(np.degrees(np.arctan2(rb, f))), float(np.degrees(np.arctan2(rs, f))), d, lam)

@@ -120,7 +120,7 @@ def _write_templates(spec, fab, out: Path) -> dict[str, str]:
     for drawing in fab.drawings:
         doc = dxf_document(drawing)
         write_dxf(doc, folder / f"{drawing.label}.dxf")
-        write_svg(doc, drawing, folder / f"{drawing.label}.svg")
+        write_svg(doc, folder / f"{drawing.label}.svg")
         files[drawing.label] = f"templates/{drawing.label}.dxf"
     write_tiled_pdf(list(fab.drawings), folder / f"{spec.name}-templates.pdf", spec.name)
     return files

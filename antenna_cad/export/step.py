@@ -2,14 +2,14 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
-from build123d import Color, Compound, Unit, export_step
+from build123d import Compound, Unit, export_step
 
 from antenna_cad.geometry.model import Model
 
 STEP_TIMESTAMP = "2000-01-01T00:00:00"     # reproducible bytes: same spec → same file
-_COLORS = {"fabricated": (0.75, 0.85, 0.95), "reference": (0.95, 0.75, 0.55)}
 
 
 def write_step(model: Model, name: str, path: Path) -> None:
@@ -20,10 +20,22 @@ def write_step(model: Model, name: str, path: Path) -> None:
         for part in sorted((p for p in model.parts if p.role == role), key=lambda p: p.label):
             shape = Compound(part.shape.solids())    # a fresh wrapper, so labels never leak
             shape.label = part.label
-            shape.color = Color(*_COLORS[role])
             children.append(shape)
         if children:
             groups.append(Compound(children=children, label=role))
     if not export_step(Compound(children=groups, label=name), str(path), unit=Unit.MM,
                        timestamp=STEP_TIMESTAMP):
         raise RuntimeError(f"STEP export failed: {path}")
+    _renumber_occurrences(path)
+
+
+_NAUO = re.compile(r"NEXT_ASSEMBLY_USAGE_OCCURRENCE\('\d+',(.*?)\);", re.DOTALL)
+
+
+def _renumber_occurrences(path: Path) -> None:
+    """OCC numbers assembly occurrences with a process-wide counter, so a second export in the
+    same process differs; renumber them 1, 2, … in file order (entity kept on one line)."""
+    counter = iter(range(1, 1_000_000))
+    text = _NAUO.sub(lambda m: "NEXT_ASSEMBLY_USAGE_OCCURRENCE('%d',%s);"
+                     % (next(counter), re.sub(r"\s*\n\s*", "", m.group(1))), path.read_text())
+    path.write_text(text)

@@ -8,11 +8,14 @@ overlap, registration crosses, page ids and a 100 mm check bar on every page (DE
 
 from __future__ import annotations
 
+import io
 import math
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import ezdxf
+import ezdxf.bbox
 import matplotlib
 from ezdxf.addons.drawing import Frontend, RenderContext, layout, svg
 from shapely.geometry import Polygon, box
@@ -22,6 +25,7 @@ from matplotlib.backends.backend_pdf import PdfPages  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
+_EZDXF_MARKER = re.compile(r"(\d+\.\d+\.\d+) @ \d{4}-\d\d-\d\dT[\d:.]+\+00:00")
 MM_PER_INCH = 25.4
 A4_MM = (210.0, 297.0)
 PAGE_MARGIN_MM = 10.0
@@ -81,20 +85,24 @@ def dxf_document(drawing: Drawing) -> ezdxf.document.Drawing:
 
 
 def write_dxf(doc: ezdxf.document.Drawing, path: Path) -> None:
-    """Save with fixed metadata (no timestamps or random GUIDs) so the bytes are reproducible."""
+    """Save with fixed metadata so the bytes are reproducible: ezdxf's option fixes the header
+    dates and GUIDs; its "version @ time" marker in the metadata dictionary is pinned here."""
     previous = ezdxf.options.write_fixed_meta_data_for_testing
     ezdxf.options.write_fixed_meta_data_for_testing = True
     try:
-        doc.saveas(path)
+        stream = io.StringIO()
+        doc.write(stream)
     finally:
         ezdxf.options.write_fixed_meta_data_for_testing = previous
+    text = _EZDXF_MARKER.sub(r"\1 @ 2000-01-01T00:00:00+00:00", stream.getvalue())
+    path.write_bytes(text.encode(doc.output_encoding))
 
 
-def write_svg(doc: ezdxf.document.Drawing, drawing: Drawing, path: Path) -> None:
-    """True-scale SVG: page = drawing extents + 10 mm margins, scale 1, no fit-to-page."""
-    x0, y0, x1, y1 = drawing.bounds()
+def write_svg(doc: ezdxf.document.Drawing, path: Path) -> None:
+    """True-scale SVG: page = DXF extents (text included) + 10 mm margins, scale 1, no fit-to-page."""
+    size = ezdxf.bbox.extents(doc.modelspace()).size
     m = PAGE_MARGIN_MM
-    page = layout.Page(x1 - x0 + 2 * m, y1 - y0 + 2 * m, layout.Units.mm,
+    page = layout.Page(size.x + 2 * m, size.y + 2 * m, layout.Units.mm,
                        margins=layout.Margins.all(m))
     backend = svg.SVGBackend()
     Frontend(RenderContext(doc), backend).draw_layout(doc.modelspace())

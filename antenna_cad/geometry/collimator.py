@@ -5,8 +5,6 @@ from __future__ import annotations
 
 import math
 
-from build123d import Compound
-
 from antenna_cad.fabrication.layup import LayupPlan
 from antenna_cad.fabrication.box import Panel
 from antenna_cad.geometry.layup import panel_solid, pedestal_solid, sheet_solid
@@ -24,11 +22,12 @@ def lens_solid(design: CollimatorDesign, back_slab_mm: float = 0.0):
     return revolve_closed(edges)
 
 
-def sanding_allowance(design: CollimatorDesign, plan: LayupPlan):
-    """Stack minus lens, one revolved ring per sheet: between the sheet's disc radius and the
-    hyperbola inside its slab (the hatched area of seed-000 Fig. 4.2)."""
+def sanding_allowance(design: CollimatorDesign, plan: LayupPlan) -> dict[str, object]:
+    """Stack minus lens as one revolved ring per sheet (label → solid): between the sheet's disc
+    radius and the hyperbola inside its slab (the hatched area of seed-000 Fig. 4.2). The rings
+    touch along circles, so they stay separate bodies."""
     f, n, d = design.focal_length_mm, design.n, design.thickness_mm
-    rings = []
+    rings = {}
     for s in plan.sheets:
         if s.z_min_mm >= d - 1e-9:
             continue
@@ -36,8 +35,8 @@ def sanding_allowance(design: CollimatorDesign, plan: LayupPlan):
         z_hi = min(s.z_max_mm, d)
         edges = [hyperbola_edge(f, n, r_lo, s.radius_mm)] + polyline_edges(
             [(s.radius_mm, z_hi), (s.radius_mm, s.z_min_mm), (r_lo, s.z_min_mm)])
-        rings.append(revolve_closed(edges))
-    return Compound(rings)
+        rings[f"sanding-allowance-{s.index:02d}"] = revolve_closed(edges)
+    return rings
 
 
 def allowance_volume_mm3(design: CollimatorDesign, plan: LayupPlan) -> float:
@@ -63,9 +62,10 @@ def build_model(design: CollimatorDesign, plan: LayupPlan | None, lens_material:
     parts += [ModelPart(s.label, lens_material, "fabricated", sheet_solid(plan, s)) for s in plan.sheets]
     parts.append(ModelPart("pedestal", lens_material, "reference", pedestal_solid(plan)))
     allowance = sanding_allowance(design, plan)
-    checks.append(relative_volume_check("sanding_allowance_volume", allowance.volume,
+    checks.append(relative_volume_check("sanding_allowance_volume",
+                                        sum(ring.volume for ring in allowance.values()),
                                         allowance_volume_mm3(design, plan),
                                         "sanding allowance (stack − lens) vs analytic volume"))
-    parts.append(ModelPart("sanding-allowance", lens_material, "reference", allowance))
+    parts += [ModelPart(label, lens_material, "reference", ring) for label, ring in allowance.items()]
     parts += [ModelPart(p.label, box_material, "fabricated", panel_solid(p)) for p in panels]
     return Model(tuple(parts), tuple(checks))

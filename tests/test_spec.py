@@ -1,0 +1,66 @@
+"""Spec validation: every recipe validates; bad specs name the field and the rule; schema is current."""
+
+from pathlib import Path
+
+import pytest
+import yaml
+
+from antenna_cad.spec import SpecError, json_schema_text, load_spec, parse_spec
+
+ROOT = Path(__file__).resolve().parents[1]
+RECIPES = sorted((ROOT / "recipes").glob("*.yaml"))
+GOOD = yaml.safe_load((ROOT / "recipes" / "xps-collimator-0.5m.yaml").read_text())
+
+
+def test_schema_file_is_current():
+    assert (ROOT / "schemas" / "lens-spec.schema.json").read_text() == json_schema_text(), \
+        "schema drifted: run `make-lens schema`"
+
+
+@pytest.mark.parametrize("recipe", RECIPES, ids=[r.name for r in RECIPES])
+def test_every_recipe_validates(recipe):
+    spec = load_spec(recipe)
+    assert spec.name == recipe.stem
+
+
+def _with(path: str, value):
+    data = yaml.safe_load(yaml.safe_dump(GOOD))
+    node = data
+    keys = path.split(".")
+    for k in keys[:-1]:
+        node = node[k]
+    node[keys[-1]] = value
+    return data
+
+
+@pytest.mark.parametrize("path,value,expected", [
+    ("design.focal_length_mm", -4, "s.yaml: design.focal_length_mm: must be > 0 (got -4)"),
+    ("design.colour", "red", "s.yaml: design.colour: unknown key (not allowed here)"),
+    ("design.diameter_mm", "big", "s.yaml: design.diameter_mm: must be a valid number"),
+    ("fabrication.pedestal_height_mm", 30, "s.yaml: fabrication.pedestal_height_mm: must be ≥ 50 (got 30)"),
+    ("fabrication.kerf_mm", -1, "s.yaml: fabrication.kerf_mm: must be ≥ 0 (got -1)"),
+    ("material", "unobtainium", "s.yaml: material: unknown material 'unobtainium'"),
+    ("material", {"eps_r": 0.5, "tan_delta": 0, "density_kg_m3": 30}, "s.yaml: material.eps_r: must be ≥ 1"),
+    ("fabrication.pedestal_width_mm", 600, "s.yaml: fabrication.pedestal_width_mm: must be < design.diameter_mm"),
+    ("name", "Bad Name", "s.yaml: name: must match the pattern"),
+    ("kind", "teapot", "s.yaml: kind: must be one of"),
+])
+def test_bad_spec_names_field_and_rule(path, value, expected):
+    with pytest.raises(SpecError) as err:
+        parse_spec(_with(path, value), "s.yaml")
+    assert any(line.startswith(expected) for line in err.value.lines), err.value.lines
+
+
+def test_all_problems_reported_at_once():
+    data = _with("design.focal_length_mm", 0)
+    data["fabrication"]["kerf_mm"] = -2
+    with pytest.raises(SpecError) as err:
+        parse_spec(data, "s.yaml")
+    assert len(err.value.lines) == 2
+
+
+def test_yaml_syntax_error(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("name: [unclosed\n")
+    with pytest.raises(SpecError, match="not valid YAML"):
+        load_spec(bad)

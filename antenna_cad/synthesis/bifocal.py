@@ -28,9 +28,8 @@ Constructions
   parameters (a0, a2, h1, b0, b2, h2, ρ1, ρ2); ``synthesize_bifocal(construction="kinber")`` fits its
   central segments to the spec's foci and tilt (see :func:`synthesize_bifocal`).
 
-The single-surface hyperbolic comparison lens (seed-000 §2.1, (1.9) corrected, (1.1)) is a private
-helper here (``_single_surface_lens``); it will be replaced by the shared ``synthesis/collimator.py``
-at merge.
+The single-surface hyperbolic comparison lens (seed-000 §2.1, (1.9) corrected, (1.1)) comes from the
+shared :mod:`antenna_cad.synthesis.collimator` (``_single_surface_lens`` only adapts its signature).
 
 3-D shape: the synthesis is the 2-D section (seed-000 §7.2 leaves the 3-D form open). ``cylindrical``
 extrudes it (exact in every section); ``revolved`` turns it about the axis, which smears the two foci
@@ -47,6 +46,7 @@ from scipy.interpolate import CubicHermiteSpline
 from scipy.optimize import brentq, least_squares
 
 from antenna_cad.raytrace.snell import refract
+from antenna_cad.synthesis import collimator
 from antenna_cad.raytrace.trace2d import Interface, Trace2D, trace
 from antenna_cad.synthesis.checks import Check, DesignError
 
@@ -820,20 +820,20 @@ def aperture_phase(tr: Trace2D, wavelength_mm: float) -> tuple[np.ndarray, np.nd
 
 
 def _single_surface_lens(f_mm: float, diameter_mm: float, eps_r: float):
-    """PRIVATE stand-in for the shared ``synthesis/collimator.py`` (to be swapped at merge).
-    Seed-000 §2.1: profile (1.9) corrected ``y² = (n²−1)z² + 2(n−1)f z`` (vertex z = 0, feed at z = −f,
-    flat back at z = d) and thickness (1.1). Returns (d in mm, z(r), dz/dr)."""
-    n = np.sqrt(eps_r)
-    f, D = float(f_mm), float(diameter_mm)
-    d = np.sqrt(f**2 / (n + 1) ** 2 + D**2 / (4 * (n**2 - 1))) - f / (n + 1)       # (1.1)
+    """The single-surface comparison lens from the shared :mod:`antenna_cad.synthesis.collimator`
+    (seed-000 §2.1: (1.9) corrected profile, (1.1) thickness; vertex z = 0, feed at z = −f, flat back
+    at z = d). Returns (d in mm, z(r), dz/dr)."""
+    n = float(np.sqrt(eps_r))
+    f = float(f_mm)
+    d = collimator.thickness_mm(float(diameter_mm), f, n)
 
     def z_of_r(r):
-        r = np.asarray(r, float)
-        return (-(n - 1) * f + np.sqrt((n - 1) ** 2 * f**2 + (n**2 - 1) * r**2)) / (n**2 - 1)
+        return collimator.profile_z_mm(r, f, n)
 
     def dz_dr(r):
         r = np.asarray(r, float)
-        return r / np.sqrt((n - 1) ** 2 * f**2 + (n**2 - 1) * r**2)
+        nz, nr = np.moveaxis(collimator.surface_normal(z_of_r(r), r, f, n), -1, 0)
+        return -nr / nz
 
     return float(d), z_of_r, dz_dr
 

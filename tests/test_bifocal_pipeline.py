@@ -116,6 +116,9 @@ def test_worked_example_sheet_layup_end_to_end(nik_build):
     lens = next(p for p in man["parts"] if p["label"] == "lens")
     assert lens["volume_mm3"] == pytest.approx(v, rel=1e-6)
     assert all(p["watertight"] for p in man["parts"])
+    allowance = next(p for p in man["parts"] if p["label"] == "sanding-allowance")
+    assert allowance["volume_mm3"] == pytest.approx(f["sanding_allowance_mm3"], rel=1e-5)
+    assert {c["name"]: c["status"] for c in man["checks"]}["sanding_allowance_volume"] == "pass"
     from build123d import import_step
     step = import_step(str(res.out_dir / f"{spec.name}.step"))
     solids = step.solids()

@@ -46,8 +46,8 @@ from scipy.interpolate import CubicHermiteSpline
 from scipy.optimize import brentq, least_squares
 
 from antenna_cad.raytrace.snell import refract
-from antenna_cad.synthesis import collimator
 from antenna_cad.raytrace.trace2d import Interface, Trace2D, trace
+from antenna_cad.synthesis import collimator
 from antenna_cad.synthesis.checks import Check, DesignError
 
 C0_MM_PER_NS = 299.792458          # speed of light, mm/ns → λ0[mm] = C0_MM_PER_NS / f[GHz]

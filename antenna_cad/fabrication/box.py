@@ -51,7 +51,7 @@ def plan_box(plan: LayupPlan, *, wall_mm: float, clearance_mm: float, screw_diam
              screw_spacing_mm: float) -> tuple[Panel, ...]:
     R, T, c = plan.lens_radius_mm, wall_mm, clearance_mm
     half_in = plan.pedestal_width_mm / 2 + c
-    z0, z1 = -c, plan.stack_thickness_mm + c
+    z0, z1 = plan.z_origin_mm - c, plan.z_origin_mm + plan.stack_thickness_mm + c
     yb, ytop = plan.foot_bottom_y_mm, -R
     wall_h = ytop - yb
     xw = half_in + T / 2

@@ -67,6 +67,7 @@ class LayupPlan:
     board_width_mm: float
     board_length_mm: float
     sheets: tuple[SheetPlan, ...]
+    z_origin_mm: float = 0.0        # z of the first sheet's feed-side face (the lens vertex)
 
     @property
     def count(self) -> int:
@@ -74,7 +75,7 @@ class LayupPlan:
 
     @property
     def stack_thickness_mm(self) -> float:
-        return self.sheets[-1].z_max_mm
+        return self.sheets[-1].z_max_mm - self.z_origin_mm
 
     @property
     def foot_bottom_y_mm(self) -> float:
@@ -90,27 +91,36 @@ def plan_layup(*, radius_at, lens_thickness_mm: float, lens_radius_mm: float,
                sheet_thickness_mm: float, pedestal_height_mm: float,
                pedestal_width_mm: float | None, joining: str, dowel_diameter_mm: float,
                neck_width_mm: float, kerf_mm: float, board_width_mm: float,
-               board_length_mm: float) -> LayupPlan:
+               board_length_mm: float, max_radius_in=None, z_origin_mm: float = 0.0) -> LayupPlan:
     """Slice a lens of revolution whose radius at depth z is ``radius_at(z)`` into sheets.
 
     ``radius_at`` must be non-decreasing in z on [0, lens_thickness] (true for the collimator).
+    Lenses whose radius is not monotonic (the bifocal lens: it rises along the illuminated face to
+    the rim and falls along the shadow face) pass ``max_radius_in(z_lo, z_hi)`` instead, the largest
+    lens radius within the slab (``radius_at`` is then unused). ``z_origin_mm`` is the z of the lens
+    vertex in the lens's own frame: sheet i spans [z0 + (i−1)·t, z0 + i·t]; ``radius_at`` and
+    ``max_radius_in`` take depths relative to that vertex.
     """
     t = sheet_thickness_mm
     count = max(1, math.ceil(lens_thickness_mm / t - 1e-9))
     R = lens_radius_mm
     width = pedestal_width_mm if pedestal_width_mm is not None else 0.6 * 2 * R
-    radii = [float(radius_at(min(i * t, lens_thickness_mm))) for i in range(1, count + 1)]
-    dowel_r = radii[0] / 2
+    if max_radius_in is None:
+        radii = [float(radius_at(min(i * t, lens_thickness_mm))) for i in range(1, count + 1)]
+    else:
+        radii = [float(max_radius_in((i - 1) * t, min(i * t, lens_thickness_mm))) for i in range(1, count + 1)]
+    dowel_r = min(radii) / 2            # inside every disc (the first one for the collimator)
     if dowel_r - dowel_diameter_mm / 2 < DOWEL_EDGE_CLEARANCE_MM:
         raise ValueError(f"fabrication.dowel_diameter_mm: {dowel_diameter_mm:g} mm dowels do not fit "
-                         f"in the first sheet's disc (radius {radii[0]:.1f} mm); use thicker sheets "
+                         f"in the smallest sheet disc (radius {min(radii):.1f} mm); use thicker sheets "
                          f"or thinner dowels")
     lens_dowels = tuple(Hole(round(dowel_r * math.cos(a), 6), round(dowel_r * math.sin(a), 6),
                              dowel_diameter_mm) for a in (0.25 * math.pi, 0.75 * math.pi,
                                                           1.25 * math.pi, 1.75 * math.pi))
     foot_dowels = tuple(Hole(x, -R - pedestal_height_mm / 2, dowel_diameter_mm)
                         for x in (-width / 4, width / 4))
-    sheets = tuple(SheetPlan(index=i, z_min_mm=(i - 1) * t, z_max_mm=i * t, radius_mm=r_i,
+    z0 = z_origin_mm
+    sheets = tuple(SheetPlan(index=i, z_min_mm=z0 + (i - 1) * t, z_max_mm=z0 + i * t, radius_mm=r_i,
                              has_neck=joining == "neck" and r_i < R - 1e-9,
                              lens_dowels=lens_dowels, foot_dowels=foot_dowels)
                    for i, r_i in enumerate(radii, start=1))
@@ -118,4 +128,4 @@ def plan_layup(*, radius_at, lens_thickness_mm: float, lens_radius_mm: float,
                      back_slab_mm=count * t - lens_thickness_mm, pedestal_width_mm=width,
                      pedestal_height_mm=pedestal_height_mm, neck_width_mm=neck_width_mm,
                      joining=joining, kerf_mm=kerf_mm, board_width_mm=board_width_mm,
-                     board_length_mm=board_length_mm, sheets=sheets)
+                     board_length_mm=board_length_mm, sheets=sheets, z_origin_mm=z0)

@@ -47,7 +47,7 @@ def sheet_solid(plan: LayupPlan, sheet: SheetPlan) -> Shape:
 
 def pedestal_solid(plan: LayupPlan) -> Shape:
     """All feet together: the prism the box clamps (reference body; the sheets carry it)."""
-    return extrude(foot_sketch(plan), plan.stack_thickness_mm)
+    return Pos(0, 0, plan.z_origin_mm) * extrude(foot_sketch(plan), plan.stack_thickness_mm)
 
 
 def panel_solid(panel: Panel) -> Shape:

@@ -12,11 +12,13 @@ from typing import Annotated, Union
 import yaml
 from pydantic import BaseModel, Field, TypeAdapter, ValidationError
 
+from antenna_cad.spec.bifocal import BifocalSpec
 from antenna_cad.spec.collimator import CollimatorSpec
 from antenna_cad.spec.common import UNION_TAGS
 
 SPEC_MODELS: dict[str, type[BaseModel]] = {
     "collimator": CollimatorSpec,
+    "bifocal": BifocalSpec,
 }
 
 

@@ -28,9 +28,8 @@ Constructions
   parameters (a0, a2, h1, b0, b2, h2, ρ1, ρ2); ``synthesize_bifocal(construction="kinber")`` fits its
   central segments to the spec's foci and tilt (see :func:`synthesize_bifocal`).
 
-The single-surface hyperbolic comparison lens (seed-000 §2.1, (1.9) corrected, (1.1)) is a private
-helper here (``_single_surface_lens``); it will be replaced by the shared ``synthesis/collimator.py``
-at merge.
+The single-surface hyperbolic comparison lens (seed-000 §2.1, (1.9) corrected, (1.1)) comes from the
+shared :mod:`antenna_cad.synthesis.collimator` (``_single_surface_lens`` only adapts its signature).
 
 3-D shape: the synthesis is the 2-D section (seed-000 §7.2 leaves the 3-D form open). ``cylindrical``
 extrudes it (exact in every section); ``revolved`` turns it about the axis, which smears the two foci
@@ -48,6 +47,7 @@ from scipy.optimize import brentq, least_squares
 
 from antenna_cad.raytrace.snell import refract
 from antenna_cad.raytrace.trace2d import Interface, Trace2D, trace
+from antenna_cad.synthesis import collimator
 from antenna_cad.synthesis.checks import Check, DesignError
 
 C0_MM_PER_NS = 299.792458          # speed of light, mm/ns → λ0[mm] = C0_MM_PER_NS / f[GHz]
@@ -55,7 +55,8 @@ C0_MM_PER_NS = 299.792458          # speed of light, mm/ns → λ0[mm] = C0_MM_P
 __all__ = [
     "BifocalDesign", "KinberLens", "DefocusStudy", "equal_edge_ellipse", "thin_ray_rho2",
     "polar_polynomial", "synthesize_bifocal", "kinber_lens", "trace_bifocal", "aperture_phase",
-    "defocus_study", "kinber_rms", "kinber_focal_circle_rms",
+    "defocus_study", "kinber_rms", "kinber_focal_circle_rms", "face_spline", "lens_volume_mm3",
+    "max_radius_in",
 ]
 
 
@@ -820,20 +821,20 @@ def aperture_phase(tr: Trace2D, wavelength_mm: float) -> tuple[np.ndarray, np.nd
 
 
 def _single_surface_lens(f_mm: float, diameter_mm: float, eps_r: float):
-    """PRIVATE stand-in for the shared ``synthesis/collimator.py`` (to be swapped at merge).
-    Seed-000 §2.1: profile (1.9) corrected ``y² = (n²−1)z² + 2(n−1)f z`` (vertex z = 0, feed at z = −f,
-    flat back at z = d) and thickness (1.1). Returns (d in mm, z(r), dz/dr)."""
-    n = np.sqrt(eps_r)
-    f, D = float(f_mm), float(diameter_mm)
-    d = np.sqrt(f**2 / (n + 1) ** 2 + D**2 / (4 * (n**2 - 1))) - f / (n + 1)       # (1.1)
+    """The single-surface comparison lens from the shared :mod:`antenna_cad.synthesis.collimator`
+    (seed-000 §2.1: (1.9) corrected profile, (1.1) thickness; vertex z = 0, feed at z = −f, flat back
+    at z = d). Returns (d in mm, z(r), dz/dr)."""
+    n = float(np.sqrt(eps_r))
+    f = float(f_mm)
+    d = collimator.thickness_mm(float(diameter_mm), f, n)
 
     def z_of_r(r):
-        r = np.asarray(r, float)
-        return (-(n - 1) * f + np.sqrt((n - 1) ** 2 * f**2 + (n**2 - 1) * r**2)) / (n**2 - 1)
+        return collimator.profile_z_mm(r, f, n)
 
     def dz_dr(r):
         r = np.asarray(r, float)
-        return r / np.sqrt((n - 1) ** 2 * f**2 + (n**2 - 1) * r**2)
+        nz, nr = np.moveaxis(collimator.surface_normal(z_of_r(r), r, f, n), -1, 0)
+        return -nr / nz
 
     return float(d), z_of_r, dz_dr
 
@@ -901,3 +902,52 @@ def defocus_study(design: BifocalDesign, budget_deg: float = 22.5, frequency_ghz
     d = _single_surface_lens(f, D, design.eps_r)[0]
     return DefocusStudy(feed_y_mm, pb, ps, float(budget_deg), rb, rs,
                         float(np.degrees(np.arctan2(rb, f))), float(np.degrees(np.arctan2(rs, f))), d, lam)
+
+
+# --------------------------------------------------------------------------------------------------
+# Solid figures for CAD and layup (pure numpy; the solids themselves live in geometry/bifocal.py)
+# --------------------------------------------------------------------------------------------------
+
+def face_spline(design: BifocalDesign, surface: Literal["illuminated", "shadow"]) -> CubicHermiteSpline:
+    """The C¹ Hermite profile z(y) of one face (the same curve as :meth:`BifocalDesign.profile`)."""
+    pts = design.illuminated_mm if surface == "illuminated" else design.shadow_mm
+    sl = design.illuminated_slopes if surface == "illuminated" else design.shadow_slopes
+    return _hermite(pts[:, 1], pts[:, 0], sl)
+
+
+def _gauss_integral(fun, knots: np.ndarray, order: int = 4) -> float:
+    """∫ fun over [knots[0], knots[-1]], Gauss–Legendre per knot interval (exact for piecewise
+    polynomials of degree ≤ 2·order − 1 whose breaks are among the knots)."""
+    x, w = np.polynomial.legendre.leggauss(order)
+    a, b = knots[:-1, None], knots[1:, None]
+    xs = 0.5 * (b - a) * x + 0.5 * (a + b)
+    return float(np.sum(0.5 * (b - a) * w * fun(xs)))
+
+
+def lens_volume_mm3(design: BifocalDesign, height_mm: float | None = None) -> float:
+    """Exact volume of the lens between its Hermite faces: revolved ``2π∫₀^{Y_B} y (z_sh − z_ill) dy``,
+    cylindrical ``h ∫_{−Y_B}^{Y_B} (z_sh − z_ill) dy`` (piecewise-polynomial integrands, Gauss exact)."""
+    si, ss = face_spline(design, "illuminated"), face_spline(design, "shadow")
+    knots = np.unique(np.concatenate([design.illuminated_mm[:, 1], design.shadow_mm[:, 1]]))
+    if design.shape == "cylindrical":
+        return float(height_mm) * _gauss_integral(lambda y: ss(y) - si(y), knots)
+    knots = knots[knots >= 0.0]
+    return 2.0 * np.pi * _gauss_integral(lambda y: y * (ss(y) - si(y)), knots)
+
+
+def max_radius_in(design: BifocalDesign, z_lo_mm: float, z_hi_mm: float, num: int = 4001) -> float:
+    """Largest |y| of the lens section within the slab z ∈ [z_lo, z_hi] (lens frame): the largest y ≥ 0
+    with ``z_ill(y) ≤ z_hi`` and ``z_sh(y) ≥ z_lo`` (the lens chord at y meets the slab). Dense scan,
+    then the boundary refined by root finding; exactly Y_B when the rim X_B lies in the slab.
+    Returns 0 when the slab misses the lens."""
+    si, ss = face_spline(design, "illuminated"), face_spline(design, "shadow")
+    yb = design.edge_y_mm
+    y = np.linspace(0.0, yb, num)
+    good = (si(y) <= z_hi_mm) & (ss(y) >= z_lo_mm)
+    if not good.any():
+        return 0.0
+    i = int(np.nonzero(good)[0][-1])
+    if i == num - 1:
+        return float(yb)
+    g = lambda t: min(z_hi_mm - float(si(t)), float(ss(t)) - z_lo_mm)  # noqa: E731  ≥ 0 inside
+    return float(brentq(g, y[i], y[i + 1], xtol=1e-12 * yb, rtol=1e-15))

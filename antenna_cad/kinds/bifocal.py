@@ -1,0 +1,138 @@
+"""Adapters of the bifocal lens (seed-000 §3.2; seed-001 §3.1) between its spec and the stages.
+
+Frame: the synthesis frame (:mod:`antenna_cad.synthesis.bifocal`) — feed plane z = 0, foci (0, ±a),
+illuminated vertex z = ρ1, rim z = X_B, shadow vertex z = ρ2. A sheet layup reuses the spine
+(:func:`plan_layup` with ``max_radius_in`` and ``z_origin_mm = ρ1``): both faces are curved, so sheet
+i's disc is the largest lens radius inside its slab on either face; the N·t − d overhang beyond the
+shadow vertex is sanded off with the steps.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from antenna_cad.fabrication.box import plan_box
+from antenna_cad.fabrication.layup import LayupPlan, plan_layup
+from antenna_cad.fabrication.outline import added_in_aperture_mm2
+from antenna_cad.spec.bifocal import BifocalSpec
+from antenna_cad.spec.common import SheetLayupSpec, resolve_material
+from antenna_cad.synthesis.bifocal import (BifocalDesign, defocus_study, lens_volume_mm3, max_radius_in,
+                                           synthesize_bifocal)
+from antenna_cad.synthesis.checks import Check, DesignError
+
+
+def _height(spec: BifocalSpec) -> float | None:
+    return spec.design.height_mm if spec.design.shape == "cylindrical" else None
+
+
+def synthesize(spec: BifocalSpec) -> BifocalDesign:
+    m = resolve_material(spec.material)
+    g = spec.design
+    return synthesize_bifocal(edge_y_mm=g.edge_y_mm, eps_r=m.eps_r, edge_x_mm=g.edge_x_mm,
+                              focus_offset_mm=g.focus_offset_mm, beam_tilt_deg=g.beam_tilt_deg,
+                              antenna_x_mm=g.antenna_x_mm, shape=g.shape, construction=g.construction)
+
+
+def _slab_radius(design: BifocalDesign):
+    return lambda lo, hi: max_radius_in(design, design.rho1_mm + lo, design.rho1_mm + hi)
+
+
+def plan(spec: BifocalSpec, design: BifocalDesign):
+    """(LayupPlan, box panels) for a sheet layup; (None, ()) for a machined lens."""
+    fab = spec.fabrication
+    if not isinstance(fab, SheetLayupSpec):
+        return None, ()
+    try:
+        layup = plan_layup(
+            radius_at=None, max_radius_in=_slab_radius(design), z_origin_mm=design.rho1_mm,
+            lens_thickness_mm=design.thickness_mm, lens_radius_mm=design.edge_y_mm,
+            sheet_thickness_mm=fab.sheet_thickness_mm,
+            pedestal_height_mm=fab.pedestal_height_mm, pedestal_width_mm=fab.pedestal_width_mm,
+            joining=fab.joining, dowel_diameter_mm=fab.dowel_diameter_mm,
+            neck_width_mm=fab.neck_width_mm, kerf_mm=fab.kerf_mm,
+            board_width_mm=fab.board.width_mm, board_length_mm=fab.board.length_mm)
+    except ValueError as exc:
+        field, _, message = str(exc).partition(": ")
+        raise DesignError(field, message) from None
+    b = fab.box
+    panels = plan_box(layup, wall_mm=b.wall_thickness_mm, clearance_mm=b.clearance_mm,
+                      screw_diameter_mm=b.screw_diameter_mm, screw_spacing_mm=b.screw_spacing_mm)
+    return layup, panels
+
+
+def model(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None, panels):
+    from antenna_cad.geometry.bifocal import build_model
+    box_material = resolve_material(spec.fabrication.box.material) if layup else None
+    return build_model(design, _height(spec), layup, resolve_material(spec.material), box_material, panels)
+
+
+def fabricate(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None, panels):
+    m = resolve_material(spec.material)
+    if layup is None:
+        from antenna_cad.fabrication.bifocal import fabricate_machined_bifocal
+        return fabricate_machined_bifocal(design, _height(spec), m, spec.fabrication.stock_allowance_mm, spec.name)
+    from antenna_cad.fabrication.sheets import fabricate_sheets
+    b = spec.fabrication.box
+    return fabricate_sheets(layup, panels, m, resolve_material(b.material),
+                            (b.board.width_mm, b.board.length_mm), spec.name)
+
+
+def sanding_allowance_mm3(design: BifocalDesign, layup: LayupPlan) -> float:
+    """Stack discs (lens part of every sheet, full sheet thickness) minus the lens, analytic."""
+    stack = sum(math.pi * s.radius_mm**2 * s.thickness_mm for s in layup.sheets)
+    return stack - lens_volume_mm3(design)
+
+
+def summary(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None) -> dict[str, float]:
+    """Key figures: foci, geometry, residuals, scan range vs the single-surface lens (seed-000 §5.9)."""
+    st = defocus_study(design, budget_deg=spec.design.phase_error_budget_deg, frequency_ghz=spec.frequency_ghz)
+    (f1z, f1y), (f2z, f2y) = design.foci_mm
+    figures = {
+        "focus_1_z_mm": float(f1z), "focus_1_y_mm": float(f1y), "focus_2_z_mm": float(f2z),
+        "focus_2_y_mm": float(f2y), "focus_offset_mm": design.focus_offset_mm,
+        "beam_tilt_deg": float(np.degrees(design.beam_tilt_rad)), "edge_x_mm": design.edge_x_mm,
+        "edge_y_mm": design.edge_y_mm, "antenna_x_mm": design.antenna_x_mm, "rho1_mm": design.rho1_mm,
+        "rho2_mm": design.rho2_mm, "thickness_mm": design.thickness_mm, "n": design.n,
+        "lens_volume_mm3": lens_volume_mm3(design, _height(spec)),
+        "residual_path_error_focus_1_mm": float(design.residual_path_error_mm[0]),
+        "residual_path_error_focus_2_mm": float(design.residual_path_error_mm[1]),
+        "poly_fit_residual_mm": design.poly_fit_residual_mm,
+        "scan_budget_deg": st.budget_deg, "wavelength_mm": st.wavelength_mm,
+        "usable_feed_half_range_mm": st.usable_half_range_mm,
+        "usable_half_angle_deg": st.usable_half_angle_deg,
+        "single_surface_usable_feed_half_range_mm": st.single_usable_half_range_mm,
+        "single_surface_usable_half_angle_deg": st.single_usable_half_angle_deg,
+        "single_surface_thickness_mm": st.single_thickness_mm,
+        "on_axis_phase_error_p2p_deg": float(st.p2p_deg[0]),
+    }
+    if design.shape == "cylindrical":
+        figures["height_mm"] = float(spec.design.height_mm)
+    if layup is not None:
+        figures |= {"sheet_count": layup.count, "sheet_thickness_mm": layup.sheet_thickness_mm,
+                    "stack_thickness_mm": layup.stack_thickness_mm, "back_slab_mm": layup.back_slab_mm,
+                    "sanding_allowance_mm3": sanding_allowance_mm3(design, layup)}
+    return figures
+
+
+def fabrication_checks(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None) -> list[Check]:
+    """Sheet discs against the lens on both faces (contain it, no excess) and neck material."""
+    if layup is None:
+        return []
+    fit, y = 0.0, np.linspace(0.0, design.edge_y_mm, 2001)
+    zi, zs = design.profile("illuminated", y), design.profile("shadow", y)
+    for s in layup.sheets:
+        inside = (zi <= s.z_max_mm) & (zs >= s.z_min_mm)             # chord at y meets the slab
+        sampled = float(np.max(y[inside])) if inside.any() else 0.0
+        fit = max(fit, sampled - s.radius_mm)                        # > 0: lens outside the disc
+        exact = max_radius_in(design, s.z_min_mm, s.z_max_mm)
+        fit = max(fit, abs(s.radius_mm - exact))
+    checks = [Check.upper("sheet_disc_fit", fit, 1e-6, "mm",
+                          "sheet disc radius vs largest lens radius in its slab on both faces")]
+    added = sum(added_in_aperture_mm2(layup, s) * s.thickness_mm for s in layup.sheets)
+    if added > 0:
+        checks.append(Check("material_in_aperture", "warn", added, 0.0, "mm3",
+                            f"necks add {added / 1e6:.3f} dm³ of foam inside the aperture cylinder "
+                            "(use joining: dowels to avoid it)"))
+    return checks

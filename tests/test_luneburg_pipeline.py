@@ -191,3 +191,19 @@ def test_recipe_builds_read_back(tmp_path, name):
         assert sum(len(s["rings"]) for s in manifest["sheets"]) == manifest["figures"]["ring_count"]
     else:
         assert any(p["label"] == "shell-01-front" for p in manifest["parts"])
+
+
+def test_large_rings_split_into_sectors_that_fit_boards():
+    from shapely import affinity
+    from antenna_cad.fabrication.outline import fits_board
+    from antenna_cad.fabrication.rings import RingPlan, ring_polygon, split_ring_sectors
+    from antenna_cad.fabrication.outline import Piece
+    for r_in in (0.0, 700.0):
+        ring = RingPlan("sheet-02-ring-03", 2, 3, r_in, 800.0, Material("g", 1.5, 1e-4, 50.0))
+        piece = Piece(ring.label, 2, ring_polygon(ring, 6.0), 10.0)
+        parts, angles = split_ring_sectors(piece, ring, 600.0, 1200.0, 0.5)
+        assert len(parts) > 1
+        assert sum(p.polygon.area for p in parts) == pytest.approx(piece.polygon.area, rel=2e-3)
+        for p, a in zip(parts, angles):
+            x0, y0, x1, y1 = affinity.rotate(p.cut_path(0.5), a, origin=(0, 0)).bounds
+            assert p.polygon.is_valid and fits_board(x1 - x0, y1 - y0, 600.0, 1200.0)

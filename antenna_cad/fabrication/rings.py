@@ -22,11 +22,12 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from shapely import affinity
 from shapely.geometry import Polygon
 
 from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.nesting import Placement, nest
-from antenna_cad.fabrication.outline import NEST_SPACING_MM, Piece, circle_polygon, split_for_board
+from antenna_cad.fabrication.outline import CHORD_TOL_MM, NEST_SPACING_MM, Piece, circle_polygon, fits_board
 from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
 from antenna_cad.materials import Material
 from antenna_cad.synthesis.checks import Check
@@ -127,16 +128,25 @@ def plan_rings(r_inner_mm, r_outer_mm, materials: list[Material], *, shape: str,
                          registration_hole_mm, dropped)
 
 
-def inscribed_circle(radius: float, count: int) -> Polygon:
-    angles = np.linspace(0.0, 2 * math.pi, count, endpoint=False)
-    return Polygon(np.column_stack([radius * np.cos(angles), radius * np.sin(angles)]))
+def vertex_count(radius: float, tol: float = CHORD_TOL_MM) -> int:
+    """Vertices of ``outline.circle_polygon`` (same chord rule)."""
+    return max(24, 4 * math.ceil(math.pi * math.sqrt(radius / (2 * tol)) / 4))
+
+
+def _circle_xy(radius: float, count: int, circumscribed: bool) -> np.ndarray:
+    rv = radius / math.cos(math.pi / count) if circumscribed else radius
+    a = 2 * math.pi * np.arange(count) / count
+    return np.column_stack([rv * np.cos(a), rv * np.sin(a)])
 
 
 def ring_polygon(ring: RingPlan, registration_hole_mm: float) -> Polygon:
-    """Nominal ring: circumscribed outer polygon, inscribed hole (never inside the nominal part)."""
-    outer = circle_polygon(0.0, 0.0, ring.r_outer_mm)
+    """Nominal ring: circumscribed outer polygon (as ``outline.circle_polygon``, vectorized),
+    inscribed hole, so the cut part never lies inside the nominal one."""
+    n = vertex_count(ring.r_outer_mm)
+    outer = _circle_xy(ring.r_outer_mm, n, True)
     if ring.r_inner_mm > 0:
-        return outer.difference(inscribed_circle(ring.r_inner_mm, len(outer.exterior.coords) - 1))
+        return Polygon(outer, [_circle_xy(ring.r_inner_mm, n, False)[::-1]])
+    outer = Polygon(outer)
     if 0 < registration_hole_mm < ring.r_outer_mm:
         return outer.difference(circle_polygon(0.0, 0.0, registration_hole_mm / 2, tol=0.01))
     return outer
@@ -174,12 +184,14 @@ def fabricate_rings(plan: RingLayupPlan, title: str, drawings: bool = True) -> F
     pieces: list[Piece] = []
     grade_of: dict[str, Material] = {}
     circ: dict[str, tuple[float, float]] = {}          # whole (unsplit) rings: label -> (r_in, r_out)
+    nest_angle: dict[str, float] = {}                  # sector -> rotation (deg) applied for nesting
     for ring in plan.rings:
         piece = Piece(ring.label, ring.sheet_index, ring_polygon(ring, plan.registration_hole_mm),
                       plan.sheets[ring.sheet_index - 1].thickness_mm)
-        parts, _ = split_for_board(piece, plan.board_width_mm, plan.board_length_mm, kerf)
-        for p in parts:
+        parts, angles = split_ring_sectors(piece, ring, plan.board_width_mm, plan.board_length_mm, kerf)
+        for p, a in zip(parts, angles):
             grade_of[p.label] = ring.material
+            nest_angle[p.label] = a
             pieces.append(p)
         if len(parts) == 1:
             circ[ring.label] = (ring.r_inner_mm, ring.r_outer_mm)
@@ -193,7 +205,8 @@ def fabricate_rings(plan: RingLayupPlan, title: str, drawings: bool = True) -> F
         hosted, saved = _nest_in_holes(items, circ, kerf)
         in_hole |= hosted
         saving[grade] = saved
-        free = [(p.label, *_size(p.cut_path(kerf))) for p in items if p.label not in hosted]
+        free = [(p.label, *_size(affinity.rotate(p.cut_path(kerf), nest_angle[p.label], origin=(0, 0))))
+                for p in items if p.label not in hosted]
         placements |= {pl.key: pl for pl in nest(free, plan.board_width_mm, plan.board_length_mm, grade)}
         for label in sorted(hosted, key=lambda s: -circ[s][1]):    # hosts are placed before guests
             host = placements[hosted[label]]
@@ -207,6 +220,10 @@ def fabricate_rings(plan: RingLayupPlan, title: str, drawings: bool = True) -> F
         ring_in = circ.get(p.label, (None,))[0]
         kind = "disc" if ring_in == 0 else ("ring" if p.label in circ else "ring-strip")
         note = f"cut inside the hole of {in_hole[p.label]}" if p.label in in_hole else ""
+        if nest_angle[p.label]:
+            kind = "ring-sector"
+            w, h = _size(affinity.rotate(p.polygon, nest_angle[p.label], origin=(0, 0)))
+            note = f"sector; drawn in the sheet frame, nested turned {nest_angle[p.label]:.2f}°; butt-joint radially"
         if plan.sizing == "contain" and plan.shape == "sphere" and p.label in circ:
             note = (note + "; " if note else "") + "turn/sand bevelled faces to the shell spheres"
         rows.append(CutRow(p.label, kind, m.name, pl.board_id, pl.x_mm, pl.y_mm, pl.rotated, w, h,
@@ -230,6 +247,49 @@ def fabricate_rings(plan: RingLayupPlan, title: str, drawings: bool = True) -> F
     return FabPlanRings(tuple(pieces), placements, {}, draws,
                         tuple(sorted(rows, key=lambda r: (r.assembly_order, r.part))), totals,
                         {m: len(ids) for m, ids in sorted(boards.items())}, kerf, in_hole, saving)
+
+
+def split_ring_sectors(piece: Piece, ring: RingPlan, board_w: float, board_l: float, kerf: float
+                       ) -> tuple[list[Piece], list[float]]:
+    """A ring (or disc) that fits no board is cut into the fewest equal sectors that do, with
+    radial butt joints; neighbouring sheets are staggered by half a sector. Returns the pieces
+    (sheet frame, labelled -a, -b, …) and the rotation (deg) that turns each sector's
+    bisector to +Y for nesting (0 for a whole ring)."""
+    x0, y0, x1, y1 = piece.cut_path(kerf).bounds
+    if fits_board(x1 - x0, y1 - y0, board_w, board_l):
+        return [piece], [0.0]
+    ro, ri = ring.r_outer_mm * 1.001 + kerf, ring.r_inner_mm
+    for k in range(2, 721):
+        step = 2 * math.pi / k
+        half = step / 2
+        # bounding box of one sector turned to +Y: width 2·ro·sin(half) (or 2·ro), height ro − ri·cos(half)
+        w = 2 * ro * math.sin(half) if half < math.pi / 2 else 2 * ro
+        h = ro - (ri * math.cos(half) if half < math.pi / 2 else -ro)
+        if not fits_board(w + kerf, h + kerf, board_w, board_l):
+            continue
+        if w * h > 2.0 * half * (ro * ro - ri * ri) and k < 720:     # bounding box < 2× the sector
+            continue
+        shift = 0.0 if piece.sheet_index % 2 else half
+        parts, angles = [], []
+        n = vertex_count(ring.r_outer_mm)
+        rv = ring.r_outer_mm / math.cos(math.pi / n)
+        for j in range(k):
+            a0 = shift + j * step
+            a1 = a0 + step
+            m = max(2, math.ceil(n * step / (2 * math.pi)) + 1)
+            ta = np.linspace(a0, a1, m)
+            outer = np.column_stack([rv * np.cos(ta), rv * np.sin(ta)])
+            inner = (np.column_stack([ri * np.cos(ta[::-1]), ri * np.sin(ta[::-1])]) if ri > 0
+                     else np.zeros((1, 2)))
+            sector = Polygon(np.vstack([outer, inner]))
+            parts.append(Piece(f"{piece.label}-{_suffix(len(parts))}", piece.sheet_index, sector, piece.thickness_mm))
+            angles.append(90.0 - math.degrees(a0 + half))
+        return parts, angles
+    raise ValueError(f"{piece.label}: no sector split fits a {board_w:g} × {board_l:g} mm board")
+
+
+def _suffix(j: int) -> str:
+    return chr(97 + j) if j < 26 else f"{chr(97 + j // 26 - 1)}{chr(97 + j % 26)}"
 
 
 def _nest_in_holes(items: list[Piece], circ: dict[str, tuple[float, float]], kerf: float

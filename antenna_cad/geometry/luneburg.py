@@ -31,7 +31,7 @@ def hemisphere_shell(r_in: float, r_out: float, sign: float) -> Solid:
     edges = [*polyline_edges([(r_in, 0.0), (r_out, 0.0)]), _arc(r_out, sign),
              *polyline_edges([(0.0, sign * r_out), (0.0, sign * r_in)])]
     if r_in > 0:
-        edges.append(_arc(r_in, sign).reversed() if hasattr(Edge, "reversed") else _arc(r_in, sign))
+        edges.append(_arc(r_in, sign).reversed())
     return revolve_closed(edges)
 
 

@@ -66,7 +66,7 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None) -> B
     checks += list(model.checks)
     stage("model")
     fab = kind.fabricate(spec, design, layup, panels)
-    checks += list(kind.fabrication_checks(spec, design, layup))
+    checks += list(kind.fabrication_checks(spec, design, layup)) + list(getattr(fab, "checks", ()))
     stage("fabricate")
 
     out_root.mkdir(parents=True, exist_ok=True)
@@ -145,6 +145,7 @@ def _write_manifest(spec, out: Path, figures, checks, parts, layup, fab, sheet_f
              "radius_mm": s.radius_mm, "material": material.name, "has_neck": s.has_neck,
              "pieces": [p.label for p in fab.pieces if p.sheet_index == s.index],
              "joints": [asdict(j) for j in fab.joints.get(s.index, ())], "file": sheet_files.get(s.label)}
+            | (s.manifest_extra() if hasattr(s, "manifest_extra") else {})
             for s in layup.sheets]
     write_manifest(out, content)
 

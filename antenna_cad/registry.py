@@ -13,6 +13,7 @@ from antenna_cad.spec import SPEC_MODELS
 ADAPTERS: dict[str, str] = {
     "collimator": "antenna_cad.kinds.collimator",
     "bifocal": "antenna_cad.kinds.bifocal",
+    "luneburg": "antenna_cad.kinds.luneburg",
 }
 assert set(ADAPTERS) == set(SPEC_MODELS), "every spec kind needs an adapter"
 

@@ -15,10 +15,12 @@ from pydantic import BaseModel, Field, TypeAdapter, ValidationError
 from antenna_cad.spec.bifocal import BifocalSpec
 from antenna_cad.spec.collimator import CollimatorSpec
 from antenna_cad.spec.common import UNION_TAGS
+from antenna_cad.spec.luneburg import LuneburgSpec
 
 SPEC_MODELS: dict[str, type[BaseModel]] = {
     "collimator": CollimatorSpec,
     "bifocal": BifocalSpec,
+    "luneburg": LuneburgSpec,
 }
 
 

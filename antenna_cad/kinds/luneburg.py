@@ -1,0 +1,160 @@
+"""Adapters of the multilayer Luneburg lens (seed-002) between its spec and the stages.
+
+``fabrication.method: shells``: every layer a separate shell split into front/back hemispheres
+with foam pins (cylinder: rings of the plate spacing); ``sheet_layup``: sheets of concentric
+rings per grade (``fabrication.rings``). CAD imports stay inside ``model``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from antenna_cad.fabrication.cutlist import CutRow
+from antenna_cad.fabrication.rings import FabPlanRings, RingLayupPlan, fabricate_rings, plan_rings
+from antenna_cad.materials import Material
+from antenna_cad.spec.common import resolve_material
+from antenna_cad.spec.luneburg import LuneburgLayupSpec, LuneburgSpec
+from antenna_cad.synthesis.checks import Check
+from antenna_cad.synthesis.luneburg import LuneburgDesign, synthesize_luneburg
+
+
+def synthesize(spec: LuneburgSpec) -> LuneburgDesign:
+    m = resolve_material(spec.material)
+    d = spec.design
+    layers = d.layers
+    return synthesize_luneburg(
+        diameter_mm=d.diameter_mm, frequency_ghz=spec.frequency_ghz,
+        focal_distance_ratio=d.focal_distance_ratio, law=d.law,
+        layer_count=None if layers.count == "auto" else layers.count, split=layers.split,
+        ladder=layers.ladder.model_dump() if layers.ladder else None,
+        outer_shell=d.outer_shell.model_dump() if d.outer_shell else None,
+        base_eps_r=m.eps_r, base_tan_delta=m.tan_delta, base_density_kg_m3=m.density_kg_m3,
+        grades=list(d.grades) if d.grades else None, shape=d.shape, height_mm=d.height_mm,
+        edge_taper_db=d.edge_taper_db, feed_q=d.feed_q)
+
+
+def layer_materials(spec: LuneburgSpec, design: LuneburgDesign) -> list[Material]:
+    """One foam material per layer, named by its grade εr (layers on one grade share it)."""
+    base = resolve_material(spec.material)
+    out = []
+    for L in design.layers:
+        name = f"{base.name}-foam-{L.eps_r:.3f}"
+        out.append(Material(name, L.eps_r, L.tan_delta, float(L.density_kg_m3),
+                            f"{base.name} foam, fill factor {L.fill_factor:.4f} (seed-002 §2.7)"))
+    return out
+
+
+def plan(spec: LuneburgSpec, design: LuneburgDesign):
+    fab = spec.fabrication
+    if not isinstance(fab, LuneburgLayupSpec):
+        return None, ()
+    return plan_rings([L.r_inner_mm for L in design.layers], [L.r_outer_mm for L in design.layers],
+                      layer_materials(spec, design), shape=design.shape, height_mm=design.height_mm,
+                      sheet_thickness_mm=fab.sheet_thickness_mm, sizing=fab.ring_sizing, kerf_mm=fab.kerf_mm,
+                      board_width_mm=fab.board.width_mm, board_length_mm=fab.board.length_mm,
+                      registration_hole_mm=fab.registration_hole_mm), ()
+
+
+def model(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | None, panels):
+    from antenna_cad.geometry.luneburg import build_layup_model, build_model
+    base = resolve_material(spec.material)
+    if layup is not None:
+        return build_layup_model(layup, base)
+    return build_model(design, layer_materials(spec, design), spec.fabrication, base)
+
+
+def fabricate(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | None, panels):
+    if layup is not None:
+        return fabricate_rings(layup, spec.name, drawings=spec.outputs.templates)
+    return _fabricate_blanks(spec, design)
+
+
+def _fabricate_blanks(spec: LuneburgSpec, design: LuneburgDesign) -> FabPlanRings:
+    """Machined/moulded shells: one blank per hemisphere (cylinder: per ring), mass per grade."""
+    a = spec.fabrication.machining_allowance_mm
+    rows = []
+    for L, m in zip(design.layers, layer_materials(spec, design)):
+        ro = L.r_outer_mm
+        if design.shape == "cylinder":
+            h = design.height_mm
+            vol = math.pi * (ro**2 - L.r_inner_mm**2) * h
+            rows.append(CutRow(f"shell-{L.index:02d}", "ring-blank", m.name, "", 0.0, 0.0, False,
+                               2 * (ro + a), 2 * (ro + a), h + 2 * a, (2 * (ro + a)) ** 2 / 1e6,
+                               vol / 1e9 * m.density_kg_m3, L.index, "turn to R in/out; mass = finished ring"))
+            continue
+        vol = 2.0 / 3.0 * math.pi * (ro**3 - L.r_inner_mm**3)
+        for order, side in ((L.index, "back"), (len(design.layers) + L.index, "front")):
+            rows.append(CutRow(f"shell-{L.index:02d}-{side}", "hemisphere-blank", m.name, "", 0.0, 0.0, False,
+                               2 * (ro + a), 2 * (ro + a), ro + 2 * a, (2 * (ro + a)) ** 2 / 1e6,
+                               vol / 1e9 * m.density_kg_m3, order,
+                               "mould or machine; mass = finished hemisphere (pin holes refilled by pins)"))
+    totals: dict[str, float] = {}
+    for r in rows:
+        totals[r.material] = totals.get(r.material, 0.0) + r.mass_kg
+    totals = dict(sorted(totals.items())) | {"all": sum(totals.values())}
+    return FabPlanRings((), {}, {}, (), tuple(sorted(rows, key=lambda r: (r.assembly_order, r.part))),
+                        totals, {}, 0.0, {}, {})
+
+
+def summary(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | None) -> dict:
+    d = design
+    figures: dict = {
+        "diameter_mm": d.diameter_mm, "d_over_lambda": d.diameter_mm / d.wavelength_mm,
+        "focal_distance_mm": d.focal_distance_mm, "layer_count": len(d.layers),
+        "layer_count_rule": d.layer_count_rule,
+        "phase_error_pp_deg": d.phase_error_pp_deg, "phase_error_rms_deg": d.phase_error_rms_deg,
+        "phase_error_rms_full_deg": d.phase_error_rms_full_deg,
+        "focus_spread_mm": d.focus_spread_mm, "feed_q": d.feed_q,
+        "efficiency_taper": d.efficiency_taper, "efficiency_spillover": d.efficiency_spillover,
+        "efficiency": d.efficiency, "efficiency_with_phase": d.efficiency_with_phase,
+        "axial_loss_db": d.axial_loss_db,
+    }
+    mats = layer_materials(spec, d)
+    for row, m in zip(d.layer_table(), mats):
+        figures[f"layer {row['index']:02d}"] = (
+            f"r {row['r_inner_mm']:.2f}-{row['r_outer_mm']:.2f} mm, εr {row['eps_r']:.4f} "
+            f"(design {row['eps_r_design']:.4f}), tanδ {row['tan_delta']:.2e}, {m.name} "
+            f"{m.density_kg_m3:.1f} kg/m³")
+    if layup is not None:
+        figures |= {"sheet_count": layup.count, "sheet_thickness_mm": layup.sheet_thickness_mm,
+                    "ring_count": len(layup.rings), "ring_sizing": layup.sizing}
+        per: dict[str, list] = {}
+        for r in layup.rings:
+            per.setdefault(r.material.name, []).append(r)
+        for name, rings in sorted(per.items()):
+            figures[f"rings {name}"] = f"{len(rings)} rings in {len({r.sheet_index for r in rings})} sheets"
+    return figures
+
+
+def fabrication_checks(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | None) -> list[Check]:
+    """Rings against their shells over the slab (contain: holds it, no excess), the finishing
+    allowance, and the board saved by nesting rings in ring holes."""
+    if layup is None or layup.shape != "sphere":
+        return []
+    L = {l.index: l for l in design.layers}
+    fit = 0.0
+    allowance = 0.0
+    for s in layup.sheets:
+        z = np.linspace(s.z_min_mm, s.z_max_mm, 257)
+        for r in s.rings:
+            sh = L[r.shell_index]
+            if layup.sizing == "contain":
+                need_out = float(np.max(np.sqrt(np.maximum(sh.r_outer_mm**2 - z * z, 0.0))))
+                need_in = float(np.min(np.sqrt(np.maximum(sh.r_inner_mm**2 - z * z, 0.0))))
+                fit = max(fit, abs(r.r_outer_mm - need_out), abs(r.r_inner_mm - need_in))
+                allowance = max(allowance, r.r_outer_mm - float(np.min(np.sqrt(np.maximum(sh.r_outer_mm**2 - z * z, 0.0)))))
+    checks = []
+    if layup.sizing == "contain":
+        checks.append(Check.upper("ring_fit", fit, 1e-6, "mm",
+                                  "ring radii vs shell radii over the slab (contain, no excess)"))
+        checks.append(Check("ring_finishing_allowance", "pass", allowance, allowance, "mm",
+                            f"largest radial stock turned off a ring face: {allowance:.2f} mm"))
+    else:
+        checks.append(Check("mid_plane_sizing", "warn" if layup.dropped_caps else "pass",
+                            float(layup.dropped_caps), 0.0, "caps",
+                            f"rings sized at sheet mid-planes (stepped); {layup.dropped_caps} shell caps "
+                            "missing their mid-plane are dropped"))
+    return checks
+

@@ -1,0 +1,97 @@
+"""Spec of the multilayer Luneburg lens (seed-002; digest ``reference/seed-002.md`` §5.2).
+
+``material`` is the solid base polymer of the foams (εr, tanδ, density of the solid); each layer
+is a foam of it (Robinson fill factor, §2.7), or the nearest of ``design.grades`` when given.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Literal, Union
+
+from pydantic import Field, model_validator
+
+from antenna_cad.spec.common import BoardSpec, SpecBase, StrictModel
+
+
+class OuterShellSpec(StrictModel):
+    a_over_r: float = Field(gt=0, lt=1)
+    eps_r: float = Field(ge=1.0, le=20.0)
+
+
+class LadderSpec(StrictModel):
+    eps_outer: float = Field(ge=1.0, le=20.0)
+    ratio: float = Field(gt=1.0, le=5.0)
+
+
+class LayersSpec(StrictModel):
+    count: int | Literal["auto"] = "auto"
+    split: Literal["equal_eps", "equal_n", "equal_thickness", "ladder"] = "equal_eps"
+    ladder: LadderSpec | None = None
+
+    @model_validator(mode="after")
+    def _ladder(self):
+        if self.split == "ladder" and self.ladder is None:
+            raise ValueError("design.layers.ladder: split 'ladder' needs {eps_outer, ratio}")
+        if isinstance(self.count, int) and self.count < 1:
+            raise ValueError(f"design.layers.count: must be ≥ 1 (got {self.count})")
+        return self
+
+
+class FeedBossSpec(StrictModel):
+    """Dielectric boss below the equator (−Y) to which the metal feed arm is fixed, outside the
+    aperture cylinder; made of the outer layer's foam."""
+    diameter_mm: float = Field(40.0, gt=0, le=1000)
+    length_mm: float = Field(40.0, gt=0, le=2000)
+
+
+class LuneburgDesignSpec(StrictModel):
+    diameter_mm: float = Field(gt=0, le=20000)
+    focal_distance_ratio: float = Field(1.0, ge=1.0, le=10.0, description="b/R, feed distance from the centre")
+    law: Literal["classic", "generalized", "outer_shell"] = "classic"
+    outer_shell: OuterShellSpec | None = None
+    layers: LayersSpec = LayersSpec()
+    shape: Literal["sphere", "cylinder"] = "sphere"
+    height_mm: float | None = Field(None, gt=0, le=1000, description="cylinder: plate spacing")
+    grades: list[Annotated[float, Field(ge=1.0, le=20.0)]] | None = Field(
+        None, description="available foam grades (εr); each layer takes the nearest")
+    edge_taper_db: float = Field(-10.0, lt=0, ge=-40)
+    feed_q: float | None = Field(None, gt=0, le=50)
+
+    @model_validator(mode="after")
+    def _rules(self):
+        if self.law == "outer_shell" and self.outer_shell is None:
+            raise ValueError("design.outer_shell: law 'outer_shell' needs {a_over_r, eps_r}")
+        if self.law == "classic" and self.focal_distance_ratio != 1.0:
+            raise ValueError(f"design.focal_distance_ratio: law 'classic' focuses on the surface "
+                             f"(b/R = 1), got {self.focal_distance_ratio:g}; use law 'generalized'")
+        if self.shape == "cylinder" and self.height_mm is None:
+            raise ValueError("design.height_mm: a cylinder lens needs its plate spacing")
+        return self
+
+
+class LuneburgShellsSpec(StrictModel):
+    """Each shell as front/back hemispheres (moulded or machined), with foam alignment pins."""
+    method: Literal["shells"]
+    pins_per_shell: int = Field(3, ge=0, le=12)
+    pin_diameter_mm: float = Field(8.0, gt=0, le=100)
+    machining_allowance_mm: float = Field(3.0, ge=0, le=100, description="blank oversize on every side")
+    feed_boss: FeedBossSpec | None = FeedBossSpec()
+
+
+class LuneburgLayupSpec(StrictModel):
+    """Sphere sliced into sheets of stock thickness; each sheet a set of concentric rings."""
+    method: Literal["sheet_layup"]
+    sheet_thickness_mm: float = Field(gt=0, le=200)
+    board: BoardSpec = BoardSpec()
+    kerf_mm: float = Field(0.0, ge=0, le=10)
+    ring_sizing: Literal["contain", "mid_plane"] = Field(
+        "contain", description="contain: every ring holds its shell over the whole slab (sanding/turning "
+        "only removes material); mid_plane: ring radii at the sheet mid-plane (stepped, no finishing)")
+    registration_hole_mm: float = Field(6.0, ge=0, le=50, description="axial hole for a foam alignment rod; 0: none")
+
+
+class LuneburgSpec(SpecBase):
+    kind: Literal["luneburg"]
+    design: LuneburgDesignSpec
+    fabrication: Annotated[Union[LuneburgShellsSpec, LuneburgLayupSpec], Field(discriminator="method")] = \
+        LuneburgShellsSpec(method="shells")

@@ -1,0 +1,209 @@
+"""Luneburg kind end to end: spec → shells / ring layup → files (seed-002 §5.1)."""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from antenna_cad.fabrication.rings import fabricate_rings, plan_rings, ring_radii
+from antenna_cad.materials import Material
+from antenna_cad.registry import ADAPTERS, adapter
+from antenna_cad.spec import SPEC_MODELS, SpecError, load_spec, parse_spec
+
+RECIPES = Path(__file__).resolve().parents[1] / "recipes"
+LUNEBURG_RECIPES = ["luneburg-classic-5", "luneburg-cube-460", "luneburg-cylinder-5", "luneburg-layup-200"]
+
+
+def _spec(name):
+    return load_spec(RECIPES / f"{name}.yaml")
+
+
+def _data(**design):
+    base = {"name": "t", "kind": "luneburg", "frequency_ghz": 10.0, "material": "polystyrene",
+            "design": {"diameter_mm": 200, "layers": {"count": 4}} | design,
+            "fabrication": {"method": "shells", "pins_per_shell": 0, "feed_boss": None}}
+    return base
+
+
+def test_registered():
+    assert "luneburg" in ADAPTERS and "luneburg" in SPEC_MODELS
+
+
+@pytest.mark.parametrize("name", LUNEBURG_RECIPES)
+def test_recipes_load_and_synthesize(name):
+    spec = _spec(name)
+    kind = adapter(spec.kind)
+    design = kind.synthesize(spec)
+    layup, _ = kind.plan(spec, design)
+    assert (layup is not None) == (spec.fabrication.method == "sheet_layup")
+    figures = kind.summary(spec, design, layup)
+    assert "phase_error_rms_deg" in figures and "efficiency_with_phase" in figures
+    assert sum(k.startswith("layer ") for k in figures) == len(design.layers)
+
+
+def test_seed_cases():
+    cube = adapter("luneburg").synthesize(_spec("luneburg-cube-460"))
+    assert len(cube.layers) == 7 and cube.diameter_mm == 460 and cube.focal_distance_ratio == 1.5
+    cyl = adapter("luneburg").synthesize(_spec("luneburg-cylinder-5"))
+    assert cyl.shape == "cylinder"
+    np.testing.assert_allclose([L.eps_r for L in cyl.layers], [1.63979, 1.49072, 1.35520, 1.23200, 1.12], atol=1e-5)
+    np.testing.assert_allclose([L.r_outer_mm / 150 for L in cyl.layers[:-1]], [0.5056, 0.6753, 0.7969, 0.8900], atol=1e-3)
+
+
+@pytest.mark.parametrize("design, field", [
+    ({"law": "classic", "focal_distance_ratio": 1.2}, "design.focal_distance_ratio"),
+    ({"shape": "cylinder"}, "design.height_mm"),
+    ({"law": "outer_shell"}, "design.outer_shell"),
+    ({"focal_distance_ratio": 0.9}, "design.focal_distance_ratio"),
+    ({"layers": {"split": "ladder"}}, "design.layers"),
+])
+def test_spec_errors(design, field):
+    with pytest.raises(SpecError) as e:
+        parse_spec(_data(**design), "x.yaml")
+    assert field in str(e.value)
+
+
+def test_shell_volumes_sum_to_sphere_and_hemispheres_are_closed():
+    spec = _spec("luneburg-classic-5")
+    kind = adapter("luneburg")
+    design = kind.synthesize(spec)
+    model = kind.model(spec, design, None, ())
+    R = design.radius_mm
+    fabricated = [p for p in model.parts if p.label.startswith("shell-")]
+    total = sum(p.volume_mm3 for p in fabricated)
+    assert total == pytest.approx(4 / 3 * math.pi * R**3, rel=1e-9)
+    labels = {p.label for p in model.parts}
+    for L in design.layers:
+        for side in ("front", "back"):
+            part = model.part(f"shell-{L.index:02d}-{side}")
+            assert part.shape.is_valid and len(part.shape.solids()) == 1
+            assert part.material.eps_r == L.eps_r
+        assert f"shell-{L.index:02d}-pin-1" in labels
+    assert next(c for c in model.checks if c.name == "shell_volume_sum").status == "pass"
+    boss = model.part("feed-boss").shape.bounding_box()
+    assert boss.min.Y == pytest.approx(-R - 40) and boss.max.Y <= -R + 1e-6 + (R - math.sqrt(R * R - 400))
+
+
+def test_hemispheres_without_pins_are_exact():
+    from antenna_cad.geometry.luneburg import hemisphere_shell
+    for r_in, r_out, sign in [(0.0, 80.0, 1), (50.0, 80.0, -1)]:
+        s = hemisphere_shell(r_in, r_out, sign)
+        assert s.is_valid and s.volume == pytest.approx(2 / 3 * math.pi * (r_out**3 - r_in**3), rel=1e-9)
+
+
+@pytest.mark.parametrize("z_lo, z_hi", [(-100.0, -80.0), (-10.0, 10.0), (35.0, 45.0), (0.0, 20.0), (88.0, 98.0)])
+def test_ring_radii_contain_and_minimal(z_lo, z_hi):
+    r_in, r_out = np.array([0.0, 30.0, 60.0, 90.0]), np.array([30.0, 60.0, 90.0, 100.0])
+    inner, outer = ring_radii(r_in, r_out, z_lo, z_hi, "contain")
+    z = np.linspace(z_lo, z_hi, 2001)
+    need_out = np.sqrt(np.maximum(r_out[:, None] ** 2 - z**2, 0)).max(axis=1)
+    need_in = np.sqrt(np.maximum(r_in[:, None] ** 2 - z**2, 0)).min(axis=1)
+    assert np.all(outer >= need_out - 1e-9) and np.all(inner <= need_in + 1e-9)
+    np.testing.assert_allclose(outer, need_out, atol=1e-6)      # minimal: no excess
+    np.testing.assert_allclose(inner, need_in, atol=1e-6)
+    mi, mo = ring_radii(r_in, r_out, z_lo, z_hi, "mid_plane")
+    zm = 0.5 * (z_lo + z_hi)
+    np.testing.assert_allclose(mo, np.sqrt(np.maximum(r_out**2 - zm**2, 0)))
+    assert np.all(mo <= outer + 1e-12) and np.all(mi >= inner - 1e-12)
+
+
+def _plan(sizing="contain", t=20.0, R=100.0):
+    mats = [Material(f"g{k}", 2.0 - 0.2 * k, 1e-4, 100.0 - 10 * k) for k in range(4)]
+    return plan_rings([0, 0.3 * R, 0.6 * R, 0.9 * R], [0.3 * R, 0.6 * R, 0.9 * R, R], mats, shape="sphere",
+                      height_mm=None, sheet_thickness_mm=t, sizing=sizing, kerf_mm=0.5, board_width_mm=600,
+                      board_length_mm=1200, registration_hole_mm=6.0)
+
+
+def test_layup_plan_covers_sphere_and_nests_per_grade():
+    plan = _plan()
+    assert plan.count == 10 and plan.sheets[0].z_min_mm == -100 and plan.sheets[-1].z_max_mm == 100
+    for s in plan.sheets:
+        assert [r.shell_index for r in s.rings] == sorted(r.shell_index for r in s.rings)
+    fab = fabricate_rings(plan, "t", drawings=True)
+    labels = {d.label for d in fab.drawings}
+    assert {s.label for s in plan.sheets} <= labels and {r.label for r in plan.rings} <= labels
+    for row in fab.rows:                                      # each ring on a board of its own grade
+        ring = next(r for r in plan.rings if row.part.startswith(r.label))
+        assert row.material == ring.material.name and row.board.startswith(ring.material.name + "-B")
+    for guest, host in fab.in_hole.items():                   # discs inside ring holes fit
+        gi = next(r for r in plan.rings if r.label == guest)
+        hi = next(r for r in plan.rings if r.label == host)
+        assert gi.material == hi.material and gi.r_outer_mm + 10 <= hi.r_inner_mm
+    assert fab.in_hole and sum(fab.in_hole_saving_m2.values()) > 0
+    assert fab.totals_kg["all"] == pytest.approx(sum(v for k, v in fab.totals_kg.items() if k != "all"))
+
+
+def test_mid_plane_rings_butt():
+    plan = _plan("mid_plane")
+    for s in plan.sheets:
+        for a, b in zip(s.rings, s.rings[1:]):
+            if b.shell_index == a.shell_index + 1 and b.r_inner_mm > 0:
+                assert a.r_outer_mm == pytest.approx(b.r_inner_mm)
+
+
+def _read_back(out: Path, expect_templates: bool):
+    import ezdxf
+    import trimesh
+    from build123d import import_step
+    manifest = json.loads((out / "manifest.json").read_text())
+    step = import_step(out / f"{manifest['name']}.step")
+    assert len(step.solids()) == len(manifest["parts"])
+    for part in manifest["parts"]:
+        assert part["valid"] and part["watertight"]
+        mesh = trimesh.load(out / part["file"])
+        mesh.merge_vertices()
+        assert mesh.is_watertight
+        assert mesh.volume == pytest.approx(part["volume_mm3"], rel=2e-2)
+    dxfs = sorted((out / "templates").glob("*.dxf")) if expect_templates else []
+    assert bool(dxfs) == expect_templates
+    for f in dxfs[:12]:
+        doc = ezdxf.readfile(f)
+        auditor = doc.audit()
+        assert not auditor.has_errors and doc.header["$INSUNITS"] == 4
+    rows = list(csv.DictReader((out / "cutlist.csv").open()))
+    assert rows and any(r["part"].startswith("TOTAL all") for r in rows)
+    return manifest
+
+
+def test_cylinder_build_reads_back(tmp_path):
+    from antenna_cad.pipeline import build
+    result = build(_spec("luneburg-cylinder-5"), tmp_path)
+    manifest = _read_back(result.out_dir, expect_templates=True)
+    assert len(manifest["sheets"]) == 1 and len(manifest["sheets"][0]["rings"]) == 5
+    assert len([m for m in manifest["mass_kg"] if m != "all"]) == 5
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["luneburg-classic-5", "luneburg-cube-460", "luneburg-layup-200"])
+def test_recipe_builds_read_back(tmp_path, name):
+    from antenna_cad.pipeline import build
+    spec = _spec(name)
+    result = build(spec, tmp_path)
+    assert result.status != "fail"
+    manifest = _read_back(result.out_dir, expect_templates=spec.fabrication.method == "sheet_layup")
+    if spec.fabrication.method == "sheet_layup":
+        assert {c.name for c in result.checks} >= {"ring_fit", "rings_in_holes"}
+        assert sum(len(s["rings"]) for s in manifest["sheets"]) == manifest["figures"]["ring_count"]
+    else:
+        assert any(p["label"] == "shell-01-front" for p in manifest["parts"])
+
+
+def test_large_rings_split_into_sectors_that_fit_boards():
+    from shapely import affinity
+    from antenna_cad.fabrication.outline import fits_board
+    from antenna_cad.fabrication.rings import RingPlan, ring_polygon, split_ring_sectors
+    from antenna_cad.fabrication.outline import Piece
+    for r_in in (0.0, 700.0):
+        ring = RingPlan("sheet-02-ring-03", 2, 3, r_in, 800.0, Material("g", 1.5, 1e-4, 50.0))
+        piece = Piece(ring.label, 2, ring_polygon(ring, 6.0), 10.0)
+        parts, angles = split_ring_sectors(piece, ring, 600.0, 1200.0, 0.5)
+        assert len(parts) > 1
+        assert sum(p.polygon.area for p in parts) == pytest.approx(piece.polygon.area, rel=2e-3)
+        for p, a in zip(parts, angles):
+            x0, y0, x1, y1 = affinity.rotate(p.cut_path(0.5), a, origin=(0, 0)).bounds
+            assert p.polygon.is_valid and fits_board(x1 - x0, y1 - y0, 600.0, 1200.0)

@@ -12,6 +12,7 @@ from antenna_cad.spec import SPEC_MODELS
 
 ADAPTERS: dict[str, str] = {
     "collimator": "antenna_cad.kinds.collimator",
+    "slot_array": "antenna_cad.kinds.slot_array",
 }
 assert set(ADAPTERS) == set(SPEC_MODELS), "every spec kind needs an adapter"
 

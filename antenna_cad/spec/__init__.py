@@ -14,9 +14,11 @@ from pydantic import BaseModel, Field, TypeAdapter, ValidationError
 
 from antenna_cad.spec.collimator import CollimatorSpec
 from antenna_cad.spec.common import UNION_TAGS
+from antenna_cad.spec.slot_array import SlotArraySpec
 
 SPEC_MODELS: dict[str, type[BaseModel]] = {
     "collimator": CollimatorSpec,
+    "slot_array": SlotArraySpec,
 }
 
 

@@ -9,6 +9,8 @@ import numpy as np
 
 from antenna_cad.synthesis.slot_array import Curve, SlotArrayDesign, offset_curve
 
+END_WEB_MM = 0.2      # metal left between the body start and the first slot
+
 
 @dataclass(frozen=True)
 class Stack:
@@ -67,13 +69,30 @@ def slot_outline(x: float, y: float, length: float, width: float, angle: float,
 
 
 def guide_extent(design: SlotArrayDesign, wall_mm: float) -> tuple[np.ndarray, np.ndarray, float]:
-    """Per guide: body start y (beyond the coupling slot), end y; outer half-width."""
+    """Per guide: body start y, end y; outer half-width.
+
+    The rectangular body starts beyond the (curved) coupling slot, at the highest point of its far
+    edge across the body width, but never past the first slot (less END_WEB_MM): on steep outer
+    guides a corner of the bottom wall then overlaps the coupling slot (see :func:`end_overlap_mm`).
+    """
     s = design.slots
     half = design.guide_width_mm / 2 + wall_mm
-    y0 = np.array([float(design.coupling_slot_edge.y_at(np.linspace(x - half, x + half, 9)).max())
-                   for x in s.guide_x_mm])
+    _, hy = s.half_extents_mm()
+    low = np.full(len(s.guide_x_mm), np.inf)
+    np.minimum.at(low, s.guide_index, s.y_mm - hy)
+    edge = np.array([float(design.coupling_slot_edge.y_at(np.linspace(x - half, x + half, 9)).max())
+                     for x in s.guide_x_mm])
+    y0 = np.minimum(edge, low - END_WEB_MM)
     y1 = s.guide_end_y_mm + 0.25 * s.period_mm
     return y0, y1, half
+
+
+def end_overlap_mm(design: SlotArrayDesign, wall_mm: float) -> float:
+    """Largest length by which a guide body's start overlaps the coupling slot's far edge."""
+    y0, _, half = guide_extent(design, wall_mm)
+    edge = np.array([float(design.coupling_slot_edge.y_at(np.linspace(x - half, x + half, 9)).max())
+                     for x in design.slots.guide_x_mm])
+    return float(np.max(edge - y0))
 
 
 def plate_rect(design: SlotArrayDesign, margin: float) -> tuple[float, float, float, float]:

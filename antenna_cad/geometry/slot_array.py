@@ -93,11 +93,14 @@ def build_model(design: SlotArrayDesign, dielectric: Material, metal: Material, 
                            float(s.width_mm[i]), float(s.angle_rad[i]), z_top) for i in idx]
         wires_total += len(holes)
         top = slotted_plate(gx - half, y0, gx + half, y1, z_top, t, holes)
-        solids = [top, Solid.make_box(2 * half, y1 - y0, t).moved(Location((gx - half, y0, 0)))]
-        if w > 0:
-            for xs in (gx - half, gx + a / 2):
-                solids.append(Solid.make_box(w, y1 - y0, h).moved(Location((xs, y0, t))))
-        parts.append(ModelPart(f"waveguide-{g:02d}", metal, "fabricated", Compound(solids)))
+        if w > 0:      # bottom + side walls as one U-channel prism, fused to the slotted top
+            u = [(-half, 0), (half, 0), (half, t + h), (a / 2, t + h), (a / 2, t), (-a / 2, t),
+                 (-a / 2, t + h), (-half, t + h)]
+            face = Face(Wire.make_polygon([Vector(gx + px, y0, pz) for px, pz in u], close=True))
+            body = extrude(face, y1 - y0, dir=(0, 1, 0)).fuse(top)
+        else:          # pitch = width: no side walls of its own; bottom and slotted top plates
+            body = Compound([top, Solid.make_box(2 * half, y1 - y0, t).moved(Location((gx - half, y0, 0)))])
+        parts.append(ModelPart(f"waveguide-{g:02d}", metal, "fabricated", body))
         parts.append(ModelPart(f"core-{g:02d}", dielectric, "fabricated",
                                Solid.make_box(a, y1 - y0, h).moved(Location((gx - a / 2, y0, t)))))
     # beam-former plates: base plate, then one per layer transition with its coupling slot(s)

@@ -7,6 +7,7 @@ import csv
 import io
 
 import numpy as np
+from shapely.geometry import Polygon
 
 from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.sheets import FabPlan
@@ -14,7 +15,7 @@ from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
 from antenna_cad.geometry.slot_layout import (coupling_edge, guide_extent, layer_indices,
                                               mirror_back_sign, plate_rect, slot_outline)
 from antenna_cad.materials import Material
-from antenna_cad.synthesis.slot_array import Curve, SlotArrayDesign
+from antenna_cad.synthesis.slot_array import Curve, SlotArrayDesign, offset_curve
 
 SLOT_FIELDS = ["guide", "cell", "slot", "slot_id", "x_mm", "y_mm", "local_x_mm", "local_y_mm",
                "length_mm", "width_mm", "offset_mm", "angle_deg"]
@@ -107,7 +108,6 @@ def fabricate_slot_array(design: SlotArrayDesign, dielectric: Material, metal: M
                            f"{len(holes)} coupling slot(s)" if holes else "base plate"))
     for j, m in enumerate(bf.mirrors, start=1):
         back_sign = mirror_back_sign(design, m)
-        from antenna_cad.synthesis.slot_array import offset_curve
         back = offset_curve(m, back_sign * mirror_wall_mm, f"{m.name}_back")
         d = Drawing(f"mirror-{j}")
         d.cut.append(_curve_ring(m, back))
@@ -127,7 +127,6 @@ def fabricate_slot_array(design: SlotArrayDesign, dielectric: Material, metal: M
         d = Drawing(label)
         ring = _curve_ring(m, lens)
         d.cut.append(ring)
-        from shapely.geometry import Polygon
         area = Polygon(ring).area
         d.texts.append((f"{title} {label}: {dielectric.name} εr {design.fill_eps_r:g}, thickness "
                         f"{design.layer_height_mm:g} mm", ring[0][0], max(p[1] for p in ring) + 12.0, TEXT_HEIGHT_MM))

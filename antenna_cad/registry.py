@@ -14,6 +14,7 @@ ADAPTERS: dict[str, str] = {
     "collimator": "antenna_cad.kinds.collimator",
     "bifocal": "antenna_cad.kinds.bifocal",
     "luneburg": "antenna_cad.kinds.luneburg",
+    "slot_array": "antenna_cad.kinds.slot_array",
 }
 assert set(ADAPTERS) == set(SPEC_MODELS), "every spec kind needs an adapter"
 

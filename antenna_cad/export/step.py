@@ -24,7 +24,7 @@ def write_step(model: Model, name: str, path: Path) -> None:
         if children:
             groups.append(Compound(children=children, label=role))
     if not export_step(Compound(children=groups, label=name), str(path), unit=Unit.MM,
-                       timestamp=STEP_TIMESTAMP):
+                       timestamp=STEP_TIMESTAMP, write_pcurves=model.step_pcurves):
         raise RuntimeError(f"STEP export failed: {path}")
     _renumber_occurrences(path)
 

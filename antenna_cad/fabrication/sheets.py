@@ -7,7 +7,7 @@ dowels, then the end walls are screwed on to clamp the stack; finally sand the s
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from antenna_cad.fabrication.box import Panel
 from antenna_cad.fabrication.cutlist import CutRow
@@ -28,6 +28,7 @@ class FabPlan:
     totals_kg: dict[str, float]
     boards: dict[str, int]                    # material -> boards used
     kerf_mm: float
+    files: dict[str, str] = field(default_factory=dict)   # extra text files: name -> content
 
 
 BOX_FIRST_STEPS = {"box-floor": 1, "box-wall-left": 2, "box-wall-right": 2}   # end walls go on last

@@ -29,6 +29,8 @@ class ModelPart:
 class Model:
     parts: tuple[ModelPart, ...]
     checks: tuple[Check, ...]
+    step_pcurves: bool = True   # False: STEP without p-curves (optional data; ~2x faster, 3x smaller
+                                # for thousands of slot faces)
 
     def part(self, label: str) -> ModelPart:
         return next(p for p in self.parts if p.label == label)

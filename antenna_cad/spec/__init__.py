@@ -16,11 +16,13 @@ from antenna_cad.spec.bifocal import BifocalSpec
 from antenna_cad.spec.collimator import CollimatorSpec
 from antenna_cad.spec.common import UNION_TAGS
 from antenna_cad.spec.luneburg import LuneburgSpec
+from antenna_cad.spec.slot_array import SlotArraySpec
 
 SPEC_MODELS: dict[str, type[BaseModel]] = {
     "collimator": CollimatorSpec,
     "bifocal": BifocalSpec,
     "luneburg": LuneburgSpec,
+    "slot_array": SlotArraySpec,
 }
 
 

@@ -1,0 +1,147 @@
+"""Spec of the frequency-scanning multibeam waveguide-slot array (seed-003, kind ``slot_array``).
+
+``material`` is the dielectric that fills the guides (and the lens region of a mirror-lens beam
+former); ``waveguide.fill_eps_r`` defaults to its εr. The metal of bodies, plates and mirror walls
+is named in ``fabrication`` (method ``machined_plates``).
+"""
+
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import Field, model_validator
+
+from antenna_cad.spec.common import SpecBase, StrictModel, resolve_material
+
+
+class BandSpec(StrictModel):
+    min_ghz: float = Field(gt=0, le=1000)
+    max_ghz: float = Field(gt=0, le=1000)
+    design_ghz: float = Field(gt=0, le=1000, description="frequency of the synthesised slot line")
+
+
+class WaveguideSpec(StrictModel):
+    width_mm: float = Field(gt=0, le=500, description="broad-wall inner width a")
+    height_mm: float = Field(gt=0, le=500, description="narrow-wall inner height b")
+    fill_eps_r: float | None = Field(None, ge=1.0, le=100, description="default: εr of `material`")
+    wall_mm: float = Field(0.0, ge=0, le=50, description="narrow (side) wall thickness; pitch ≥ a + 2·wall")
+
+
+class ArraySpec(StrictModel):
+    count: int = Field(ge=1, le=500)
+    pitch_mm: float = Field(gt=0, le=1000)
+    length_mm: float = Field(gt=0, le=10000)
+
+
+class TaperSpec(StrictModel):
+    law: Literal["sin", "exp", "cos_pedestal", "uniform"] = "sin"
+    eta: float = Field(0.9, gt=0, lt=1)
+    a0: float | None = Field(None, gt=0, description="α(L1) cell fit, default the Ka 4-slot cell")
+    b0: float | None = Field(None, gt=0)
+    pedestal: float = Field(0.3, ge=0, le=1)
+
+
+class SlotsSpec(StrictModel):
+    layout: Literal["longitudinal_4", "longitudinal_pair", "transverse_3"]
+    width_mm: float = Field(gt=0, le=100)
+    period_mm: float | Literal["auto"] = "auto"
+    taper: TaperSpec = TaperSpec()
+    lengths_mm: list[float] | None = Field(None, description="per cell (or s1..s3 for transverse_3)")
+    l2_ratio: float = Field(0.68, gt=0, le=2)
+    offset_mm: float | None = Field(None, ge=0)
+    min_web_mm: float = Field(0.3, ge=0)
+    wall_clearance_mm: float = Field(0.2, ge=0)
+
+
+BEAMFORMER_PARAMS = {"single_mirror": ("minor_semi_axis_mm", "focal_separation_mm"),
+    "bifocal_two_mirror": ("a0", "a2", "h1", "b0", "b2", "h2", "rho1"),
+    "bifocal_mirror_lens": ("lens_a2", "lens_vertex", "x0", "p1", "p2", "f0", "n")}
+
+
+
+class BeamFormerSpec(StrictModel):
+    type: Literal["single_mirror", "bifocal_two_mirror", "bifocal_mirror_lens"]
+    # single_mirror (ellipse, seed-003 §3.5)
+    minor_semi_axis_mm: float | None = Field(None, gt=0)
+    focal_separation_mm: float | None = Field(None, ge=0)
+    # bifocal_two_mirror (normalised, §3.3)
+    a0: float | None = None
+    a2: float | None = None
+    h1: float | None = None
+    b0: float | None = None
+    b2: float | None = None
+    h2: float | None = None
+    rho1: float | None = None
+    # bifocal_mirror_lens (normalised, §3.4)
+    lens_a2: float | None = None
+    lens_vertex: float | None = None
+    x0: float | None = None
+    p1: float | None = None
+    p2: float | None = None
+    f0: float | None = None
+    n: float | None = Field(None, ge=1.0)
+    scale_mm: float | None = Field(None, gt=0, description="physical size of the normalised D = 1")
+    slot_line_offset_mm: float = Field(10.0, ge=0, description="t0: last mirror → first slot line")
+    layer_height_mm: float = Field(1.6, gt=0, le=500)
+    coupling_slot_mm: float = Field(1.1, gt=0, le=500)
+
+    @model_validator(mode="after")
+    def _complete(self):
+        missing = [k for k in BEAMFORMER_PARAMS[self.type] if getattr(self, k) is None]
+        if missing:
+            raise ValueError(f"beamformer.{missing[0]}: required for type {self.type} "
+                             f"(missing: {', '.join(missing)})")
+        return self
+
+    def params(self) -> dict:
+        return {k: getattr(self, k) for k in BEAMFORMER_PARAMS[self.type]}
+
+
+class FeedsSpec(StrictModel):
+    type: Literal["h_sectoral"] = "h_sectoral"
+    throat_mm: tuple[float, float] = Field(description="(H-plane, E-plane)")
+    aperture_mm: tuple[float, float] = Field(description="(H-plane, E-plane)")
+    length_mm: float = Field(gt=0)
+    count: int = Field(1, ge=1, le=99)
+    placement: Literal["optimal", "circle"] = "optimal"
+
+
+class MachinedPlatesSpec(StrictModel):
+    """Metal parts milled from plate: one body per guide, beam-former plates, mirror walls."""
+    method: Literal["machined_plates"]
+    metal: str = Field("aluminium", pattern=r"^[A-Za-z0-9_. -]+$")
+    metal_density_kg_m3: float = Field(2700.0, gt=0, le=25000)
+    broad_wall_mm: float = Field(0.5, gt=0, le=50, description="slotted top wall and bottom wall")
+    mirror_wall_mm: float = Field(2.0, gt=0, le=100)
+    plate_margin_mm: float = Field(10.0, ge=0, le=500, description="beam-former plate beyond mirrors")
+    stock_allowance_mm: float = Field(2.0, ge=0, le=100)
+
+
+class SlotArraySpec(SpecBase):
+    kind: Literal["slot_array"]
+    fabrication: MachinedPlatesSpec
+    band: BandSpec
+    waveguide: WaveguideSpec
+    array: ArraySpec
+    slots: SlotsSpec
+    beamformer: BeamFormerSpec
+    feeds: FeedsSpec
+
+    @model_validator(mode="after")
+    def _consistent(self):
+        b = self.band
+        if not b.min_ghz <= b.design_ghz <= b.max_ghz:
+            raise ValueError(f"band.design_ghz: must lie in [min_ghz, max_ghz] "
+                             f"({b.design_ghz:g} not in [{b.min_ghz:g}, {b.max_ghz:g}])")
+        if abs(self.frequency_ghz - b.design_ghz) > 1e-9:
+            raise ValueError(f"frequency_ghz: must equal band.design_ghz ({self.frequency_ghz:g} ≠ {b.design_ghz:g})")
+        eps = self.fill_eps_r
+        m = resolve_material(self.material)
+        if abs(eps / m.eps_r - 1) > 0.05:
+            raise ValueError(f"waveguide.fill_eps_r: {eps:g} differs > 5 % from εr {m.eps_r:g} of material {m.name}")
+        return self
+
+    @property
+    def fill_eps_r(self) -> float:
+        w = self.waveguide
+        return w.fill_eps_r if w.fill_eps_r is not None else resolve_material(self.material).eps_r

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import bisect
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from shapely import affinity
@@ -165,6 +165,7 @@ class FabPlanRings:
     kerf_mm: float
     in_hole: dict[str, str]                   # piece label -> host ring label
     in_hole_saving_m2: dict[str, float]       # grade -> board area saved by nesting in holes
+    files: dict[str, str] = field(default_factory=dict)   # extra text files, as in ``FabPlan``
 
     @property
     def checks(self) -> tuple[Check, ...]:

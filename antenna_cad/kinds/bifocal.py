@@ -13,14 +13,13 @@ import math
 
 import numpy as np
 
-from antenna_cad.fabrication.box import plan_box
-from antenna_cad.fabrication.layup import LayupPlan, plan_layup
-from antenna_cad.fabrication.outline import added_in_aperture_mm2
+from antenna_cad.fabrication.layup import LayupPlan
+from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks, plan_layup_and_box
 from antenna_cad.spec.bifocal import BifocalSpec
 from antenna_cad.spec.common import SheetLayupSpec, resolve_material
 from antenna_cad.synthesis.bifocal import (BifocalDesign, defocus_study, lens_volume_mm3, max_radius_in,
                                            synthesize_bifocal)
-from antenna_cad.synthesis.checks import Check, DesignError
+from antenna_cad.synthesis.checks import Check
 
 
 def _height(spec: BifocalSpec) -> float | None:
@@ -44,22 +43,8 @@ def plan(spec: BifocalSpec, design: BifocalDesign):
     fab = spec.fabrication
     if not isinstance(fab, SheetLayupSpec):
         return None, ()
-    try:
-        layup = plan_layup(
-            radius_at=None, max_radius_in=_slab_radius(design), z_origin_mm=design.rho1_mm,
-            lens_thickness_mm=design.thickness_mm, lens_radius_mm=design.edge_y_mm,
-            sheet_thickness_mm=fab.sheet_thickness_mm,
-            pedestal_height_mm=fab.pedestal_height_mm, pedestal_width_mm=fab.pedestal_width_mm,
-            joining=fab.joining, dowel_diameter_mm=fab.dowel_diameter_mm,
-            neck_width_mm=fab.neck_width_mm, kerf_mm=fab.kerf_mm,
-            board_width_mm=fab.board.width_mm, board_length_mm=fab.board.length_mm)
-    except ValueError as exc:
-        field, _, message = str(exc).partition(": ")
-        raise DesignError(field, message) from None
-    b = fab.box
-    panels = plan_box(layup, wall_mm=b.wall_thickness_mm, clearance_mm=b.clearance_mm,
-                      screw_diameter_mm=b.screw_diameter_mm, screw_spacing_mm=b.screw_spacing_mm)
-    return layup, panels
+    return plan_layup_and_box(fab, lens_radius_mm=design.edge_y_mm, lens_thickness_mm=design.thickness_mm,
+                              max_radius_in=_slab_radius(design), z_origin_mm=design.rho1_mm)
 
 
 def model(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None, panels):
@@ -73,10 +58,7 @@ def fabricate(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None,
     if layup is None:
         from antenna_cad.fabrication.bifocal import fabricate_machined_bifocal
         return fabricate_machined_bifocal(design, _height(spec), m, spec.fabrication.stock_allowance_mm, spec.name)
-    from antenna_cad.fabrication.sheets import fabricate_sheets
-    b = spec.fabrication.box
-    return fabricate_sheets(layup, panels, m, resolve_material(b.material),
-                            (b.board.width_mm, b.board.length_mm), spec.name)
+    return fabricate_layup(spec.fabrication, layup, panels, m, spec.name)
 
 
 def sanding_allowance_mm3(design: BifocalDesign, layup: LayupPlan) -> float:
@@ -110,9 +92,7 @@ def summary(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None) -
     if design.shape == "cylindrical":
         figures["height_mm"] = float(spec.design.height_mm)
     if layup is not None:
-        figures |= {"sheet_count": layup.count, "sheet_thickness_mm": layup.sheet_thickness_mm,
-                    "stack_thickness_mm": layup.stack_thickness_mm, "back_slab_mm": layup.back_slab_mm,
-                    "sanding_allowance_mm3": sanding_allowance_mm3(design, layup)}
+        figures |= layup_figures(layup) | {"sanding_allowance_mm3": sanding_allowance_mm3(design, layup)}
     return figures
 
 
@@ -128,11 +108,6 @@ def fabrication_checks(spec: BifocalSpec, design: BifocalDesign, layup: LayupPla
         fit = max(fit, sampled - s.radius_mm)                        # > 0: lens outside the disc
         exact = max_radius_in(design, s.z_min_mm, s.z_max_mm)
         fit = max(fit, abs(s.radius_mm - exact))
-    checks = [Check.upper("sheet_disc_fit", fit, 1e-6, "mm",
-                          "sheet disc radius vs largest lens radius in its slab on both faces")]
-    added = sum(added_in_aperture_mm2(layup, s) * s.thickness_mm for s in layup.sheets)
-    if added > 0:
-        checks.append(Check("material_in_aperture", "warn", added, 0.0, "mm3",
-                            f"necks add {added / 1e6:.3f} dm³ of foam inside the aperture cylinder "
-                            "(use joining: dowels to avoid it)"))
-    return checks
+    return [Check.upper("sheet_disc_fit", fit, 1e-6, "mm",
+                        "sheet disc radius vs largest lens radius in its slab on both faces")
+            ] + neck_checks(layup)

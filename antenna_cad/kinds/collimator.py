@@ -4,12 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from antenna_cad.fabrication.box import plan_box
-from antenna_cad.fabrication.layup import LayupPlan, plan_layup
-from antenna_cad.fabrication.outline import added_in_aperture_mm2
+from antenna_cad.fabrication.layup import LayupPlan
+from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks, plan_layup_and_box
 from antenna_cad.spec.collimator import CollimatorSpec
 from antenna_cad.spec.common import SheetLayupSpec, resolve_material
-from antenna_cad.synthesis.checks import Check, DesignError
+from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.collimator import CollimatorDesign, synthesize_collimator
 
 
@@ -31,21 +30,8 @@ def plan(spec: CollimatorSpec, design: CollimatorDesign):
     fab = spec.fabrication
     if not isinstance(fab, SheetLayupSpec):
         return None, ()
-    try:
-        layup = plan_layup(
-            radius_at=design.radius_at, lens_thickness_mm=design.thickness_mm,
-            lens_radius_mm=design.diameter_mm / 2, sheet_thickness_mm=fab.sheet_thickness_mm,
-            pedestal_height_mm=fab.pedestal_height_mm, pedestal_width_mm=fab.pedestal_width_mm,
-            joining=fab.joining, dowel_diameter_mm=fab.dowel_diameter_mm,
-            neck_width_mm=fab.neck_width_mm, kerf_mm=fab.kerf_mm,
-            board_width_mm=fab.board.width_mm, board_length_mm=fab.board.length_mm)
-    except ValueError as exc:
-        field, _, message = str(exc).partition(": ")
-        raise DesignError(field, message) from None
-    b = fab.box
-    panels = plan_box(layup, wall_mm=b.wall_thickness_mm, clearance_mm=b.clearance_mm,
-                      screw_diameter_mm=b.screw_diameter_mm, screw_spacing_mm=b.screw_spacing_mm)
-    return layup, panels
+    return plan_layup_and_box(fab, lens_radius_mm=design.diameter_mm / 2,
+                              lens_thickness_mm=design.thickness_mm, radius_at=design.radius_at)
 
 
 def model(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | None, panels):
@@ -60,18 +46,14 @@ def fabricate(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan |
     if layup is None:
         from antenna_cad.fabrication.machined import fabricate_machined
         return fabricate_machined(design, m, spec.fabrication.stock_allowance_mm, spec.name)
-    from antenna_cad.fabrication.sheets import fabricate_sheets
-    b = spec.fabrication.box
-    return fabricate_sheets(layup, panels, m, resolve_material(b.material),
-                            (b.board.width_mm, b.board.length_mm), spec.name)
+    return fabricate_layup(spec.fabrication, layup, panels, m, spec.name)
 
 
 def summary(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | None) -> dict[str, float]:
     """Key figures for the manifest and the terminal table."""
     figures = design.key_figures()
     if layup is not None:
-        figures |= {"sheet_count": layup.count, "sheet_thickness_mm": layup.sheet_thickness_mm,
-                    "stack_thickness_mm": layup.stack_thickness_mm, "back_slab_mm": layup.back_slab_mm}
+        figures |= layup_figures(layup)
     return figures
 
 
@@ -84,11 +66,6 @@ def fabrication_checks(spec: CollimatorSpec, design: CollimatorDesign, layup: La
     for s in layup.sheets:
         z = np.linspace(s.z_min_mm, s.z_max_mm, 257)
         fit = max(fit, abs(s.radius_mm - float(np.max(design.radius_at(z)))))
-    checks = [Check.upper("sheet_disc_fit", fit, 1e-6, "mm",
-                          "sheet disc radius vs largest lens radius in its slab (contains, no excess)")]
-    added = sum(added_in_aperture_mm2(layup, s) * s.thickness_mm for s in layup.sheets)
-    if added > 0:
-        checks.append(Check("material_in_aperture", "warn", added, 0.0, "mm3",
-                            f"necks add {added / 1e6:.3f} dm³ of foam inside the aperture cylinder "
-                            "(phase error where rays cross them; use joining: dowels to avoid it)"))
-    return checks
+    return [Check.upper("sheet_disc_fit", fit, 1e-6, "mm",
+                        "sheet disc radius vs largest lens radius in its slab (contains, no excess)")
+            ] + neck_checks(layup)

@@ -52,10 +52,5 @@ class BifocalSpec(SpecBase):
             if self.design.shape != "revolved":
                 raise ValueError("fabrication.method: sheet_layup makes a lens of revolution (disc sheets); "
                                  "a cylindrical bifocal lens needs method: solid")
-            r = self.design.edge_y_mm
-            if fab.pedestal_width_mm is not None and fab.pedestal_width_mm >= 2 * r:
-                raise ValueError(f"fabrication.pedestal_width_mm: must be < 2·design.edge_y_mm "
-                                 f"({fab.pedestal_width_mm:g} ≥ {2 * r:g})")
-            if fab.joining == "neck" and fab.neck_width_mm >= r:
-                raise ValueError(f"fabrication.neck_width_mm: must be < the lens radius ({r:g} mm)")
+            fab.check_fits_lens(self.design.edge_y_mm, "2·design.edge_y_mm")
         return self

@@ -30,10 +30,5 @@ class CollimatorSpec(SpecBase):
     def _fits(self):
         fab = self.fabrication
         if isinstance(fab, SheetLayupSpec):
-            r = self.design.diameter_mm / 2
-            if fab.pedestal_width_mm is not None and fab.pedestal_width_mm >= self.design.diameter_mm:
-                raise ValueError(f"fabrication.pedestal_width_mm: must be < design.diameter_mm "
-                                 f"({fab.pedestal_width_mm:g} ≥ {self.design.diameter_mm:g})")
-            if fab.joining == "neck" and fab.neck_width_mm >= r:
-                raise ValueError(f"fabrication.neck_width_mm: must be < the lens radius ({r:g} mm)")
+            fab.check_fits_lens(self.design.diameter_mm / 2, "design.diameter_mm")
         return self

@@ -80,6 +80,16 @@ class SheetLayupSpec(StrictModel):
     neck_width_mm: float = Field(40.0, gt=0, le=500)
     box: BoxSpec = BoxSpec()
 
+    def check_fits_lens(self, lens_radius_mm: float, diameter_field: str) -> None:
+        """Pedestal narrower than the lens and neck narrower than its radius (raises ValueError
+        naming the field, for a model validator of the lens spec)."""
+        d = 2 * lens_radius_mm
+        if self.pedestal_width_mm is not None and self.pedestal_width_mm >= d:
+            raise ValueError(f"fabrication.pedestal_width_mm: must be < {diameter_field} "
+                             f"({self.pedestal_width_mm:g} ≥ {d:g})")
+        if self.joining == "neck" and self.neck_width_mm >= lens_radius_mm:
+            raise ValueError(f"fabrication.neck_width_mm: must be < the lens radius ({lens_radius_mm:g} mm)")
+
 
 class SolidSpec(StrictModel):
     """One machined (turned/milled) body from a solid blank."""

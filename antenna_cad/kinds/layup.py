@@ -1,0 +1,54 @@
+"""Sheet-layup steps shared by every lens of revolution cut from boards (seed-000 §6):
+spec → layup plan + box, the layup's fabrication plan, its figures, and the neck warning."""
+
+from __future__ import annotations
+
+from antenna_cad.fabrication.box import plan_box
+from antenna_cad.fabrication.layup import LayupPlan, plan_layup
+from antenna_cad.fabrication.outline import added_in_aperture_mm2
+from antenna_cad.materials import Material
+from antenna_cad.spec.common import SheetLayupSpec, resolve_material
+from antenna_cad.synthesis.checks import Check, DesignError
+
+
+def plan_layup_and_box(fab: SheetLayupSpec, *, lens_radius_mm: float, lens_thickness_mm: float,
+                       radius_at=None, max_radius_in=None, z_origin_mm: float = 0.0):
+    """(LayupPlan, box panels) from the spec's ``fabrication`` block and the lens geometry."""
+    try:
+        layup = plan_layup(
+            radius_at=radius_at, max_radius_in=max_radius_in, z_origin_mm=z_origin_mm,
+            lens_thickness_mm=lens_thickness_mm, lens_radius_mm=lens_radius_mm,
+            sheet_thickness_mm=fab.sheet_thickness_mm,
+            pedestal_height_mm=fab.pedestal_height_mm, pedestal_width_mm=fab.pedestal_width_mm,
+            joining=fab.joining, dowel_diameter_mm=fab.dowel_diameter_mm,
+            neck_width_mm=fab.neck_width_mm, kerf_mm=fab.kerf_mm,
+            board_width_mm=fab.board.width_mm, board_length_mm=fab.board.length_mm)
+    except ValueError as exc:
+        field, _, message = str(exc).partition(": ")
+        raise DesignError(field, message) from None
+    b = fab.box
+    panels = plan_box(layup, wall_mm=b.wall_thickness_mm, clearance_mm=b.clearance_mm,
+                      screw_diameter_mm=b.screw_diameter_mm, screw_spacing_mm=b.screw_spacing_mm)
+    return layup, panels
+
+
+def fabricate_layup(fab: SheetLayupSpec, layup: LayupPlan, panels, foam: Material, title: str):
+    from antenna_cad.fabrication.sheets import fabricate_sheets
+    b = fab.box
+    return fabricate_sheets(layup, panels, foam, resolve_material(b.material),
+                            (b.board.width_mm, b.board.length_mm), title)
+
+
+def layup_figures(layup: LayupPlan) -> dict[str, float]:
+    return {"sheet_count": layup.count, "sheet_thickness_mm": layup.sheet_thickness_mm,
+            "stack_thickness_mm": layup.stack_thickness_mm, "back_slab_mm": layup.back_slab_mm}
+
+
+def neck_checks(layup: LayupPlan) -> list[Check]:
+    """Material the layup adds inside the aperture cylinder (necks), as a warning with its volume."""
+    added = sum(added_in_aperture_mm2(layup, s) * s.thickness_mm for s in layup.sheets)
+    if added <= 0:
+        return []
+    return [Check("material_in_aperture", "warn", added, 0.0, "mm3",
+                  f"necks add {added / 1e6:.3f} dm³ of foam inside the aperture cylinder "
+                  "(phase error where rays cross them; use joining: dowels to avoid it)")]

@@ -86,7 +86,10 @@ def dxf_document(drawing: Drawing) -> ezdxf.document.Drawing:
 
 def write_dxf(doc: ezdxf.document.Drawing, path: Path) -> None:
     """Save with fixed metadata so the bytes are reproducible: ezdxf's option fixes the header
-    dates and GUIDs; its "version @ time" marker in the metadata dictionary is pinned here."""
+    dates and GUIDs; its "version @ time" marker in the metadata dictionary is pinned here, and the
+    CLASSES section (whose order depends on what ezdxf did first in the process) is sorted."""
+    doc.classes.add_required_classes(doc.dxfversion)
+    doc.classes.classes = dict(sorted(doc.classes.classes.items()))
     previous = ezdxf.options.write_fixed_meta_data_for_testing
     ezdxf.options.write_fixed_meta_data_for_testing = True
     try:

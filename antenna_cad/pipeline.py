@@ -14,6 +14,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 from antenna_cad.export.manifest import write_manifest
+from antenna_cad.export.report import write_report
 from antenna_cad.export.mesh import ANGULAR_DEFLECTION_RAD, write_stl
 from antenna_cad.export.step import write_step
 from antenna_cad.fabrication.cutlist import cutlist_csv
@@ -24,7 +25,7 @@ from antenna_cad.spec.common import SpecBase, resolve_material
 from antenna_cad.synthesis.checks import Check
 
 Progress = Callable[[str, float], None]
-STAGES = ("synthesize", "model", "fabricate", "step", "stl", "templates", "manifest")
+STAGES = ("synthesize", "model", "fabricate", "verify", "step", "stl", "templates", "report", "manifest")
 
 
 @dataclass
@@ -38,6 +39,7 @@ class BuildResult:
     boards: dict[str, int]
     files: list[str]
     seconds: dict[str, float] = field(default_factory=dict)
+    verified: dict[str, float] = field(default_factory=dict)
 
     @property
     def status(self) -> str:
@@ -68,6 +70,9 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None) -> B
     fab = kind.fabricate(spec, design, layup, panels)
     checks += list(kind.fabrication_checks(spec, design, layup)) + list(getattr(fab, "checks", ()))
     stage("fabricate")
+    verification = kind.verify(spec, design, layup, fab)
+    checks += list(verification.checks)
+    stage("verify")
 
     out_root.mkdir(parents=True, exist_ok=True)
     final = out_root / spec.name
@@ -82,7 +87,10 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None) -> B
         for file_name, text in fab.files.items():
             (tmp / file_name).write_text(text, encoding="utf-8")
         figures = kind.summary(spec, design, layup)
-        _write_manifest(spec, tmp, figures, checks, parts, layup, fab, sheet_files)
+        if spec.outputs.report:
+            write_report(tmp / "report.html", spec, figures, checks, verification, model, fab, parts)
+        stage("report")
+        _write_manifest(spec, tmp, figures, checks, parts, layup, fab, sheet_files, verification)
         stage("manifest")
         _swap_into_place(tmp, final)
     except BaseException:
@@ -90,7 +98,7 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None) -> B
         raise
     files = sorted(p.relative_to(final).as_posix() for p in final.rglob("*") if p.is_file())
     return BuildResult(spec.name, spec.kind, final, figures, checks, dict(fab.totals_kg), dict(fab.boards),
-                       files, seconds)
+                       files, seconds, dict(verification.figures))
 
 
 def _write_solids(spec, model, out: Path, stage) -> list[dict]:
@@ -128,7 +136,7 @@ def _write_templates(spec, fab, out: Path) -> dict[str, str]:
     return files
 
 
-def _write_manifest(spec, out: Path, figures, checks, parts, layup, fab, sheet_files) -> None:
+def _write_manifest(spec, out: Path, figures, checks, parts, layup, fab, sheet_files, verification) -> None:
     material = resolve_material(spec.material)
     content = {
         "name": spec.name, "kind": spec.kind, "spec": spec.model_dump(mode="json"),
@@ -137,6 +145,9 @@ def _write_manifest(spec, out: Path, figures, checks, parts, layup, fab, sheet_f
                        "mesh_angular_deflection_rad": ANGULAR_DEFLECTION_RAD,
                        "template_chord_tolerance_mm": CHORD_TOL_MM, "kerf_mm": fab.kerf_mm},
         "checks": [asdict(c) for c in checks], "parts": parts,
+        "verification": {"figures": verification.figures,
+                         "tables": [{"name": t.name, "columns": list(t.columns), "rows": [list(r) for r in t.rows]}
+                                    for t in verification.tables]},
         "mass_kg": fab.totals_kg, "boards": fab.boards,
         "pieces": [{"label": r.part, "board": r.board, "assembly_order": r.assembly_order}
                    for r in fab.rows],

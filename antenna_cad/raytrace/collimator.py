@@ -15,6 +15,7 @@ import numpy as np
 
 from antenna_cad.raytrace.snell import refract
 from antenna_cad.synthesis.collimator import profile_z_mm, surface_normal
+from antenna_cad.verification import detrended
 
 
 @dataclass(frozen=True)
@@ -29,9 +30,7 @@ class ApertureTrace:
 
     def detrended_phase_deg(self) -> np.ndarray:
         """Aperture phase with the best-fit linear tilt removed (seed-000 §4.1, (2.16))."""
-        phase = self.phase_deg()
-        coeffs = np.polyfit(self.y_mm, phase, 1)
-        return phase - np.polyval(coeffs, self.y_mm)
+        return detrended(self.y_mm, self.phase_deg())
 
     def peak_to_peak_deg(self) -> float:
         p = self.detrended_phase_deg()

@@ -104,6 +104,7 @@ class OutputsSpec(StrictModel):
     step: bool = True
     stl: bool = True
     templates: bool = True
+    report: bool = Field(True, description="report.html: figures, checks, plots, pictures, cut list")
     mesh_tolerance_mm: float = Field(0.05, gt=0, le=5, description="absolute chord deviation of meshes")
 
 

@@ -108,12 +108,22 @@ class OutputsSpec(StrictModel):
     mesh_tolerance_mm: float = Field(0.05, gt=0, le=5, description="absolute chord deviation of meshes")
 
 
+class TolerancesSpec(StrictModel):
+    """Build tolerances for the sensitivity study of the as-built verification (issue 6)."""
+    eps_r_tolerance: float = Field(0.01, ge=0, le=1, description="± spread of the material's εr (absolute)")
+    thickness_tolerance_mm: float = Field(0.5, ge=0, le=20,
+                                          description="± stock board / sheet / machining thickness")
+    feed_position_tolerance_mm: float = Field(2.0, ge=0, le=200,
+                                              description="± feed placement error, axial and transverse")
+
+
 class SpecBase(StrictModel):
     name: str = Field(pattern=r"^[a-z0-9][a-z0-9._-]*$", max_length=100)
     frequency_ghz: float = Field(gt=0, le=1000)
     material: MaterialRef
     fabrication: Fabrication
     outputs: OutputsSpec = OutputsSpec()
+    tolerances: TolerancesSpec = TolerancesSpec()
 
     @field_validator("material")
     @classmethod

@@ -1,13 +1,142 @@
-"""report.html: one self-contained page per build (DESIGN.md "Output folder"; issue 6)."""
+"""report.html: one self-contained page per build (DESIGN.md "Output folder"; issue 6).
+
+The page carries everything inline — plots as SVG, pictures as base64 PNG, CSS in the head, no
+scripts and no network — so it opens the same offline, from a mail attachment or a USB stick.
+"""
 
 from __future__ import annotations
 
+import base64
 import html
 from pathlib import Path
 
+import yaml
+
+from antenna_cad import __version__
+from antenna_cad.export.mesh import mesh_shape
+from antenna_cad.export.plots import assembly_png, plot_svg
+from antenna_cad.fabrication.cutlist import FIELDS as CUT_FIELDS
+from antenna_cad.verification import Table
+
+PALETTE = ("#9ecae1", "#fdae6b", "#a1d99b", "#bcbddc", "#fdd0a2", "#c7e9c0", "#dadaeb", "#c6dbef",
+           "#fcbba1", "#d9d9d9")
+METAL = "#9a9a9a"
+PICTURE_FACETS = 200.0         # chord tolerance of the pictures = model size / this
+
+CSS = """
+body{font:14px/1.45 system-ui,sans-serif;margin:0 auto;max-width:1100px;padding:0 1.2em 3em;color:#222}
+h1{margin:.6em 0 .1em}h2{border-bottom:2px solid #ddd;padding-bottom:.15em;margin-top:1.8em}
+table{border-collapse:collapse;margin:.6em 0;font-size:13px}td,th{border:1px solid #ccc;padding:2px 7px;
+text-align:left;vertical-align:top}th{background:#f2f2f2}td.num{text-align:right;font-variant-numeric:tabular-nums}
+.pass{background:#d9f2d9}.warn{background:#fff1c2}.fail{background:#f8d0d0}
+.badge{display:inline-block;padding:1px 10px;border-radius:9px;font-weight:600}
+figure{margin:1em 0;page-break-inside:avoid}figure svg,figure img{max-width:100%;height:auto}
+figcaption{font-size:12px;color:#555}pre{background:#f7f7f7;padding:.7em;overflow:auto;font-size:12px}
+nav a{margin-right:1em}.scroll{max-height:32em;overflow:auto}
+@media print{nav{display:none}.scroll{max-height:none}}
+"""
+
 
 def write_report(path: Path, spec, figures, checks, verification, model, fab, parts) -> None:
-    rows = "".join(f"<tr><td>{html.escape(c.name)}</td><td>{c.status}</td><td>{html.escape(c.message)}</td></tr>"
-                   for c in checks)
-    path.write_text(f"<!doctype html><html><head><meta charset='utf-8'><title>{spec.name}</title></head>"
-                    f"<body><h1>{spec.name}</h1><table>{rows}</table></body></html>\n", encoding="utf-8")
+    """Write the report of one build into ``path`` (its folder holds the other outputs)."""
+    out = path.parent
+    files = sorted([p.relative_to(out).as_posix() for p in out.rglob("*") if p.is_file()]
+                   + [path.name, "manifest.json"])
+    status = _overall(checks)
+    sections = [
+        ("summary", "Key figures", _figure_table(figures)),
+        ("checks", "Checks", _checks_table(checks)),
+        ("verification", "As-built verification", _verification(verification)),
+        ("pictures", "Assembly", _pictures(model)),
+        ("cutlist", "Cut list", _cutlist(fab)),
+        ("files", "Files", _files(files, parts)),
+        ("spec", "Spec", f"<pre>{html.escape(yaml.safe_dump(spec.model_dump(mode='json'), sort_keys=False))}</pre>"),
+    ]
+    nav = "".join(f'<a href="#{sid}">{title}</a>' for sid, title, _ in sections)
+    body = "".join(f'<section id="{sid}"><h2>{title}</h2>{content}</section>' for sid, title, content in sections)
+    page = (f'<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
+            f'<meta name="viewport" content="width=device-width,initial-scale=1">'
+            f"<title>{html.escape(spec.name)} — antenna_cad report</title><style>{CSS}</style></head><body>"
+            f"<h1>{html.escape(spec.name)}</h1><p>kind <b>{spec.kind}</b> · {spec.frequency_ghz:g} GHz · "
+            f"antenna_cad {__version__} · overall <span class='badge {status}'>{status}</span></p>"
+            f"<nav>{nav}</nav>{body}</body></html>\n")
+    path.write_text(page, encoding="utf-8")
+
+
+def _overall(checks) -> str:
+    statuses = {c.status for c in checks}
+    return "fail" if "fail" in statuses else ("warn" if "warn" in statuses else "pass")
+
+
+def _cell(value) -> str:
+    if isinstance(value, bool):
+        return f"<td>{'yes' if value else 'no'}</td>"
+    if isinstance(value, (int, float)):
+        return f'<td class="num">{value:.6g}</td>'
+    return f"<td>{html.escape(str(value))}</td>"
+
+
+def _table(columns, rows, css_id: str = "") -> str:
+    head = "".join(f"<th>{html.escape(str(c))}</th>" for c in columns)
+    body = "".join("<tr>" + "".join(_cell(v) for v in row) + "</tr>" for row in rows)
+    ident = f' id="{css_id}"' if css_id else ""
+    return f'<table{ident}><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'
+
+
+def _figure_table(figures: dict) -> str:
+    return _table(("figure", "value"), sorted(figures.items()))
+
+
+def _checks_table(checks) -> str:
+    rows = "".join(f'<tr class="{c.status}"><td>{html.escape(c.name)}</td><td>{c.status}</td>'
+                   f"<td>{html.escape(c.message)}</td></tr>" for c in checks)
+    return f"<table><thead><tr><th>check</th><th>status</th><th>detail</th></tr></thead><tbody>{rows}</tbody></table>"
+
+
+def _verification(v) -> str:
+    parts = [_figure_table(v.figures)] if v.figures else []
+    parts += [_named_table(t) for t in v.tables]
+    parts += [f'<figure class="plot" id="plot-{p.name}">{plot_svg(p)}'
+              f"<figcaption>{html.escape(p.caption or p.title)}</figcaption></figure>" for p in v.plots]
+    return "".join(parts) or "<p>No as-built verification for this kind.</p>"
+
+
+def _named_table(t: Table) -> str:
+    caption = f"<figcaption>{html.escape(t.caption)}</figcaption>" if t.caption else ""
+    return (f'<figure class="table" id="table-{t.name}"><h3>{html.escape(t.title)}</h3>'
+            f'<div class="scroll">{_table(t.columns, t.rows)}</div>{caption}</figure>')
+
+
+def _pictures(model) -> str:
+    """Orthographic and isometric views of the parts to make (all parts when none is marked so)."""
+    parts = [p for p in model.parts if p.role == "fabricated"] or list(model.parts)
+    materials = sorted({p.material.name: p.material for p in parts}.items())
+    colour = {name: METAL if _is_metal(m) else PALETTE[i % len(PALETTE)] for i, (name, m) in enumerate(materials)}
+    bb = parts[0].shape.bounding_box()
+    for p in parts[1:]:
+        bb.add(p.shape.bounding_box())
+    tol = max(bb.diagonal / PICTURE_FACETS, 0.05)
+    meshes = [(mesh_shape(p.shape, tol), colour[p.material.name]) for p in parts]
+    png = base64.b64encode(assembly_png(meshes)).decode("ascii")
+    legend = " · ".join(f'<span style="background:{c};padding:0 .6em">&nbsp;</span> {html.escape(m)}'
+                        for m, c in colour.items())
+    return (f'<figure class="picture" id="views"><img alt="assembly views" src="data:image/png;base64,{png}">'
+            f"<figcaption>{len(parts)} parts; {legend}</figcaption></figure>")
+
+
+def _is_metal(material) -> bool:
+    """Conductors are carried as εr = 1, tanδ = 0 materials (kinds/slot_array.py)."""
+    return material.eps_r == 1.0 and material.tan_delta == 0.0
+
+
+def _cutlist(fab) -> str:
+    rows = [[getattr(r, f) for f in CUT_FIELDS] for r in fab.rows]
+    totals = _table(("material", "mass kg"), sorted(fab.totals_kg.items()))
+    boards = _table(("material", "boards"), sorted(fab.boards.items()))
+    return f'<div class="scroll">{_table(CUT_FIELDS, rows, "cutlist-table")}</div>{totals}{boards}'
+
+
+def _files(files: list[str], parts: list[dict]) -> str:
+    volumes = {p.get("file"): p["volume_mm3"] for p in parts}
+    rows = [(f, volumes.get(f, "")) for f in files]
+    return f'<div class="scroll">{_table(("file", "solid volume mm³"), rows)}</div>'

@@ -1,0 +1,97 @@
+"""Drawing for the report: verification plots as inline SVG, pictures of the assembly as PNG.
+
+matplotlib (Agg) only (DESIGN.md "Libraries"). Output is reproducible: fixed SVG id salt, no dates
+or software stamps, glyphs as paths (the SVG needs no fonts), stable depth sorting.
+"""
+
+from __future__ import annotations
+
+import io
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import trimesh  # noqa: E402
+from matplotlib.collections import PolyCollection  # noqa: E402
+
+from antenna_cad.verification import Plot  # noqa: E402
+
+STYLE = {"svg.hashsalt": "antenna_cad", "svg.fonttype": "path", "font.size": 9, "axes.grid": True,
+         "grid.alpha": 0.3, "figure.dpi": 100}
+
+
+def plot_svg(plot: Plot) -> str:
+    """One verification plot as an SVG document (text)."""
+    with plt.rc_context(STYLE):
+        fig, ax = plt.subplots(figsize=(7.0, 4.2) if not plot.equal_aspect else (7.0, 5.0))
+        for s in plot.series:
+            x, y = np.asarray(s.x, float), np.asarray(s.y, float)
+            if s.style == "fill":
+                ax.fill_between(x, y, alpha=0.35, label=s.label, linewidth=0)
+            elif s.style == "points":
+                ax.plot(x, y, ".", markersize=3, label=s.label)
+            elif s.style == "steps":
+                ax.step(x, y, where="post", label=s.label, linewidth=1.2)
+            else:
+                ax.plot(x, y, "--" if s.style == "dashed" else "-", label=s.label, linewidth=1.2)
+        for label, value in plot.hlines:
+            ax.axhline(value, color="0.3", linestyle=":", linewidth=1.0, label=label)
+        if plot.equal_aspect:
+            ax.set_aspect("equal", adjustable="datalim")
+        ax.set_title(plot.title)
+        ax.set_xlabel(plot.x_label)
+        ax.set_ylabel(plot.y_label)
+        if any(s.label for s in plot.series) or plot.hlines:
+            ax.legend(loc="best", fontsize=8)
+        fig.tight_layout()
+        buf = io.StringIO()
+        fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None})
+        plt.close(fig)
+    text = buf.getvalue()
+    return text[text.index("<svg"):]       # drop the XML prolog and doctype: inline in HTML
+
+
+# ---- pictures of the assembly -------------------------------------------------------------
+
+VIEWS = (  # title, view direction (from the eye into the scene), up vector; frame of DESIGN.md
+    ("front (from the antenna side, −Z)", (0.0, 0.0, -1.0), (0.0, 1.0, 0.0)),
+    ("side (from +X)", (-1.0, 0.0, 0.0), (0.0, 1.0, 0.0)),
+    ("top (from +Y)", (0.0, -1.0, 0.0), (0.0, 0.0, -1.0)),
+    ("isometric", (-1.0, -1.0, -1.0), (0.0, 1.0, 0.0)),
+)
+LIGHT = np.array([-0.4, 0.8, -0.45])
+
+
+def assembly_png(meshes: list[tuple[trimesh.Trimesh, str]]) -> bytes:
+    """Four shaded orthographic views (front, side, top, isometric) of coloured meshes, one PNG.
+
+    Painter's algorithm: parts drawn far to near by their centres, inside a part the back faces
+    culled and the rest sorted far to near; Lambert shading."""
+    light = LIGHT / np.linalg.norm(LIGHT)
+    with plt.rc_context(STYLE | {"axes.grid": False}):
+        fig, axes = plt.subplots(2, 2, figsize=(10, 8))
+        for ax, (title, view, up) in zip(axes.flat, VIEWS):
+            d = np.asarray(view, float) / np.linalg.norm(view)
+            right = np.cross(d, up)
+            right /= np.linalg.norm(right)
+            screen = np.stack([right, np.cross(right, d)], axis=-1)
+            for mesh, colour in sorted(meshes, key=lambda mc: -float(mc[0].bounds.mean(axis=0) @ d)):
+                front = np.flatnonzero(mesh.face_normals @ d < 0)                  # facing the eye
+                tris = mesh.triangles[front]
+                order = np.argsort(-(tris.mean(axis=1) @ d), kind="stable")        # farthest first
+                shade = 0.45 + 0.55 * np.abs(mesh.face_normals[front][order] @ light)
+                rgb = np.clip(np.outer(shade, matplotlib.colors.to_rgb(colour)), 0, 1)
+                ax.add_collection(PolyCollection(tris[order] @ screen, facecolors=rgb, edgecolors="none",
+                                                 antialiased=False))
+            ax.autoscale_view()
+            ax.set_aspect("equal")
+            ax.set_title(title)
+            ax.set_xticks([])
+            ax.set_yticks([])
+        fig.tight_layout()
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", metadata={"Software": None})
+        plt.close(fig)
+    return buf.getvalue()

@@ -76,7 +76,7 @@ def validate(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YA
 @app.command()
 def build(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML"),
           out: Path = typer.Option(Path("exports"), "-o", "--out", help="output root folder")) -> None:
-    """Build STEP/STL, templates, cut list and manifest into OUT/<name>/."""
+    """Build STEP/STL, templates, cut list, report.html and manifest into OUT/<name>/."""
     from rich.progress import Progress
 
     from antenna_cad.pipeline import build as run_build
@@ -103,7 +103,7 @@ def _summary_table(result) -> Table:
     table = Table(title=f"{result.name} ({result.kind})")
     table.add_column("figure")
     table.add_column("value", justify="right")
-    for key, value in result.figures.items():
+    for key, value in list(result.figures.items()) + [(f"as-built {k}", v) for k, v in result.verified.items()]:
         table.add_row(key, f"{value:.6g}" if isinstance(value, float) else str(value))
     for material, count in result.boards.items():
         table.add_row(f"boards {material}", str(count))

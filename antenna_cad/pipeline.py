@@ -88,7 +88,7 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None) -> B
             (tmp / file_name).write_text(text, encoding="utf-8")
         figures = kind.summary(spec, design, layup)
         if spec.outputs.report:
-            write_report(tmp / "report.html", spec, figures, checks, verification, model, fab, parts)
+            write_report(tmp, spec, figures, checks, verification, model, fab, parts)
         stage("report")
         _write_manifest(spec, tmp, figures, checks, parts, layup, fab, sheet_files, verification)
         stage("manifest")

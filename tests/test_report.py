@@ -1,4 +1,4 @@
-"""report.html: self-contained, reproducible, and it renders in a real browser (headless Chromium,
+"""report.html (+ its workshop copy report.pdf): self-contained, reproducible, and it renders in a real browser (headless Chromium,
 Debian's `chromium` + `chromium-driver`, installed by .ci/run) with no console errors and every
 figure drawn."""
 
@@ -7,6 +7,7 @@ import re
 import shutil
 from pathlib import Path
 
+import pypdf
 import pytest
 from selenium import webdriver
 from selenium.webdriver.chrome.service import Service
@@ -92,7 +93,21 @@ def test_every_verification_plot_and_table_is_in_the_report(reports):
         assert f'id="table-{table.name}"' in page
 
 
+@pytest.mark.parametrize("name", RECIPES)
+def test_workshop_pdf_has_the_same_content_on_a4(reports, name):
+    result = reports[name]
+    pdf = pypdf.PdfReader(result.out_dir / "report.pdf")
+    for page in pdf.pages:
+        assert (float(page.mediabox.width), float(page.mediabox.height)) == pytest.approx((595.4, 841.7), abs=0.5)
+    text = "".join(page.extract_text() for page in pdf.pages)
+    manifest = json.loads((result.out_dir / "manifest.json").read_text())
+    for check in manifest["checks"]:
+        assert check["name"] in text
+    for piece in manifest["pieces"]:
+        assert piece["label"] in text
+
+
 def test_report_is_reproducible(reports, tmp_path):
     again = build(load_spec(ROOT / "recipes" / "ptfe-lens-120mm.yaml"), tmp_path)
-    assert (again.out_dir / "report.html").read_bytes() == (reports["ptfe-lens-120mm"].out_dir
-                                                            / "report.html").read_bytes()
+    for file in ("report.html", "report.pdf"):
+        assert (again.out_dir / file).read_bytes() == (reports["ptfe-lens-120mm"].out_dir / file).read_bytes()

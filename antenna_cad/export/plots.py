@@ -22,29 +22,34 @@ STYLE = {"svg.hashsalt": "antenna_cad", "svg.fonttype": "path", "font.size": 9, 
          "grid.alpha": 0.3, "figure.dpi": 100}
 
 
+def draw_plot(ax, plot: Plot) -> None:
+    """Draw one verification plot onto matplotlib axes (for the SVG of the page and the PDF)."""
+    for s in plot.series:
+        x, y = np.asarray(s.x, float), np.asarray(s.y, float)
+        if s.style == "fill":
+            ax.fill_between(x, y, alpha=0.35, label=s.label, linewidth=0)
+        elif s.style == "points":
+            ax.plot(x, y, ".", markersize=3, label=s.label)
+        elif s.style == "steps":
+            ax.step(x, y, where="post", label=s.label, linewidth=1.2)
+        else:
+            ax.plot(x, y, "--" if s.style == "dashed" else "-", label=s.label, linewidth=1.2)
+    for label, value in plot.hlines:
+        ax.axhline(value, color="0.3", linestyle=":", linewidth=1.0, label=label)
+    if plot.equal_aspect:
+        ax.set_aspect("equal", adjustable="datalim")
+    ax.set_title(plot.title)
+    ax.set_xlabel(plot.x_label)
+    ax.set_ylabel(plot.y_label)
+    if any(s.label for s in plot.series) or plot.hlines:
+        ax.legend(loc="best", fontsize=8)
+
+
 def plot_svg(plot: Plot) -> str:
-    """One verification plot as an SVG document (text)."""
+    """One verification plot as an inline SVG element (text)."""
     with plt.rc_context(STYLE):
         fig, ax = plt.subplots(figsize=(7.0, 4.2) if not plot.equal_aspect else (7.0, 5.0))
-        for s in plot.series:
-            x, y = np.asarray(s.x, float), np.asarray(s.y, float)
-            if s.style == "fill":
-                ax.fill_between(x, y, alpha=0.35, label=s.label, linewidth=0)
-            elif s.style == "points":
-                ax.plot(x, y, ".", markersize=3, label=s.label)
-            elif s.style == "steps":
-                ax.step(x, y, where="post", label=s.label, linewidth=1.2)
-            else:
-                ax.plot(x, y, "--" if s.style == "dashed" else "-", label=s.label, linewidth=1.2)
-        for label, value in plot.hlines:
-            ax.axhline(value, color="0.3", linestyle=":", linewidth=1.0, label=label)
-        if plot.equal_aspect:
-            ax.set_aspect("equal", adjustable="datalim")
-        ax.set_title(plot.title)
-        ax.set_xlabel(plot.x_label)
-        ax.set_ylabel(plot.y_label)
-        if any(s.label for s in plot.series) or plot.hlines:
-            ax.legend(loc="best", fontsize=8)
+        draw_plot(ax, plot)
         fig.tight_layout()
         buf = io.StringIO()
         fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None})

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import base64
 import html
+from dataclasses import dataclass
 from pathlib import Path
 
 import yaml
@@ -16,11 +17,12 @@ from antenna_cad import __version__
 from antenna_cad.export.mesh import mesh_shape
 from antenna_cad.export.plots import assembly_png, plot_svg
 from antenna_cad.fabrication.cutlist import FIELDS as CUT_FIELDS
-from antenna_cad.verification import Table
+from antenna_cad.verification import Table, Verification
 
 PALETTE = ("#9ecae1", "#fdae6b", "#a1d99b", "#bcbddc", "#fdd0a2", "#c7e9c0", "#dadaeb", "#c6dbef",
            "#fcbba1", "#d9d9d9")
 METAL = "#9a9a9a"
+REPORT_HTML, REPORT_PDF = "report.html", "report.pdf"
 PICTURE_FACETS = 200.0         # chord tolerance of the pictures = model size / this
 
 CSS = """
@@ -37,29 +39,74 @@ nav a{margin-right:1em}.scroll{max-height:32em;overflow:auto}
 """
 
 
-def write_report(path: Path, spec, figures, checks, verification, model, fab, parts) -> None:
-    """Write the report of one build into ``path`` (its folder holds the other outputs)."""
-    out = path.parent
-    files = sorted([p.relative_to(out).as_posix() for p in out.rglob("*") if p.is_file()]
-                   + [path.name, "manifest.json"])
-    status = _overall(checks)
+@dataclass(frozen=True)
+class ReportContent:
+    """What both the page and the workshop PDF show, gathered once."""
+    name: str
+    kind: str
+    frequency_ghz: float
+    status: str
+    figures: dict
+    checks: tuple
+    verification: Verification
+    views_png: bytes
+    view_legend: dict[str, str]          # material -> colour
+    view_parts: int
+    cut_rows: tuple[tuple, ...]
+    totals_kg: dict[str, float]
+    boards: dict[str, int]
+    files: tuple[tuple[str, object], ...]   # (path, solid volume or "")
+    spec_yaml: str
+
+
+def report_content(out: Path, spec, figures, checks, verification, model, fab, parts) -> ReportContent:
+    """Collect the report of the build in folder ``out`` (the files written so far, plus the
+    report's own files and the manifest)."""
+    written = [p.relative_to(out).as_posix() for p in out.rglob("*") if p.is_file()]
+    volumes = {p.get("file"): p["volume_mm3"] for p in parts}
+    files = sorted(set(written) | {REPORT_HTML, REPORT_PDF, "manifest.json"})
+    png, legend, count = _pictures(model)
+    return ReportContent(
+        spec.name, spec.kind, spec.frequency_ghz, _overall(checks), dict(figures), tuple(checks), verification,
+        png, legend, count, tuple(tuple(getattr(r, f) for f in CUT_FIELDS) for r in fab.rows),
+        dict(fab.totals_kg), dict(fab.boards), tuple((f, volumes.get(f, "")) for f in files),
+        yaml.safe_dump(spec.model_dump(mode="json"), sort_keys=False))
+
+
+def write_report(out: Path, spec, figures, checks, verification, model, fab, parts) -> None:
+    """Write report.html and report.pdf of one build into folder ``out``."""
+    from antenna_cad.export.report_pdf import write_report_pdf
+    content = report_content(out, spec, figures, checks, verification, model, fab, parts)
+    write_report_html(out / REPORT_HTML, content)
+    write_report_pdf(out / REPORT_PDF, content)
+
+
+def write_report_html(path: Path, r: ReportContent) -> None:
+    legend = " · ".join(f'<span style="background:{c};padding:0 .6em">&nbsp;</span> {html.escape(m)}'
+                        for m, c in r.view_legend.items())
+    png = base64.b64encode(r.views_png).decode("ascii")
+    pictures = (f'<figure class="picture" id="views"><img alt="assembly views" src="data:image/png;base64,{png}">'
+                f"<figcaption>{r.view_parts} parts; {legend}</figcaption></figure>")
+    cutlist = (f'<div class="scroll">{_table(CUT_FIELDS, r.cut_rows, "cutlist-table")}</div>'
+               f'{_table(("material", "mass kg"), sorted(r.totals_kg.items()))}'
+               f'{_table(("material", "boards"), sorted(r.boards.items()))}')
     sections = [
-        ("summary", "Key figures", _figure_table(figures)),
-        ("checks", "Checks", _checks_table(checks)),
-        ("verification", "As-built verification", _verification(verification)),
-        ("pictures", "Assembly", _pictures(model)),
-        ("cutlist", "Cut list", _cutlist(fab)),
-        ("files", "Files", _files(files, parts)),
-        ("spec", "Spec", f"<pre>{html.escape(yaml.safe_dump(spec.model_dump(mode='json'), sort_keys=False))}</pre>"),
+        ("summary", "Key figures", _table(("figure", "value"), sorted(r.figures.items()))),
+        ("checks", "Checks", _checks_table(r.checks)),
+        ("verification", "As-built verification", _verification(r.verification)),
+        ("pictures", "Assembly", pictures),
+        ("cutlist", "Cut list", cutlist),
+        ("files", "Files", f'<div class="scroll">{_table(("file", "solid volume mm³"), r.files)}</div>'),
+        ("spec", "Spec", f"<pre>{html.escape(r.spec_yaml)}</pre>"),
     ]
     nav = "".join(f'<a href="#{sid}">{title}</a>' for sid, title, _ in sections)
     body = "".join(f'<section id="{sid}"><h2>{title}</h2>{content}</section>' for sid, title, content in sections)
     page = (f'<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
             f'<meta name="viewport" content="width=device-width,initial-scale=1">'
-            f"<title>{html.escape(spec.name)} — antenna_cad report</title><style>{CSS}</style></head><body>"
-            f"<h1>{html.escape(spec.name)}</h1><p>kind <b>{spec.kind}</b> · {spec.frequency_ghz:g} GHz · "
-            f"antenna_cad {__version__} · overall <span class='badge {status}'>{status}</span></p>"
-            f"<nav>{nav}</nav>{body}</body></html>\n")
+            f"<title>{html.escape(r.name)} — antenna_cad report</title><style>{CSS}</style></head><body>"
+            f"<h1>{html.escape(r.name)}</h1><p>kind <b>{r.kind}</b> · {r.frequency_ghz:g} GHz · "
+            f"antenna_cad {__version__} · overall <span class='badge {r.status}'>{r.status}</span> · "
+            f"workshop copy: {REPORT_PDF}</p><nav>{nav}</nav>{body}</body></html>\n")
     path.write_text(page, encoding="utf-8")
 
 
@@ -83,10 +130,6 @@ def _table(columns, rows, css_id: str = "") -> str:
     return f'<table{ident}><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'
 
 
-def _figure_table(figures: dict) -> str:
-    return _table(("figure", "value"), sorted(figures.items()))
-
-
 def _checks_table(checks) -> str:
     rows = "".join(f'<tr class="{c.status}"><td>{html.escape(c.name)}</td><td>{c.status}</td>'
                    f"<td>{html.escape(c.message)}</td></tr>" for c in checks)
@@ -94,7 +137,7 @@ def _checks_table(checks) -> str:
 
 
 def _verification(v) -> str:
-    parts = [_figure_table(v.figures)] if v.figures else []
+    parts = [_table(("figure", "value"), sorted(v.figures.items()))] if v.figures else []
     parts += [_named_table(t) for t in v.tables]
     parts += [f'<figure class="plot" id="plot-{p.name}">{plot_svg(p)}'
               f"<figcaption>{html.escape(p.caption or p.title)}</figcaption></figure>" for p in v.plots]
@@ -107,8 +150,9 @@ def _named_table(t: Table) -> str:
             f'<div class="scroll">{_table(t.columns, t.rows)}</div>{caption}</figure>')
 
 
-def _pictures(model) -> str:
-    """Orthographic and isometric views of the parts to make (all parts when none is marked so)."""
+def _pictures(model) -> tuple[bytes, dict[str, str], int]:
+    """Orthographic and isometric views of the parts to make (all parts when none is marked so):
+    the PNG, the material colours and the part count."""
     parts = [p for p in model.parts if p.role == "fabricated"] or list(model.parts)
     materials = sorted({p.material.name: p.material for p in parts}.items())
     colour = {name: METAL if _is_metal(m) else PALETTE[i % len(PALETTE)] for i, (name, m) in enumerate(materials)}
@@ -117,26 +161,9 @@ def _pictures(model) -> str:
         bb.add(p.shape.bounding_box())
     tol = max(bb.diagonal / PICTURE_FACETS, 0.05)
     meshes = [(mesh_shape(p.shape, tol), colour[p.material.name]) for p in parts]
-    png = base64.b64encode(assembly_png(meshes)).decode("ascii")
-    legend = " · ".join(f'<span style="background:{c};padding:0 .6em">&nbsp;</span> {html.escape(m)}'
-                        for m, c in colour.items())
-    return (f'<figure class="picture" id="views"><img alt="assembly views" src="data:image/png;base64,{png}">'
-            f"<figcaption>{len(parts)} parts; {legend}</figcaption></figure>")
+    return assembly_png(meshes), colour, len(parts)
 
 
 def _is_metal(material) -> bool:
     """Conductors are carried as εr = 1, tanδ = 0 materials (kinds/slot_array.py)."""
     return material.eps_r == 1.0 and material.tan_delta == 0.0
-
-
-def _cutlist(fab) -> str:
-    rows = [[getattr(r, f) for f in CUT_FIELDS] for r in fab.rows]
-    totals = _table(("material", "mass kg"), sorted(fab.totals_kg.items()))
-    boards = _table(("material", "boards"), sorted(fab.boards.items()))
-    return f'<div class="scroll">{_table(CUT_FIELDS, rows, "cutlist-table")}</div>{totals}{boards}'
-
-
-def _files(files: list[str], parts: list[dict]) -> str:
-    volumes = {p.get("file"): p["volume_mm3"] for p in parts}
-    rows = [(f, volumes.get(f, "")) for f in files]
-    return f'<div class="scroll">{_table(("file", "solid volume mm³"), rows)}</div>'

@@ -1,0 +1,87 @@
+"""report.pdf: the workshop copy of the report — the same content as report.html on A4 pages.
+
+Text pages in a monospaced font (figures, checks, tables, cut list, files), the verification plots
+two to a page and the assembly views; matplotlib's PdfPages with fixed metadata (reproducible).
+"""
+
+from __future__ import annotations
+
+import io
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.image  # noqa: E402
+from matplotlib.backends.backend_pdf import PdfPages  # noqa: E402
+from matplotlib.figure import Figure  # noqa: E402
+
+from antenna_cad import __version__  # noqa: E402
+from antenna_cad.export.plots import STYLE, draw_plot  # noqa: E402
+from antenna_cad.fabrication.cutlist import FIELDS as CUT_FIELDS  # noqa: E402
+
+A4_INCH = (8.27, 11.69)
+LINES_PER_PAGE = 86
+CUT_COLUMNS = ("part", "material", "board", "board_x_mm", "board_y_mm", "rotated", "width_mm", "height_mm",
+               "thickness_mm", "mass_kg", "assembly_order")
+
+
+def write_report_pdf(path: Path, r) -> None:
+    """``r``: the ReportContent of export/report.py."""
+    metadata = {"Title": f"{r.name} report", "Creator": "antenna_cad", "Producer": "antenna_cad",
+                "CreationDate": None}
+    head = [f"{r.name} — kind {r.kind}, {r.frequency_ghz:g} GHz, antenna_cad {__version__}, overall {r.status}", ""]
+    checks = [f"{c.status:4}  {c.name}: {c.message}" for c in r.checks]
+    v = r.verification
+    verification = (format_table(("figure", "value"), sorted(v.figures.items())) if v.figures else [])
+    for t in v.tables:
+        verification += ["", t.title] + format_table(t.columns, t.rows)
+    cut = [CUT_FIELDS.index(c) for c in CUT_COLUMNS]
+    cutlist = (format_table(CUT_COLUMNS, [[row[i] for i in cut] for row in r.cut_rows]) + [""]
+               + format_table(("material", "mass kg"), sorted(r.totals_kg.items())) + [""]
+               + format_table(("material", "boards"), sorted(r.boards.items())))
+    with matplotlib.rc_context(STYLE), PdfPages(path, metadata=metadata) as pdf:
+        _text_pages(pdf, "Key figures and checks",
+                    head + format_table(("figure", "value"), sorted(r.figures.items())) + ["", "Checks"] + checks)
+        if verification:
+            _text_pages(pdf, "As-built verification", verification)
+        for k in range(0, len(v.plots), 2):
+            fig = Figure(figsize=A4_INCH)
+            for j, plot in enumerate(v.plots[k:k + 2]):
+                draw_plot(fig.add_subplot(2, 1, j + 1), plot)
+            fig.tight_layout(pad=2.0)
+            pdf.savefig(fig)
+        fig = Figure(figsize=A4_INCH)
+        ax = fig.add_axes((0.03, 0.2, 0.94, 0.7))
+        ax.imshow(matplotlib.image.imread(io.BytesIO(r.views_png), format="png"))
+        ax.axis("off")
+        fig.text(0.05, 0.95, f"{r.name}: assembly ({r.view_parts} parts; "
+                 + ", ".join(f"{m}" for m in r.view_legend) + ")", fontsize=10)
+        pdf.savefig(fig)
+        _text_pages(pdf, "Cut list", cutlist)
+        _text_pages(pdf, "Files", format_table(("file", "solid volume mm3"), r.files))
+
+
+def format_table(columns, rows) -> list[str]:
+    """Fixed-width text lines of a table (numbers to 6 significant digits)."""
+    cells = [[str(c) for c in columns]] + [[_text(v) for v in row] for row in rows]
+    widths = [max(len(row[i]) for row in cells) for i in range(len(columns))]
+    lines = ["  ".join(c.ljust(w) for c, w in zip(row, widths)).rstrip() for row in cells]
+    return [lines[0], "-" * len(lines[0])] + lines[1:]
+
+
+def _text(value) -> str:
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    return str(value)
+
+
+def _text_pages(pdf: PdfPages, heading: str, lines: list[str]) -> None:
+    for start in range(0, max(len(lines), 1), LINES_PER_PAGE):
+        fig = Figure(figsize=A4_INCH)
+        fig.text(0.05, 0.965, heading, fontsize=12, weight="bold")
+        fig.text(0.05, 0.945, "\n".join(lines[start:start + LINES_PER_PAGE]), family="monospace",
+                 fontsize=6.5, va="top", linespacing=1.25)
+        pdf.savefig(fig)

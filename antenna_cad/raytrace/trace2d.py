@@ -65,6 +65,13 @@ class Trace2D:
     index: np.ndarray | None = None   # (K[+1], N)
 
 
+def aim_at_face(face: Interface, feed: np.ndarray, half_width_mm: float, rays: int) -> np.ndarray:
+    """Unit directions from ``feed`` to ``rays`` points of ``face`` spread uniformly over |y| ≤ half_width."""
+    y = np.linspace(-half_width_mm, half_width_mm, rays)
+    v = np.stack([face.z_of_y(y), y], -1) - np.asarray(feed, float)
+    return v / np.linalg.norm(v, axis=-1, keepdims=True)
+
+
 def intersect(origins: np.ndarray, directions: np.ndarray, surf: Interface,
               tol: float = 1e-12, max_iter: int = 60) -> tuple[np.ndarray, np.ndarray]:
     """Ray parameter t ≥ 0 where ``origin + t·direction`` meets ``z = f(y)``; returns (t, ok)."""

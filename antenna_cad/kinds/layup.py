@@ -11,14 +11,15 @@ from antenna_cad.spec.common import SheetLayupSpec, resolve_material
 from antenna_cad.synthesis.checks import Check, DesignError
 
 
-def plan_layup_and_box(fab: SheetLayupSpec, *, lens_radius_mm: float, lens_thickness_mm: float,
-                       radius_at=None, max_radius_in=None, z_origin_mm: float = 0.0):
-    """(LayupPlan, box panels) from the spec's ``fabrication`` block and the lens geometry."""
+def plan_sheets(fab: SheetLayupSpec, sheet_thickness_mm: float, *, lens_radius_mm: float,
+                lens_thickness_mm: float, radius_at=None, max_radius_in=None, z_origin_mm: float = 0.0) -> LayupPlan:
+    """The LayupPlan of ``sheet_thickness_mm`` boards from the spec's ``fabrication`` block and the
+    lens geometry (a plan that cannot be made raises DesignError naming the field)."""
     try:
-        layup = plan_layup(
+        return plan_layup(
             radius_at=radius_at, max_radius_in=max_radius_in, z_origin_mm=z_origin_mm,
             lens_thickness_mm=lens_thickness_mm, lens_radius_mm=lens_radius_mm,
-            sheet_thickness_mm=fab.sheet_thickness_mm,
+            sheet_thickness_mm=sheet_thickness_mm,
             pedestal_height_mm=fab.pedestal_height_mm, pedestal_width_mm=fab.pedestal_width_mm,
             joining=fab.joining, dowel_diameter_mm=fab.dowel_diameter_mm,
             neck_width_mm=fab.neck_width_mm, kerf_mm=fab.kerf_mm,
@@ -26,10 +27,13 @@ def plan_layup_and_box(fab: SheetLayupSpec, *, lens_radius_mm: float, lens_thick
     except ValueError as exc:
         field, _, message = str(exc).partition(": ")
         raise DesignError(field, message) from None
+
+
+def plan_box_for(fab: SheetLayupSpec, layup: LayupPlan):
+    """The box panels (seed-000 §6.1 option 3) clamping the layup's pedestal."""
     b = fab.box
-    panels = plan_box(layup, wall_mm=b.wall_thickness_mm, clearance_mm=b.clearance_mm,
-                      screw_diameter_mm=b.screw_diameter_mm, screw_spacing_mm=b.screw_spacing_mm)
-    return layup, panels
+    return plan_box(layup, wall_mm=b.wall_thickness_mm, clearance_mm=b.clearance_mm,
+                    screw_diameter_mm=b.screw_diameter_mm, screw_spacing_mm=b.screw_spacing_mm)
 
 
 def fabricate_layup(fab: SheetLayupSpec, layup: LayupPlan, panels, foam: Material, title: str):

@@ -56,13 +56,15 @@ class Trace2D:
     are the origins; the last entry is the target plane when one was given). ``directions[k]`` is
     the unit direction leaving ``points[k]``. ``opl`` is the optical path from the origin to the
     last point. ``ok`` is False for rays that missed an interface, were totally reflected, or went
-    backwards. ``index[k]`` is the refractive index along the segment ``points[k] → points[k+1]``."""
+    backwards. ``index[k]`` is the refractive index along the segment ``points[k] → points[k+1]``.
+    ``riser[i]`` (stepped sections only): ray i was refracted or reflected at a riser."""
 
     points: np.ndarray        # (K+1[+1], N, 2)  (z, y)
     directions: np.ndarray    # (K+1[+1], N, 2)
     opl: np.ndarray           # (N,)
     ok: np.ndarray            # (N,) bool
     index: np.ndarray | None = None   # (K[+1], N)
+    riser: np.ndarray | None = None   # (N,) bool
 
 
 def aim_at_face(face: Interface, feed: np.ndarray, half_width_mm: float, rays: int) -> np.ndarray:
@@ -161,7 +163,8 @@ def trace_slabs(origins: np.ndarray, directions: np.ndarray, slabs: Slabs, z_tar
     Rays start in front of the first slab. Every crossing of a sheet face or a riser is an event:
     the ray refracts by vector Snell into the next cell, or is mirror-reflected and stays in its cell
     where it is totally internally reflected (grazing hits on a riser from inside a sheet). A ray is
-    ``ok`` when it leaves through the back face ``z_edges[-1]``. All rays advance one event per step.
+    ``ok`` when it leaves through the back face ``z_edges[-1]``; ``riser`` marks the rays refracted or
+    reflected at a riser. All rays advance one event per step.
     """
     p0 = np.array(origins, float, ndmin=2)
     d = np.array(directions, float, ndmin=2)
@@ -177,12 +180,14 @@ def trace_slabs(origins: np.ndarray, directions: np.ndarray, slabs: Slabs, z_tar
     axis_z, axis_y = np.array([1.0, 0.0]), np.array([0.0, 1.0])
     normal = np.tile(axis_z, (len(p), 1))
     active = np.ones(len(p), bool)
+    riser = np.zeros(len(p), bool)
     for _ in range(4 * (K + M) + 16):
         enter = (k_next >= 0) & (k_next < K)
         n_new = np.where(enter & slabs.material[np.clip(k_next, 0, K - 1), np.clip(j_next, 0, M)],
                          slabs.n, n_outside)
         d_new, ok = refract(d, normal, n_cur, n_new)
         go, tir = active & ok, active & ~ok
+        riser |= (tir | (go & (n_new != n_cur))) & (normal[:, 1] != 0)
         d = np.where(go[:, None], d_new, np.where(tir[:, None], reflect(d, normal), d))
         k, j, n_cur = np.where(go, k_next, k), np.where(go, j_next, j), np.where(go, n_new, n_cur)
         active &= (k >= 0) & (k < K)
@@ -210,7 +215,7 @@ def trace_slabs(origins: np.ndarray, directions: np.ndarray, slabs: Slabs, z_tar
     index.append(n_cur.copy())
     pts.append(p + t[:, None] * d)
     dirs.append(d.copy())
-    return Trace2D(np.array(pts), np.array(dirs), opl + n_cur * t, ok, np.array(index))
+    return Trace2D(np.array(pts), np.array(dirs), opl + n_cur * t, ok, np.array(index), riser)
 
 
 def transmitted_amplitude(tr: Trace2D, wavelength_mm: float, tan_delta: float,

@@ -289,22 +289,26 @@ def _sensitivity(lens: Lens, section: Slabs | None, tol: TolerancesSpec, layup: 
     """Phase error against εr spread, sheet (or lens) thickness and feed position, each at ± its
     tolerance; the added errors combined by root-sum-square against the budget."""
     t_ref = layup.sheet_thickness_mm if layup is not None else float(lens.back_z(0.0) - lens.front_z(0.0))
-    thick = "sheet thickness" if layup is not None else "lens thickness"
     z0, y0 = lens.feed
     nominal = _as_built(lens, section, lens.eps_r, 1.0)
-    cases = {
-        ("εr", tol.eps_r_tolerance, ""): lambda s: (_as_built(lens, section, lens.eps_r + s, 1.0), lens.feed),
-        (thick, tol.thickness_tolerance_mm, "mm"): lambda s: (_as_built(lens, section, lens.eps_r, 1 + s / t_ref), lens.feed),
-        ("feed axial", tol.feed_position_tolerance_mm, "mm"): lambda s: (nominal, (z0 + s, y0)),
-        ("feed transverse", tol.feed_position_tolerance_mm, "mm"): lambda s: (nominal, (z0, y0 + s)),
-    }
+
+    def eps_r(s):
+        return _as_built(lens, section, lens.eps_r + s, 1.0), lens.feed
+
+    def thickness(s):
+        return _as_built(lens, section, lens.eps_r, 1 + s / t_ref), lens.feed
+
+    cases = (("εr", tol.eps_r_tolerance, "", eps_r),
+             ("sheet thickness" if layup is not None else "lens thickness", tol.thickness_tolerance_mm, "mm", thickness),
+             ("feed axial", tol.feed_position_tolerance_mm, "mm", lambda s: (nominal, (z0 + s, y0))),
+             ("feed transverse", tol.feed_position_tolerance_mm, "mm", lambda s: (nominal, (z0, y0 + s))))
     base = aperture_stats(lens, *trace_lens(lens, nominal, lens.feed))
     rows, series, added = [], [], {}
-    for (name, size, unit), at in cases.items():
+    for name, size, unit, at in cases:
         stats = [base if k == 0 else aperture_stats(lens, *trace_lens(lens, *at(k * size))) for k in TOLERANCE_STEPS]
         series.append(Series(f"{name} ±{size:g} {unit}".strip(), np.array(TOLERANCE_STEPS),
-                             np.array([s.p2p_deg for s in stats]), "line"))
-        ends = [s for k, s in zip(TOLERANCE_STEPS, stats) if abs(k) == 1]
+                             np.array([s.p2p_deg for s in stats])))
+        ends = (stats[0], stats[-1])                                  # −1 and +1 tolerance
         rows += [(name, f"{sign}{size:g} {unit}".strip(), _r(s.p2p_deg), _r(s.rms_deg), _r(s.gain_loss_db))
                  for sign, s in zip("−+", ends)]
         added[name] = tuple(max(0.0, max(getattr(s, k) ** 2 for s in ends) - getattr(base, k) ** 2)
@@ -334,7 +338,7 @@ def _profile_plot(lens: Lens, layup: LayupPlan) -> Plot:
     r = np.linspace(0.0, lens.radius_mm, 201)
     lens_z = np.concatenate([lens.front_z(r), lens.back_z(r[::-1])])
     lens_r = np.concatenate([r, r[::-1]])
-    z = np.repeat([[s.z_min_mm, s.z_max_mm] for s in layup.sheets], 1, axis=0).ravel()
+    z = np.array([[s.z_min_mm, s.z_max_mm] for s in layup.sheets]).ravel()
     rad = np.repeat([s.radius_mm for s in layup.sheets], 2)
     step_z = np.concatenate([[z[0]], z, [z[-1]]])
     step_r = np.concatenate([[0.0], rad, [0.0]])

@@ -298,8 +298,9 @@ def _sensitivity(lens: Lens, section: Slabs | None, tol: TolerancesSpec, layup: 
     def thickness(s):
         return _as_built(lens, section, lens.eps_r, 1 + s / t_ref), lens.feed
 
+    thick = "sheet thickness" if layup is not None else "lens thickness"
     cases = (("εr", tol.eps_r_tolerance, "", eps_r),
-             ("sheet thickness" if layup is not None else "lens thickness", tol.thickness_tolerance_mm, "mm", thickness),
+             (thick, tol.thickness_tolerance_mm, "mm", thickness),
              ("feed axial", tol.feed_position_tolerance_mm, "mm", lambda s: (nominal, (z0 + s, y0))),
              ("feed transverse", tol.feed_position_tolerance_mm, "mm", lambda s: (nominal, (z0, y0 + s))))
     base = aperture_stats(lens, *trace_lens(lens, nominal, lens.feed))

@@ -151,8 +151,10 @@ class Slabs:
         """Slab k is dielectric on the y-intervals ``intervals[k]`` (a list of (lo, hi) pairs)."""
         breaks = np.unique([y for slab in intervals for iv in slab for y in iv])
         mid = np.concatenate([[breaks[0] - 1.0], (breaks[:-1] + breaks[1:]) / 2, [breaks[-1] + 1.0]])
-        material = np.array([np.any([(lo < mid) & (mid < hi) for lo, hi in slab] or [mid < mid], axis=0)
-                             for slab in intervals])
+        material = np.zeros((len(intervals), len(mid)), bool)
+        for k, slab in enumerate(intervals):
+            for lo, hi in slab:
+                material[k] |= (lo < mid) & (mid < hi)
         return Slabs(np.asarray(z_edges, float), breaks, material, float(n))
 
 

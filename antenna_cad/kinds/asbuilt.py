@@ -31,7 +31,7 @@ from antenna_cad.fabrication.section import fabricated_section, stepped_section
 from antenna_cad.raytrace.collimator import ApertureTrace
 from antenna_cad.raytrace.trace2d import Interface, Slabs, Trace2D, aim_at_face, trace, trace_slabs, \
     transmitted_amplitude
-from antenna_cad.spec.common import SheetLayupSpec, TolerancesSpec
+from antenna_cad.spec.common import TolerancesSpec
 from antenna_cad.synthesis.checks import Check, DesignError
 from antenna_cad.synthesis.collimator import step_phase_error_deg
 from antenna_cad.verification import Plot, Series, Table, Verification, detrended
@@ -180,14 +180,6 @@ def choose_stock(study: tuple[Candidate, ...]) -> Candidate:
                           + "; ".join(c.note for c in study))
     meeting = [c for c in feasible if c.meets]
     return max(meeting, key=lambda c: c.thickness_mm) if meeting else min(feasible, key=lambda c: c.thickness_mm)
-
-
-def resolve_layup(fab: SheetLayupSpec, sheets: Callable[[float], LayupPlan],
-                  lens_for: Callable[[LayupPlan], Lens]) -> LayupPlan:
-    """The layup of the spec's sheet thickness, or for ``auto`` of the stock :func:`choose_stock` picks."""
-    if fab.sheet_thickness_mm != "auto":
-        return sheets(fab.sheet_thickness_mm)
-    return choose_stock(stock_study(sheets, lens_for, fab.stock_thicknesses_mm)).layup
 
 
 # ------------------------------------------------------------------ the verification

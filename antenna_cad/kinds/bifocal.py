@@ -16,10 +16,10 @@ from functools import partial
 import numpy as np
 
 from antenna_cad.fabrication.layup import LayupPlan
-from antenna_cad.kinds.asbuilt import Lens, resolve_layup, stock_study, verify_lens
-from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks, plan_box_for, plan_sheets
+from antenna_cad.kinds.asbuilt import Lens, stock_study, verify_lens
+from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks, plan_layup_and_box, plan_sheets
 from antenna_cad.spec.bifocal import BifocalSpec
-from antenna_cad.spec.common import SheetLayupSpec, resolve_material
+from antenna_cad.spec.common import resolve_material
 from antenna_cad.synthesis.bifocal import (BifocalDesign, defocus_study, lens_volume_mm3, max_radius_in,
                                            synthesize_bifocal)
 from antenna_cad.synthesis.checks import Check
@@ -64,11 +64,7 @@ def _lens(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None) -> 
 def plan(spec: BifocalSpec, design: BifocalDesign):
     """(LayupPlan, box panels) for a sheet layup, the sheet thickness resolved; (None, ()) for a
     machined lens."""
-    fab = spec.fabrication
-    if not isinstance(fab, SheetLayupSpec):
-        return None, ()
-    layup = resolve_layup(fab, _sheets(spec, design), partial(_lens, spec, design))
-    return layup, plan_box_for(fab, layup)
+    return plan_layup_and_box(spec.fabrication, _sheets(spec, design), partial(_lens, spec, design))
 
 
 def model(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None, panels):

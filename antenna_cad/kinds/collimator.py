@@ -8,12 +8,12 @@ from functools import partial
 import numpy as np
 
 from antenna_cad.fabrication.layup import LayupPlan
-from antenna_cad.kinds.asbuilt import Lens, resolve_layup, stock_study, verify_lens
-from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks, plan_box_for, plan_sheets
+from antenna_cad.kinds.asbuilt import Lens, stock_study, verify_lens
+from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks, plan_layup_and_box, plan_sheets
 from antenna_cad.raytrace.collimator import front_face, single_surface_p2p_deg, usable_half_range_mm
 from antenna_cad.raytrace.trace2d import Interface
 from antenna_cad.spec.collimator import CollimatorSpec
-from antenna_cad.spec.common import SheetLayupSpec, resolve_material
+from antenna_cad.spec.common import resolve_material
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.collimator import CollimatorDesign, synthesize_collimator
 from antenna_cad.verification import Verification
@@ -56,11 +56,7 @@ def _lens(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | Non
 def plan(spec: CollimatorSpec, design: CollimatorDesign):
     """(LayupPlan, box panels) for a sheet layup, the sheet thickness resolved; (None, ()) for a
     machined lens."""
-    fab = spec.fabrication
-    if not isinstance(fab, SheetLayupSpec):
-        return None, ()
-    layup = resolve_layup(fab, _sheets(spec, design), partial(_lens, spec, design))
-    return layup, plan_box_for(fab, layup)
+    return plan_layup_and_box(spec.fabrication, _sheets(spec, design), partial(_lens, spec, design))
 
 
 def model(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | None, panels):

@@ -1,11 +1,13 @@
 """Sheet-layup steps shared by every lens of revolution cut from boards (seed-000 §6):
-spec → layup plan + box, the layup's fabrication plan, its figures, and the neck warning."""
+spec → layup plan (sheet thickness resolved) + box, the layup's fabrication plan, its figures, and
+the neck warning."""
 
 from __future__ import annotations
 
 from antenna_cad.fabrication.box import plan_box
 from antenna_cad.fabrication.layup import LayupPlan, plan_layup
 from antenna_cad.fabrication.outline import added_in_aperture_mm2
+from antenna_cad.kinds.asbuilt import choose_stock, stock_study
 from antenna_cad.materials import Material
 from antenna_cad.spec.common import SheetLayupSpec, resolve_material
 from antenna_cad.synthesis.checks import Check, DesignError
@@ -29,11 +31,19 @@ def plan_sheets(fab: SheetLayupSpec, sheet_thickness_mm: float, *, lens_radius_m
         raise DesignError(field, message) from None
 
 
-def plan_box_for(fab: SheetLayupSpec, layup: LayupPlan):
-    """The box panels (seed-000 §6.1 option 3) clamping the layup's pedestal."""
+def plan_layup_and_box(fab, sheets, lens_for):
+    """(LayupPlan, box panels) for a sheet layup; (None, ()) for a machined lens. ``sheets(t)`` plans
+    t mm boards; with ``sheet_thickness_mm: auto`` the stock study (issue 6) picks t, tracing each
+    candidate as ``lens_for(layup)``."""
+    if not isinstance(fab, SheetLayupSpec):
+        return None, ()
+    if fab.sheet_thickness_mm == "auto":
+        layup = choose_stock(stock_study(sheets, lens_for, fab.stock_thicknesses_mm)).layup
+    else:
+        layup = sheets(fab.sheet_thickness_mm)
     b = fab.box
-    return plan_box(layup, wall_mm=b.wall_thickness_mm, clearance_mm=b.clearance_mm,
-                    screw_diameter_mm=b.screw_diameter_mm, screw_spacing_mm=b.screw_spacing_mm)
+    return layup, plan_box(layup, wall_mm=b.wall_thickness_mm, clearance_mm=b.clearance_mm,
+                           screw_diameter_mm=b.screw_diameter_mm, screw_spacing_mm=b.screw_spacing_mm)
 
 
 def fabricate_layup(fab: SheetLayupSpec, layup: LayupPlan, panels, foam: Material, title: str):

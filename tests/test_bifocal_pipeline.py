@@ -86,7 +86,8 @@ def test_machined_dielectric_lens_end_to_end(diel_build):
     assert (f["focus_1_z_mm"], f["focus_2_z_mm"]) == (0.0, 0.0)
     assert f["focus_1_y_mm"] == pytest.approx(-f["focus_2_y_mm"]) and f["focus_1_y_mm"] > 0
     assert max(f["residual_path_error_focus_1_mm"], f["residual_path_error_focus_2_mm"]) < 1e-6
-    assert f["usable_feed_half_range_mm"] > 2 * f["single_surface_usable_feed_half_range_mm"] > 0
+    scan = man["verification"]["figures"]
+    assert scan["usable_feed_half_range_mm"] > 2 * scan["single_surface_usable_feed_half_range_mm"] > 0
     v = lens_volume_mm3(d, 160.0)
     assert f["lens_volume_mm3"] == pytest.approx(v, rel=1e-12)
     lens = next(p for p in man["parts"] if p["label"] == "lens")
@@ -105,11 +106,13 @@ def test_machined_dielectric_lens_end_to_end(diel_build):
 def test_worked_example_sheet_layup_end_to_end(nik_build):
     res, man = nik_build
     spec, d = _design(NIK)
-    assert res.status == "pass"
+    warned = {c["name"] for c in man["checks"] if c["status"] != "pass"}
+    assert warned <= {"unsanded_step_phase_error", "tolerance_budget"} and res.status == "warn"   # sand the steps
     f = man["figures"]
     assert f["focus_offset_mm"] == pytest.approx(630.3, abs=0.1)
     assert f["beam_tilt_deg"] == pytest.approx(4.0)
-    assert f["usable_feed_half_range_mm"] > 2 * f["single_surface_usable_feed_half_range_mm"]
+    scan = man["verification"]["figures"]
+    assert scan["usable_feed_half_range_mm"] > 2 * scan["single_surface_usable_feed_half_range_mm"]
     assert f["sheet_count"] == len(man["sheets"]) == 12
     assert f["sanding_allowance_mm3"] > 0
     v = lens_volume_mm3(d)

@@ -12,9 +12,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from antenna_cad.raytrace.collimator import front_face
 from antenna_cad.raytrace.trace2d import Interface, trace
 from antenna_cad.synthesis import bifocal as bf
 from antenna_cad.synthesis.checks import DesignError
+from antenna_cad.synthesis.collimator import thickness_mm
 
 DATA = Path(__file__).parent / "data" / "bifocal_reference.csv"
 LAMBDA_3CM_GHZ = 299.792458 / 30.0     # the seed's λ0 = 3 cm
@@ -206,7 +208,7 @@ def test_kinber_design_scaled_plane_output():
 def test_trace2d_single_surface_hyperbola_focuses():
     f, D, eps = 5000.0, 1000.0, 2.08
     n = np.sqrt(eps)
-    d, zr, _ = bf._single_surface_lens(f, D, eps)        # private stand-in for collimator.py
+    d, zr = thickness_mm(D, f, n), front_face(f, n).z_of_y
     assert abs(zr(D / 2) - d) < 1e-9                             # (1.1) vs (1.9) corrected
     ys = np.linspace(-D / 2, D / 2, 2001)
     front = Interface.from_points(ys, zr(ys), n)                 # spline path of the tracer

@@ -10,17 +10,21 @@ shadow vertex is sanded off with the steps.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
+from functools import partial
 
 import numpy as np
 
-from antenna_cad.verification import Verification
 from antenna_cad.fabrication.layup import LayupPlan
-from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks, plan_layup_and_box
+from antenna_cad.kinds.asbuilt import Lens, stock_study, verify_lens
+from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks, plan_layup_and_box, plan_sheets
 from antenna_cad.spec.bifocal import BifocalSpec
-from antenna_cad.spec.common import SheetLayupSpec, resolve_material
+from antenna_cad.spec.common import resolve_material
 from antenna_cad.synthesis.bifocal import (BifocalDesign, defocus_study, lens_volume_mm3, max_radius_in,
                                            synthesize_bifocal)
 from antenna_cad.synthesis.checks import Check
+from antenna_cad.synthesis.collimator import wavelength_mm
+from antenna_cad.verification import Plot, Series, Verification
 
 
 def _height(spec: BifocalSpec) -> float | None:
@@ -39,13 +43,28 @@ def _slab_radius(design: BifocalDesign):
     return lambda lo, hi: max_radius_in(design, design.rho1_mm + lo, design.rho1_mm + hi)
 
 
+def _sheets(spec: BifocalSpec, design: BifocalDesign):
+    return partial(plan_sheets, spec.fabrication, lens_radius_mm=design.edge_y_mm,
+                   lens_thickness_mm=design.thickness_mm, max_radius_in=_slab_radius(design),
+                   z_origin_mm=design.rho1_mm)
+
+
+def _lens(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None) -> Lens:
+    """The lens the as-built trace sees, fed from the design focus O1 = (0, a); the antenna plane is
+    z = c, or the stack's back face when that lies beyond c."""
+    m = resolve_material(spec.material)
+    ill, sh = design.interfaces()
+    back = layup.sheets[-1].z_max_mm if layup is not None else design.rho2_mm
+    return Lens(radius_mm=design.edge_y_mm, eps_r=m.eps_r, tan_delta=m.tan_delta,
+                wavelength_mm=wavelength_mm(spec.frequency_ghz), budget_deg=spec.design.phase_error_budget_deg,
+                antenna_z_mm=max(design.antenna_x_mm, back), feed=(0.0, design.focus_offset_mm),
+                faces=lambda n: (replace(ill, n_after=n), sh))
+
+
 def plan(spec: BifocalSpec, design: BifocalDesign):
-    """(LayupPlan, box panels) for a sheet layup; (None, ()) for a machined lens."""
-    fab = spec.fabrication
-    if not isinstance(fab, SheetLayupSpec):
-        return None, ()
-    return plan_layup_and_box(fab, lens_radius_mm=design.edge_y_mm, lens_thickness_mm=design.thickness_mm,
-                              max_radius_in=_slab_radius(design), z_origin_mm=design.rho1_mm)
+    """(LayupPlan, box panels) for a sheet layup, the sheet thickness resolved; (None, ()) for a
+    machined lens."""
+    return plan_layup_and_box(spec.fabrication, _sheets(spec, design), partial(_lens, spec, design))
 
 
 def model(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None, panels):
@@ -69,8 +88,7 @@ def sanding_allowance_mm3(design: BifocalDesign, layup: LayupPlan) -> float:
 
 
 def summary(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None) -> dict[str, float]:
-    """Key figures: foci, geometry, residuals, scan range vs the single-surface lens (seed-000 §5.9)."""
-    st = defocus_study(design, budget_deg=spec.design.phase_error_budget_deg, frequency_ghz=spec.frequency_ghz)
+    """Key figures: foci, geometry, residuals (the scan range is a verification figure)."""
     (f1z, f1y), (f2z, f2y) = design.foci_mm
     figures = {
         "focus_1_z_mm": float(f1z), "focus_1_y_mm": float(f1y), "focus_2_z_mm": float(f2z),
@@ -82,13 +100,7 @@ def summary(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None) -
         "residual_path_error_focus_1_mm": float(design.residual_path_error_mm[0]),
         "residual_path_error_focus_2_mm": float(design.residual_path_error_mm[1]),
         "poly_fit_residual_mm": design.poly_fit_residual_mm,
-        "scan_budget_deg": st.budget_deg, "wavelength_mm": st.wavelength_mm,
-        "usable_feed_half_range_mm": st.usable_half_range_mm,
-        "usable_half_angle_deg": st.usable_half_angle_deg,
-        "single_surface_usable_feed_half_range_mm": st.single_usable_half_range_mm,
-        "single_surface_usable_half_angle_deg": st.single_usable_half_angle_deg,
-        "single_surface_thickness_mm": st.single_thickness_mm,
-        "on_axis_phase_error_p2p_deg": float(st.p2p_deg[0]),
+        "wavelength_mm": wavelength_mm(spec.frequency_ghz),
     }
     if design.shape == "cylindrical":
         figures["height_mm"] = float(spec.design.height_mm)
@@ -114,6 +126,30 @@ def fabrication_checks(spec: BifocalSpec, design: BifocalDesign, layup: LayupPla
             ] + neck_checks(layup)
 
 
-def verify(spec, design, layup, fab) -> Verification:
-    """As-built verification (issue 6): filled in per kind."""
-    return Verification()
+def verify(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None, fab) -> Verification:
+    """As-built verification (issue 6, :mod:`antenna_cad.kinds.asbuilt`) at the design focus O1 and at
+    the edge of the usable scan range, plus the defocus study of issue 5 (seed-000 §5.9): p-p phase
+    error against the feed displacement along the focal line, bifocal vs the single-surface lens of
+    the same aperture and focal distance."""
+    budget = spec.design.phase_error_budget_deg
+    st = defocus_study(design, budget_deg=budget, frequency_ghz=spec.frequency_ghz)
+    study = (stock_study(_sheets(spec, design), partial(_lens, spec, design), spec.fabrication.stock_thicknesses_mm)
+             if layup is not None else ())
+    v = verify_lens(_lens(spec, design, layup), (("focus", 0.0, design.focus_offset_mm),
+                                                 ("edge", 0.0, st.usable_half_range_mm)),
+                    spec.tolerances, layup, fab, study)
+    scan = {"usable_feed_half_range_mm": st.usable_half_range_mm, "usable_half_angle_deg": st.usable_half_angle_deg,
+            "single_surface_usable_feed_half_range_mm": st.single_usable_half_range_mm,
+            "single_surface_usable_half_angle_deg": st.single_usable_half_angle_deg,
+            "single_surface_thickness_mm": st.single_thickness_mm,
+            "on_axis_phase_error_p2p_deg": float(st.p2p_deg[0])}
+    plot = Plot("defocus", "Aperture phase error against feed displacement", "feed y on the focal line (mm)",
+                "p-p phase error, tilt removed (deg)",
+                (Series("bifocal", st.feed_y_mm, st.p2p_deg),
+                 Series(f"single-surface lens, f {design.edge_x_mm:g} mm, D {2 * design.edge_y_mm:g} mm",
+                        st.feed_y_mm, st.single_p2p_deg, "dashed")),
+                caption=f"usable half range: bifocal {st.usable_half_range_mm:.0f} mm "
+                        f"({st.usable_half_angle_deg:.2f}°), single-surface {st.single_usable_half_range_mm:.0f} mm "
+                        f"({st.single_usable_half_angle_deg:.2f}°)",
+                hlines=(("budget", budget),))
+    return replace(v, figures=scan | v.figures, plots=v.plots + (plot,))

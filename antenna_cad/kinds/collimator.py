@@ -2,37 +2,61 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+from functools import partial
+
 import numpy as np
 
-from antenna_cad.verification import Verification
 from antenna_cad.fabrication.layup import LayupPlan
-from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks, plan_layup_and_box
+from antenna_cad.kinds.asbuilt import Lens, stock_study, verify_lens
+from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks, plan_layup_and_box, plan_sheets
+from antenna_cad.raytrace.collimator import front_face, single_surface_p2p_deg, usable_half_range_mm
+from antenna_cad.raytrace.trace2d import Interface
 from antenna_cad.spec.collimator import CollimatorSpec
-from antenna_cad.spec.common import SheetLayupSpec, resolve_material
+from antenna_cad.spec.common import resolve_material
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.collimator import CollimatorDesign, synthesize_collimator
+from antenna_cad.verification import Verification
+
+DEFAULT_ANTENNA_GAP_MM = 100.0      # seed-000 §5.10: the scan plane 10 cm behind the flat face
+SCAN_GRID = np.linspace(0.0, 1.0, 41)   # transverse feed displacement / f searched for the scan edge
 
 
 def synthesize(spec: CollimatorSpec) -> CollimatorDesign:
     m = resolve_material(spec.material)
-    fab = spec.fabrication
     antenna = spec.design.antenna
     return synthesize_collimator(
         diameter_mm=spec.design.diameter_mm, focal_length_mm=spec.design.focal_length_mm,
         eps_r=m.eps_r, tan_delta=m.tan_delta, frequency_ghz=spec.frequency_ghz,
         phase_error_budget_deg=spec.design.phase_error_budget_deg,
         antenna_aperture_mm=antenna.aperture_mm if antenna else None,
-        antenna_distance_mm=antenna.distance_mm if antenna else None,
-        sheet_thickness_mm=fab.sheet_thickness_mm if isinstance(fab, SheetLayupSpec) else None)
+        antenna_distance_mm=antenna.distance_mm if antenna else None)
+
+
+def _sheets(spec: CollimatorSpec, design: CollimatorDesign):
+    return partial(plan_sheets, spec.fabrication, lens_radius_mm=design.diameter_mm / 2,
+                   lens_thickness_mm=design.thickness_mm, radius_at=design.radius_at)
+
+
+def _antenna_gap_mm(spec: CollimatorSpec) -> float:
+    return spec.design.antenna.distance_mm if spec.design.antenna else DEFAULT_ANTENNA_GAP_MM
+
+
+def _lens(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | None) -> Lens:
+    """The lens the as-built trace sees: its flat face at the back of the stack (the back slab stays)."""
+    m = resolve_material(spec.material)
+    f, n = design.focal_length_mm, design.n
+    back = layup.sheets[-1].z_max_mm if layup is not None else design.thickness_mm
+    return Lens(radius_mm=design.diameter_mm / 2, eps_r=m.eps_r, tan_delta=m.tan_delta,
+                wavelength_mm=design.wavelength_mm, budget_deg=design.phase_error_budget_deg,
+                antenna_z_mm=back + _antenna_gap_mm(spec), feed=(-f, 0.0),
+                faces=lambda n_lens: (front_face(f, n, n_lens), Interface.plane(back, 1.0)))
 
 
 def plan(spec: CollimatorSpec, design: CollimatorDesign):
-    """(LayupPlan, box panels) for a sheet layup; (None, ()) for a machined lens."""
-    fab = spec.fabrication
-    if not isinstance(fab, SheetLayupSpec):
-        return None, ()
-    return plan_layup_and_box(fab, lens_radius_mm=design.diameter_mm / 2,
-                              lens_thickness_mm=design.thickness_mm, radius_at=design.radius_at)
+    """(LayupPlan, box panels) for a sheet layup, the sheet thickness resolved; (None, ()) for a
+    machined lens."""
+    return plan_layup_and_box(spec.fabrication, _sheets(spec, design), partial(_lens, spec, design))
 
 
 def model(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | None, panels):
@@ -72,6 +96,17 @@ def fabrication_checks(spec: CollimatorSpec, design: CollimatorDesign, layup: La
             ] + neck_checks(layup)
 
 
-def verify(spec, design, layup, fab) -> Verification:
-    """As-built verification (issue 6): filled in per kind."""
-    return Verification()
+def verify(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | None, fab) -> Verification:
+    """As-built verification (issue 6, :mod:`antenna_cad.kinds.asbuilt`) on axis and at the edge of the
+    scan range: the transverse feed displacement where the ideal lens reaches the phase budget
+    (seed-000 §5.5)."""
+    f, D, gap = design.focal_length_mm, design.diameter_mm, _antenna_gap_mm(spec)
+    _, edge = usable_half_range_mm(
+        lambda y: single_surface_p2p_deg(f, D, design.eps_r, y, gap, design.wavelength_mm),
+        f * SCAN_GRID, design.phase_error_budget_deg)
+    study = (stock_study(_sheets(spec, design), partial(_lens, spec, design), spec.fabrication.stock_thicknesses_mm)
+             if layup is not None else ())
+    v = verify_lens(_lens(spec, design, layup), (("on_axis", -f, 0.0), ("edge", -f, edge)),
+                    spec.tolerances, layup, fab, study)
+    return replace(v, figures={"scan_half_range_mm": edge,
+                               "scan_half_angle_deg": float(np.degrees(np.arctan2(edge, f)))} | v.figures)

@@ -1,24 +1,27 @@
 """Sheet-layup steps shared by every lens of revolution cut from boards (seed-000 §6):
-spec → layup plan + box, the layup's fabrication plan, its figures, and the neck warning."""
+spec → layup plan (sheet thickness resolved) + box, the layup's fabrication plan, its figures, and
+the neck warning."""
 
 from __future__ import annotations
 
 from antenna_cad.fabrication.box import plan_box
 from antenna_cad.fabrication.layup import LayupPlan, plan_layup
 from antenna_cad.fabrication.outline import added_in_aperture_mm2
+from antenna_cad.kinds.asbuilt import choose_stock, stock_study
 from antenna_cad.materials import Material
 from antenna_cad.spec.common import SheetLayupSpec, resolve_material
 from antenna_cad.synthesis.checks import Check, DesignError
 
 
-def plan_layup_and_box(fab: SheetLayupSpec, *, lens_radius_mm: float, lens_thickness_mm: float,
-                       radius_at=None, max_radius_in=None, z_origin_mm: float = 0.0):
-    """(LayupPlan, box panels) from the spec's ``fabrication`` block and the lens geometry."""
+def plan_sheets(fab: SheetLayupSpec, sheet_thickness_mm: float, *, lens_radius_mm: float,
+                lens_thickness_mm: float, radius_at=None, max_radius_in=None, z_origin_mm: float = 0.0) -> LayupPlan:
+    """The LayupPlan of ``sheet_thickness_mm`` boards from the spec's ``fabrication`` block and the
+    lens geometry (a plan that cannot be made raises DesignError naming the field)."""
     try:
-        layup = plan_layup(
+        return plan_layup(
             radius_at=radius_at, max_radius_in=max_radius_in, z_origin_mm=z_origin_mm,
             lens_thickness_mm=lens_thickness_mm, lens_radius_mm=lens_radius_mm,
-            sheet_thickness_mm=fab.sheet_thickness_mm,
+            sheet_thickness_mm=sheet_thickness_mm,
             pedestal_height_mm=fab.pedestal_height_mm, pedestal_width_mm=fab.pedestal_width_mm,
             joining=fab.joining, dowel_diameter_mm=fab.dowel_diameter_mm,
             neck_width_mm=fab.neck_width_mm, kerf_mm=fab.kerf_mm,
@@ -26,10 +29,21 @@ def plan_layup_and_box(fab: SheetLayupSpec, *, lens_radius_mm: float, lens_thick
     except ValueError as exc:
         field, _, message = str(exc).partition(": ")
         raise DesignError(field, message) from None
+
+
+def plan_layup_and_box(fab, sheets, lens_for):
+    """(LayupPlan, box panels) for a sheet layup; (None, ()) for a machined lens. ``sheets(t)`` plans
+    t mm boards; with ``sheet_thickness_mm: auto`` the stock study (issue 6) picks t, tracing each
+    candidate as ``lens_for(layup)``."""
+    if not isinstance(fab, SheetLayupSpec):
+        return None, ()
+    if fab.sheet_thickness_mm == "auto":
+        layup = choose_stock(stock_study(sheets, lens_for, fab.stock_thicknesses_mm)).layup
+    else:
+        layup = sheets(fab.sheet_thickness_mm)
     b = fab.box
-    panels = plan_box(layup, wall_mm=b.wall_thickness_mm, clearance_mm=b.clearance_mm,
-                      screw_diameter_mm=b.screw_diameter_mm, screw_spacing_mm=b.screw_spacing_mm)
-    return layup, panels
+    return layup, plan_box(layup, wall_mm=b.wall_thickness_mm, clearance_mm=b.clearance_mm,
+                           screw_diameter_mm=b.screw_diameter_mm, screw_spacing_mm=b.screw_spacing_mm)
 
 
 def fabricate_layup(fab: SheetLayupSpec, layup: LayupPlan, panels, foam: Material, title: str):

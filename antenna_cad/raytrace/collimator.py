@@ -1,9 +1,10 @@
 """Meridional (2-D) ray trace through the single-surface collimator, seed-000 §4.2.
 
 Implements the algorithm of §4.2 with vector Snell (the printed angle bookkeeping (2.5)–(2.12)
-is garbled, see the digest's erratum): rays leave the feed, hit the hyperbolic face at sampled
-points, refract, cross the lens to the flat face, refract out and travel to the antenna plane.
-The phase is k0 × optical path; the linear tilt is removed by a least-squares fit.
+is garbled, see the digest's erratum) on the generic tracer :mod:`antenna_cad.raytrace.trace2d`:
+rays leave the feed, hit the hyperbolic face, refract, cross the lens to the flat face, refract
+out and travel to the antenna plane. The phase is k0 × optical path; the linear tilt is removed
+by a least-squares fit. Also the feed-scan range of the lens (seed-000 §5.5, Tables 2.1–2.3).
 Frame: z along the axis (feed at −f, vertex 0), y transverse, millimetres.
 """
 
@@ -12,9 +13,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.optimize import brentq
 
-from antenna_cad.raytrace.snell import refract
-from antenna_cad.synthesis.collimator import profile_z_mm, surface_normal
+from antenna_cad.raytrace.trace2d import Interface, Trace2D, aim_at_face, trace
+from antenna_cad.synthesis.collimator import profile_z_mm, thickness_mm
 from antenna_cad.verification import detrended
 
 
@@ -24,6 +26,11 @@ class ApertureTrace:
     path_mm: np.ndarray       # optical path length from the feed
     direction: np.ndarray     # exit directions (z, y)
     wavelength_mm: float
+
+    @staticmethod
+    def from_trace(tr: Trace2D, wavelength_mm: float, keep: np.ndarray) -> "ApertureTrace":
+        """The rays ``keep`` of a trace, at their last point (the antenna plane)."""
+        return ApertureTrace(tr.points[-1][keep, 1], tr.opl[keep], tr.directions[-1][keep], wavelength_mm)
 
     def phase_deg(self) -> np.ndarray:
         return np.degrees(2 * np.pi * self.path_mm / self.wavelength_mm)
@@ -41,26 +48,56 @@ class ApertureTrace:
         return float(np.sqrt(np.mean((p - p.mean()) ** 2)))
 
 
+def front_face(focal_length_mm: float, n: float, n_after: float | None = None) -> Interface:
+    """The hyperbolic illuminated face, seed-000 §2.1 (1.9) corrected, as a tracer interface
+    (even in y; slope dz/dr = r/((n²−1)z + (n−1)f)). ``n_after`` (default n) is the index behind it."""
+    f = focal_length_mm
+
+    def z_of_y(y):
+        return profile_z_mm(y, f, n)
+
+    def dz_dy(y):
+        return np.asarray(y, float) / ((n**2 - 1) * z_of_y(y) + (n - 1) * f)
+
+    return Interface(z_of_y, dz_dy, n if n_after is None else float(n_after), 0.0)
+
+
 def trace_collimator(*, focal_length_mm: float, n: float, diameter_mm: float, back_z_mm: float,
                      antenna_z_mm: float, wavelength_mm: float,
                      feed_zy_mm: tuple[float, float] | None = None,
-                     rays: int = 2001) -> ApertureTrace:
+                     rays: int = 2001, margin: float = 1.0) -> ApertureTrace:
     """Trace ``rays`` rays from the feed (default: the focus (−f, 0)) through the lens to the
-    plane z = antenna_z. Rays are aimed at points of the illuminated face sampled uniformly in
-    y over the full diameter, so both halves are covered under transverse defocus."""
+    plane z = antenna_z. Rays are aimed at points of the illuminated face spread uniformly in y
+    over ``margin`` × the diameter, so both halves are covered under transverse defocus; rays
+    that leave the flat face outside the rim are dropped."""
     feed = np.array(feed_zy_mm if feed_zy_mm is not None else (-focal_length_mm, 0.0))
-    y = np.linspace(-diameter_mm / 2, diameter_mm / 2, rays)
-    z = profile_z_mm(np.abs(y), focal_length_mm, n)
-    hit = np.stack([z, y], axis=-1)
-    leg1 = hit - feed
-    len1 = np.linalg.norm(leg1, axis=-1)
-    normal = surface_normal(z, np.abs(y), focal_length_mm, n) * np.stack([np.ones_like(y), np.sign(y)], axis=-1)
-    inside, ok = refract(leg1 / len1[:, None], normal, 1.0, n)
-    t_back = (back_z_mm - z) / inside[:, 0]
-    back = hit + t_back[:, None] * inside
-    out, ok_out = refract(inside, np.tile([1.0, 0.0], (rays, 1)), n, 1.0)
-    t_ant = (antenna_z_mm - back[:, 0]) / out[:, 0]
-    arrival = back + t_ant[:, None] * out
-    path = len1 + n * t_back + t_ant
-    keep = ok & ok_out
-    return ApertureTrace(arrival[keep, 1], path[keep], out[keep], wavelength_mm)
+    front = front_face(focal_length_mm, n)
+    dirs = aim_at_face(front, feed, margin * diameter_mm / 2, rays)
+    tr = trace(np.tile(feed, (rays, 1)), dirs, [front, Interface.plane(back_z_mm, 1.0)], 1.0, antenna_z_mm)
+    return ApertureTrace.from_trace(tr, wavelength_mm, tr.ok & (np.abs(tr.points[2][:, 1]) <= diameter_mm / 2))
+
+
+def single_surface_p2p_deg(focal_length_mm: float, diameter_mm: float, eps_r: float, feed_y_mm: float,
+                           back_mm: float, wavelength_mm: float, rays: int = 201) -> float:
+    """Peak-to-peak aperture phase (deg, tilt removed) of the single-surface lens with the feed at
+    (−f, feed_y), on the plane ``back_mm`` behind the flat face (seed-000 §4.2, §5.5)."""
+    n = float(np.sqrt(eps_r))
+    d = thickness_mm(diameter_mm, focal_length_mm, n)
+    return trace_collimator(focal_length_mm=focal_length_mm, n=n, diameter_mm=diameter_mm, back_z_mm=d,
+                            antenna_z_mm=d + back_mm, wavelength_mm=wavelength_mm,
+                            feed_zy_mm=(-focal_length_mm, feed_y_mm), rays=rays, margin=0.999).peak_to_peak_deg()
+
+
+def usable_half_range_mm(p2p_deg, feed_y_mm: np.ndarray, budget_deg: float) -> tuple[np.ndarray, float]:
+    """Feed-scan study (seed-000 §5.5): ``p2p_deg(y)`` on the grid ``feed_y_mm`` (increasing from 0)
+    and the first displacement where it reaches the budget (brentq between grid points; the last
+    grid point when it never does, 0 when the budget is exceeded at once)."""
+    vals = np.array([p2p_deg(y) for y in feed_y_mm])
+    over = np.nonzero(~(vals <= budget_deg))[0]
+    if len(over) == 0:
+        return vals, float(feed_y_mm[-1])
+    i = over[0]
+    if i == 0:
+        return vals, 0.0
+    return vals, float(brentq(lambda y: p2p_deg(y) - budget_deg, feed_y_mm[i - 1], feed_y_mm[i],
+                              xtol=1e-6 * feed_y_mm[-1]))

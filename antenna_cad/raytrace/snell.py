@@ -45,3 +45,13 @@ def incidence_angle(direction: np.ndarray, normal: np.ndarray) -> np.ndarray:
     d = _unit(np.asarray(direction, dtype=float))
     nrm = _unit(np.asarray(normal, dtype=float))
     return np.arccos(np.clip(np.abs(np.sum(d * nrm, axis=-1)), 0.0, 1.0))
+
+
+def transmission(cos_i: np.ndarray, cos_t: np.ndarray, n_from: float | np.ndarray,
+                 n_to: float | np.ndarray, polarisation: str) -> np.ndarray:
+    """Fresnel amplitude transmission coefficient, seed-000 §4.4 (2.20)–(2.22) with Z = Z0/n
+    (the printed τ∥ (2.20) repeats cos φ; (2.22) is the right form):
+    ``perp``: 2n₁cosφ/(n₁cosφ + n₂cosθ), ``par``: 2n₁cosφ/(n₁cosθ + n₂cosφ)."""
+    if polarisation == "perp":
+        return 2 * n_from * cos_i / (n_from * cos_i + n_to * cos_t)
+    return 2 * n_from * cos_i / (n_from * cos_t + n_to * cos_i)

@@ -34,7 +34,7 @@ MaterialRef = Annotated[
     Union[Annotated[str, Tag("library")], Annotated[InlineMaterial, Tag("inline")]],
     Discriminator(lambda v: "library" if isinstance(v, str) else "inline"),
     Field(description="a library material name, or inline {eps_r, tan_delta, density_kg_m3}")]
-UNION_TAGS = {"library", "inline", "sheet_layup", "solid", "shells"}   # stripped from error paths
+UNION_TAGS = {"library", "inline", "sheet_layup", "solid", "shells", "sheet_mm", "sheet_auto"}   # stripped from error paths
 
 
 def resolve_material(ref: str | InlineMaterial) -> Material:
@@ -64,10 +64,20 @@ class BoxSpec(StrictModel):
         return _library_name(v) if isinstance(v, str) else v
 
 
+SheetThickness = Annotated[float, Field(gt=0, le=200)]
+XPS_STOCK_MM = (10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 80.0, 100.0)     # common XPS boards (seed-000 §3.1: 10–120 mm)
+
+
 class SheetLayupSpec(StrictModel):
     """Stepped layup of stock sheets with a pedestal clamped in a box (seed-000 §6)."""
     method: Literal["sheet_layup"]
-    sheet_thickness_mm: float = Field(gt=0, le=200)
+    sheet_thickness_mm: Annotated[
+        Union[Annotated[SheetThickness, Tag("sheet_mm")], Annotated[Literal["auto"], Tag("sheet_auto")]],
+        Discriminator(lambda v: "sheet_auto" if v == "auto" else "sheet_mm"),
+        Field(description="stock board thickness, or auto: the thickest of stock_thicknesses_mm whose "
+              "unsanded stack meets the phase budget (the thinnest, with a sanding warning, when none does)")]
+    stock_thicknesses_mm: tuple[SheetThickness, ...] = Field(
+        XPS_STOCK_MM, min_length=1, description="board thicknesses on offer, for sheet_thickness_mm: auto")
     board: BoardSpec = BoardSpec()
     pedestal_height_mm: float = Field(80.0, ge=50, le=1000)
     pedestal_width_mm: float | None = Field(None, gt=0, description="default: 60 % of the lens diameter")
@@ -79,6 +89,13 @@ class SheetLayupSpec(StrictModel):
     dowel_diameter_mm: float = Field(20.0, gt=0, le=200)
     neck_width_mm: float = Field(40.0, gt=0, le=500)
     box: BoxSpec = BoxSpec()
+
+    @field_validator("stock_thicknesses_mm")
+    @classmethod
+    def _distinct(cls, v):
+        if len(set(v)) != len(v):
+            raise ValueError("thicknesses must be distinct")
+        return tuple(sorted(v))
 
     def check_fits_lens(self, lens_radius_mm: float, diameter_field: str) -> None:
         """Pedestal narrower than the lens and neck narrower than its radius (raises ValueError

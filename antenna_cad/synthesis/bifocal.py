@@ -28,8 +28,8 @@ Constructions
   parameters (a0, a2, h1, b0, b2, h2, ρ1, ρ2); ``synthesize_bifocal(construction="kinber")`` fits its
   central segments to the spec's foci and tilt (see :func:`synthesize_bifocal`).
 
-The single-surface hyperbolic comparison lens (seed-000 §2.1, (1.9) corrected, (1.1)) comes from the
-shared :mod:`antenna_cad.synthesis.collimator` (``_single_surface_lens`` only adapts its signature).
+The single-surface hyperbolic comparison lens (seed-000 §2.1, (1.9) corrected, (1.1)) and its scan-range
+study are the shared :mod:`antenna_cad.raytrace.collimator`.
 
 3-D shape: the synthesis is the 2-D section (seed-000 §7.2 leaves the 3-D form open). ``cylindrical``
 extrudes it (exact in every section); ``revolved`` turns it about the axis, which smears the two foci
@@ -45,8 +45,9 @@ import numpy as np
 from scipy.interpolate import CubicHermiteSpline
 from scipy.optimize import brentq, least_squares
 
+from antenna_cad.raytrace.collimator import single_surface_p2p_deg, usable_half_range_mm
 from antenna_cad.raytrace.snell import refract
-from antenna_cad.raytrace.trace2d import Interface, Trace2D, trace
+from antenna_cad.raytrace.trace2d import Interface, Trace2D, aim_at_face, trace
 from antenna_cad.synthesis import collimator
 from antenna_cad.synthesis.checks import Check, DesignError
 
@@ -783,9 +784,7 @@ def _replace(d: BifocalDesign, **kw) -> BifocalDesign:
 # --------------------------------------------------------------------------------------------------
 
 def _aim(design: BifocalDesign, feed: np.ndarray, n_rays: int, margin: float = 0.999) -> np.ndarray:
-    yt = np.linspace(-margin * design.edge_y_mm, margin * design.edge_y_mm, n_rays)
-    tgt = np.stack([design.profile("illuminated", yt), yt], -1)
-    return _unit(tgt - feed)
+    return aim_at_face(design.interfaces()[0], feed, margin * design.edge_y_mm, n_rays)
 
 
 def trace_bifocal(design: BifocalDesign, feed_y_mm: float, feed_z_mm: float = 0.0, n_rays: int = 201,
@@ -820,39 +819,6 @@ def aperture_phase(tr: Trace2D, wavelength_mm: float) -> tuple[np.ndarray, np.nd
     return y, err, float(np.ptp(err))
 
 
-def _single_surface_lens(f_mm: float, diameter_mm: float, eps_r: float):
-    """The single-surface comparison lens from the shared :mod:`antenna_cad.synthesis.collimator`
-    (seed-000 §2.1: (1.9) corrected profile, (1.1) thickness; vertex z = 0, feed at z = −f, flat back
-    at z = d). Returns (d in mm, z(r), dz/dr)."""
-    n = float(np.sqrt(eps_r))
-    f = float(f_mm)
-    d = collimator.thickness_mm(float(diameter_mm), f, n)
-
-    def z_of_r(r):
-        return collimator.profile_z_mm(r, f, n)
-
-    def dz_dr(r):
-        r = np.asarray(r, float)
-        nz, nr = np.moveaxis(collimator.surface_normal(z_of_r(r), r, f, n), -1, 0)
-        return -nr / nz
-
-    return float(d), z_of_r, dz_dr
-
-
-def _single_lens_p2p(f_mm, D_mm, eps_r, feed_y_mm, back_mm, wavelength_mm, n_rays=201) -> float:
-    """Peak-to-peak aperture phase (deg) of the single-surface lens, feed at (−f, feed_y), phase on the
-    plane ``back_mm`` behind the flat face (seed-000 §4.2 with vector Snell)."""
-    n = np.sqrt(eps_r)
-    d, zr, dzr = _single_surface_lens(f_mm, D_mm, eps_r)
-    front = Interface(zr, dzr, n, d / 2)
-    feed = np.array([-f_mm, feed_y_mm])
-    yt = np.linspace(-0.999 * D_mm / 2, 0.999 * D_mm / 2, n_rays)
-    dirs = _unit(np.stack([zr(yt), yt], -1) - feed)
-    tr = trace(np.tile(feed, (n_rays, 1)), dirs, [front, Interface.plane(d, 1.0)], 1.0, d + back_mm)
-    ok = tr.ok & (np.abs(tr.points[2][:, 1]) <= D_mm / 2)
-    return aperture_phase(Trace2D(tr.points, tr.directions, tr.opl, ok), wavelength_mm)[2]
-
-
 @dataclass(frozen=True)
 class DefocusStudy:
     """Aperture phase error (peak-to-peak, linear fit removed) vs feed displacement along the focal
@@ -871,16 +837,6 @@ class DefocusStudy:
     wavelength_mm: float
 
 
-def _first_crossing(fun, grid: np.ndarray, vals: np.ndarray, budget: float) -> float:
-    over = np.nonzero(~(vals <= budget))[0]
-    if len(over) == 0:
-        return float(grid[-1])
-    i = over[0]
-    if i == 0:
-        return 0.0
-    return float(brentq(lambda y: fun(y) - budget, grid[i - 1], grid[i], xtol=1e-6 * grid[-1]))
-
-
 def defocus_study(design: BifocalDesign, budget_deg: float = 22.5, frequency_ghz: float = 10.0,
                   feed_y_mm: np.ndarray | None = None, n_rays: int = 201,
                   surfaces: Literal["spline", "polynomial"] = "spline") -> DefocusStudy:
@@ -894,12 +850,10 @@ def defocus_study(design: BifocalDesign, budget_deg: float = 22.5, frequency_ghz
     bif = lambda y: aperture_phase(trace_bifocal(design, y, n_rays=n_rays, surfaces=surfaces), lam)[2]  # noqa: E731
     f, D = design.edge_x_mm, 2 * design.edge_y_mm
     gap = design.antenna_x_mm - design.rho2_mm
-    sgl = lambda y: _single_lens_p2p(f, D, design.eps_r, y, gap, lam, n_rays)  # noqa: E731
-    pb = np.array([bif(y) for y in feed_y_mm])
-    ps = np.array([sgl(y) for y in feed_y_mm])
-    rb = _first_crossing(bif, feed_y_mm, pb, budget_deg)
-    rs = _first_crossing(sgl, feed_y_mm, ps, budget_deg)
-    d = _single_surface_lens(f, D, design.eps_r)[0]
+    sgl = lambda y: single_surface_p2p_deg(f, D, design.eps_r, y, gap, lam, n_rays)  # noqa: E731
+    pb, rb = usable_half_range_mm(bif, feed_y_mm, budget_deg)
+    ps, rs = usable_half_range_mm(sgl, feed_y_mm, budget_deg)
+    d = collimator.thickness_mm(D, f, float(np.sqrt(design.eps_r)))
     return DefocusStudy(feed_y_mm, pb, ps, float(budget_deg), rb, rs,
                         float(np.degrees(np.arctan2(rb, f))), float(np.degrees(np.arctan2(rs, f))), d, lam)
 

@@ -189,8 +189,7 @@ def synthesize_collimator(*, diameter_mm: float, focal_length_mm: float, eps_r: 
                           tan_delta: float, frequency_ghz: float,
                           phase_error_budget_deg: float = 22.5,
                           antenna_aperture_mm: float | None = None,
-                          antenna_distance_mm: float | None = None,
-                          sheet_thickness_mm: float | None = None) -> CollimatorDesign:
+                          antenna_distance_mm: float | None = None) -> CollimatorDesign:
     """Synthesize the lens of seed-000 §2.1 and evaluate §2.2 figures and §7.3 checks.
 
     Raises DesignError when the rim ray is totally internally reflected (2.24 ≥ 2.23); an antenna
@@ -220,11 +219,6 @@ def synthesize_collimator(*, diameter_mm: float, focal_length_mm: float, eps_r: 
                             f"antenna aperture {antenna_aperture_mm:g} mm + 2·g ({g:.1f} mm, seed-000 "
                             f"eq. 2.1) = {need:.1f} mm vs lens diameter {diameter_mm:g} mm"
                             + ("; the antenna rim sees the lens edge diffraction" if status == "warn" else "")))
-    if sheet_thickness_mm is not None:
-        checks.append(Check.upper("unsanded_step_phase_error",
-                                  step_phase_error_deg(n, sheet_thickness_mm, lam),
-                                  phase_error_budget_deg, "deg",
-                                  "stair-step phase error k0(n−1)Δd of unsanded sheets vs budget"))
     return CollimatorDesign(
         diameter_mm=diameter_mm, focal_length_mm=focal_length_mm, eps_r=eps_r,
         tan_delta=tan_delta, frequency_ghz=frequency_ghz,

@@ -1,0 +1,380 @@
+"""As-built verification of the lenses of revolution (issue 6), shared by the collimator and bifocal kinds.
+
+Exact 2-D meridional traces (:mod:`antenna_cad.raytrace.trace2d`, vector Snell, seed-000 §4.2) from a
+feed to the antenna plane through (a) the ideal lens, (b) the stepped stack as cut (before sanding),
+(c) the stack as fabricated (the cut pieces: necks, pedestal feet, dowels; the material's εr). Per feed:
+aperture phase peak-to-peak and RMS with the linear tilt removed (seed-000 §4.1, (2.16)), amplitude
+taper from Fresnel transmission and dielectric loss (§4.4, no ray-tube factor, as the seed), gain loss
+by Ruze, G/G0 = exp(−σ²) with σ the RMS phase error in rad, and the focus shift. Statistics are over
+the rays through the lens aperture, launched uniformly in y across it. Also the choice of the stock
+thickness (``sheet_thickness_mm: auto``), the tolerance study, and the report's tables and plot data.
+
+Limits of geometrical optics on a stepped stack, both measured and reported:
+* the flat sheet faces do not bend rays toward the axis as the smooth face does, so the exact trace
+  adds to the stair-step error k0(n−1)Δd (§7.3) a non-collimation term that grows with the ray angle
+  and the path to the antenna plane (small for slow lenses, ≈ 3.5° p-p for the seed's f/8 lens);
+* rays that meet a riser do so at grazing incidence and are deflected strongly (or totally
+  reflected); they fill strips only t·tan γ wide (a few mm: less than a wavelength), where GO gives
+  no usable phase. They are traced and drawn but left out of the phase statistics;
+  ``riser_fraction`` says how many they are.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Callable
+
+import numpy as np
+
+from antenna_cad.fabrication.layup import LayupPlan
+from antenna_cad.fabrication.section import fabricated_section, stepped_section
+from antenna_cad.raytrace.collimator import ApertureTrace
+from antenna_cad.raytrace.trace2d import Interface, Slabs, Trace2D, aim_at_face, trace, trace_slabs, \
+    transmitted_amplitude
+from antenna_cad.spec.common import TolerancesSpec
+from antenna_cad.synthesis.checks import Check, DesignError
+from antenna_cad.synthesis.collimator import step_phase_error_deg
+from antenna_cad.verification import Plot, Series, Table, Verification, detrended
+
+RAYS = 1201                 # rays per trace across the aperture
+FAN_RAYS = 31
+AIM_MARGIN = 0.999          # rays aimed inside the rim
+EDGE_FRACTION = 0.1         # taper: outer vs central tenth of the aperture
+TOLERANCE_STEPS = (-1.0, -0.5, 0.0, 0.5, 1.0)     # deviations in units of each tolerance
+Medium = tuple[Interface, ...] | Slabs
+
+
+@dataclass(frozen=True)
+class Lens:
+    """A lens of revolution as the as-built trace sees it, in its kind's frame (z the axis, y
+    transverse, mm). ``faces(n)``: the ideal faces with lens index n (front first; the last one is
+    the back face the lens really has, e.g. the flat face behind a layup's back slab)."""
+    radius_mm: float
+    eps_r: float
+    tan_delta: float
+    wavelength_mm: float
+    budget_deg: float
+    antenna_z_mm: float
+    feed: tuple[float, float]           # nominal feed (z, y)
+    faces: Callable[[float], tuple[Interface, ...]]
+
+    @property
+    def n(self) -> float:
+        return self.eps_r ** 0.5
+
+    def front_z(self, r) -> np.ndarray:
+        return self.faces(self.n)[0].z_of_y(r)
+
+    def back_z(self, r) -> np.ndarray:
+        return self.faces(self.n)[-1].z_of_y(r)
+
+
+@dataclass(frozen=True)
+class Stats:
+    p2p_deg: float
+    rms_deg: float
+    taper_db: float
+    gain_loss_db: float
+    riser_fraction: float       # aperture rays refracted or reflected at a riser (not in the statistics)
+
+
+def ruze_loss_db(rms_deg: float) -> float:
+    """Gain loss of a random-like phase error, −10·log10(exp(−σ²)), σ the RMS in rad (Ruze)."""
+    return float(10 * np.log10(np.e) * np.radians(rms_deg) ** 2)
+
+
+def _aperture(lens: Lens, tr: Trace2D) -> np.ndarray:
+    return tr.ok & (np.abs(tr.points[-2][:, 1]) <= lens.radius_mm)
+
+
+def trace_lens(lens: Lens, medium: Medium, feed, rays: int = RAYS) -> tuple[Trace2D, np.ndarray]:
+    """Trace from ``feed`` through ``medium`` (ideal faces or a stepped section) to the antenna plane;
+    returns the trace and the rays that cross the lens aperture without meeting a riser."""
+    feed = np.asarray(feed, float)
+    dirs = aim_at_face(lens.faces(lens.n)[0], feed, AIM_MARGIN * lens.radius_mm, rays)
+    origins = np.tile(feed, (rays, 1))
+    if isinstance(medium, Slabs):
+        tr = trace_slabs(origins, dirs, medium, lens.antenna_z_mm)
+    else:
+        tr = trace(origins, dirs, medium, 1.0, lens.antenna_z_mm)
+    keep = _aperture(lens, tr)
+    return tr, keep if tr.riser is None else keep & ~tr.riser
+
+
+def aperture_stats(lens: Lens, tr: Trace2D, keep: np.ndarray) -> Stats:
+    ap = ApertureTrace.from_trace(tr, lens.wavelength_mm, keep)
+    y = np.abs(ap.y_mm - np.median(ap.y_mm))
+    edge, centre = y >= (1 - EDGE_FRACTION) * y.max(), y <= EDGE_FRACTION * y.max()
+    taper = min(20 * np.log10(np.mean(a[edge]) / np.mean(a[centre]))
+                for a in (transmitted_amplitude(tr, lens.wavelength_mm, lens.tan_delta, pol)[keep]
+                          for pol in ("perp", "par")))
+    rms = ap.rms_deg()
+    return Stats(ap.peak_to_peak_deg(), rms, float(taper), ruze_loss_db(rms),
+                 1.0 - keep.sum() / _aperture(lens, tr).sum())
+
+
+def focus_shift(lens: Lens, medium: Medium, feed) -> tuple[float, Stats]:
+    """Axial feed move (+ toward the lens) that minimizes the RMS phase error, and the stats there.
+    Gauss–Newton on the first-order change of the optical path, −δz·cos γ (γ the ray's angle at the
+    feed, Fermat), two steps."""
+    z0, y0 = feed
+    shift = 0.0
+    for _ in range(2):
+        tr, keep = trace_lens(lens, medium, (z0 + shift, y0))
+        ap = ApertureTrace.from_trace(tr, lens.wavelength_mm, keep)
+        grad = detrended(ap.y_mm, -360.0 / lens.wavelength_mm * tr.directions[0][keep, 0])
+        shift -= float(np.dot(ap.detrended_phase_deg(), grad) / np.dot(grad, grad))
+    return shift, aperture_stats(lens, *trace_lens(lens, medium, (z0 + shift, y0)))
+
+
+# ------------------------------------------------------------------ layers and the stock thickness
+
+def excess_mm(lens: Lens, layup: LayupPlan, r: np.ndarray) -> np.ndarray:
+    """(sheets, len(r)) foam of each sheet's disc outside the ideal lens, along z at radius r: what
+    sanding removes there."""
+    zf, zb = lens.front_z(r), lens.back_z(r)
+    rows = []
+    for s in layup.sheets:
+        overlap = np.clip(np.minimum(s.z_max_mm, zb) - np.maximum(s.z_min_mm, zf), 0.0, None)
+        rows.append(np.where(r <= s.radius_mm, s.thickness_mm - overlap, 0.0))
+    return np.array(rows)
+
+
+def step_estimate_deg(lens: Lens, layup: LayupPlan) -> float:
+    """Stair-step error k0(n−1)Δd, seed-000 §7.3, with Δd the spread of the excess foam along the axis."""
+    total = excess_mm(lens, layup, np.linspace(0.0, lens.radius_mm, 4001)).sum(axis=0)
+    return step_phase_error_deg(lens.n, float(np.ptp(total)), lens.wavelength_mm)
+
+
+@dataclass(frozen=True)
+class Candidate:
+    thickness_mm: float
+    layup: LayupPlan | None         # None when the stock cannot be laid up (``note`` says why)
+    stats: Stats | None
+    estimate_deg: float | None      # k0(n−1)Δd
+    meets: bool
+    note: str = ""
+
+
+def stock_study(sheets: Callable[[float], LayupPlan], lens_for: Callable[[LayupPlan], Lens],
+                stocks: tuple[float, ...]) -> tuple[Candidate, ...]:
+    """Every stock thickness laid up and traced unsanded (stepped stack as cut) at the nominal feed."""
+    out = []
+    for t in stocks:
+        try:
+            layup = sheets(t)
+        except DesignError as exc:
+            out.append(Candidate(t, None, None, None, False, str(exc)))
+            continue
+        lens = lens_for(layup)
+        st = aperture_stats(lens, *trace_lens(lens, stepped_section(layup, lens.n), lens.feed))
+        out.append(Candidate(t, layup, st, step_estimate_deg(lens, layup), st.p2p_deg <= lens.budget_deg))
+    return tuple(out)
+
+
+def choose_stock(study: tuple[Candidate, ...]) -> Candidate:
+    """The thickest stock that meets the budget unsanded, else the thinnest that can be laid up."""
+    feasible = [c for c in study if c.layup is not None]
+    if not feasible:
+        raise DesignError("fabrication.stock_thicknesses_mm", "no stock thickness can be laid up: "
+                          + "; ".join(c.note for c in study))
+    meeting = [c for c in feasible if c.meets]
+    return max(meeting, key=lambda c: c.thickness_mm) if meeting else min(feasible, key=lambda c: c.thickness_mm)
+
+
+# ------------------------------------------------------------------ the verification
+
+def _scaled(face: Interface, z0: float, scale: float) -> Interface:
+    """``face`` stretched along z about z0 (a machined lens off in thickness)."""
+    return Interface(lambda y: z0 + scale * (face.z_of_y(y) - z0), lambda y: scale * face.dz_dy(y),
+                     face.n_after, z0 + scale * (face.z_guess - z0))
+
+
+def _as_built(lens: Lens, section: Slabs | None, eps_r: float, scale: float) -> Medium:
+    """The as-built lens with material εr and its axial size scaled (each sheet, or the lens, thicker)."""
+    n = eps_r ** 0.5
+    if section is not None:
+        z = section.z_edges
+        return replace(section, n=n, z_edges=z[0] + scale * (z - z[0]))
+    z0 = float(lens.front_z(0.0))
+    return tuple(_scaled(f, z0, scale) for f in lens.faces(n))
+
+
+def _r(x: float) -> float:
+    return round(float(x), 3)
+
+
+def verify_lens(lens: Lens, feeds: tuple[tuple[str, float, float], ...], tolerances: TolerancesSpec,
+                layup: LayupPlan | None = None, fab=None,
+                study: tuple[Candidate, ...] = ()) -> Verification:
+    """Figures, checks, tables and plots of the as-built lens. ``feeds``: (name, z, y), the first at
+    the nominal feed; ``study``: the stock candidates (layups)."""
+    n = lens.n
+    variants: list[tuple[str, Medium]] = [("ideal", lens.faces(n))]
+    section = None
+    if layup is not None:
+        section = fabricated_section(layup, fab, n)
+        variants += [("stepped", stepped_section(layup, n)), ("fabricated", section)]
+    as_built = variants[-1][1]
+    figures: dict[str, float] = {}
+    rows, plots = [], []
+    for name, z, y in feeds:
+        series = []
+        for variant, medium in variants:
+            tr, keep = trace_lens(lens, medium, (z, y))
+            st = aperture_stats(lens, tr, keep)
+            figures |= {f"{variant}_{name}_{k}": v for k, v in vars(st).items()}
+            ap = ApertureTrace.from_trace(tr, lens.wavelength_mm, keep)
+            order = np.argsort(ap.y_mm)
+            series.append(Series(variant, ap.y_mm[order], ap.detrended_phase_deg()[order]))
+            rows.append((name, variant, _r(st.p2p_deg), _r(st.rms_deg), _r(st.taper_db), _r(st.gain_loss_db)))
+        shift, refocused = focus_shift(lens, as_built, (z, y))
+        figures |= {f"{name}_feed_z_mm": z, f"{name}_feed_y_mm": y, f"{name}_focus_shift_mm": shift,
+                    f"{name}_refocused_rms_deg": refocused.rms_deg}
+        plots.append(Plot(f"aperture-phase-{name.replace('_', '-')}", f"Aperture phase, feed {name} "
+                          f"(z {z:.1f}, y {y:.1f} mm)", "y on the antenna plane (mm)", "phase, tilt removed (deg)",
+                          tuple(series), caption="ideal lens, stepped stack as cut, stack as fabricated"))
+    tables = [Table("aperture", "Aperture phase and amplitude per feed",
+                    ("feed", "lens", "p-p deg", "RMS deg", "taper dB", "gain loss dB"), tuple(rows))]
+    checks = []
+    nominal = feeds[0][0]
+    if layup is not None:
+        tables.append(_layer_table(lens, layup, fab))
+        plots.append(_profile_plot(lens, layup))
+        pp, sanded = figures[f"fabricated_{nominal}_p2p_deg"], figures[f"ideal_{nominal}_p2p_deg"]
+        checks.append(Check("unsanded_step_phase_error", "warn" if pp > lens.budget_deg else "pass", pp,
+                            lens.budget_deg, "deg",
+                            f"as fabricated, unsanded ({layup.sheet_thickness_mm:g} mm sheets): {pp:.1f}° "
+                            f"p-p vs budget {lens.budget_deg:g}°" + ("; sanding required: it brings the "
+                            f"error to {sanded:.1f}° (the ideal lens)" if pp > lens.budget_deg else "")))
+    if study:
+        tables.append(_candidates_table(study, layup))
+    sens_table, sens_plot, sens_figures, sens_check = _sensitivity(lens, section, tolerances, layup)
+    figures |= sens_figures
+    return Verification(figures, tuple(checks + [sens_check]), tuple(tables + [sens_table]),
+                        tuple(plots + [_fan_plot(lens, as_built, section), sens_plot]))
+
+
+def _layer_table(lens: Lens, layup: LayupPlan, fab) -> Table:
+    excess = excess_mm(lens, layup, np.linspace(0.0, lens.radius_mm, 4001)).max(axis=1)
+    rows = tuple((s.label, _r(s.z_min_mm), _r(s.z_max_mm), _r(s.radius_mm), _r(e),
+                  sum(p.sheet_index == s.index for p in fab.pieces))
+                 for s, e in zip(layup.sheets, excess))
+    return Table("layers", "Sheets", ("sheet", "z min mm", "z max mm", "disc radius mm",
+                                      "max excess over the lens mm", "pieces"), rows,
+                 caption="excess: the largest foam depth sanding removes in that sheet")
+
+
+def _candidates_table(study: tuple[Candidate, ...], layup: LayupPlan | None) -> Table:
+    rows = tuple((c.thickness_mm, c.layup.count, _r(c.stats.p2p_deg), _r(c.stats.rms_deg),
+                  _r(c.stats.gain_loss_db), _r(c.estimate_deg), "yes" if c.meets else "no")
+                 if c.layup is not None else (c.thickness_mm, None, None, None, None, None, f"no: {c.note}")
+                 for c in study)
+    chosen = f"; chosen: {layup.sheet_thickness_mm:g} mm" if layup is not None else ""
+    return Table("stock-candidates", "Stock sheet thickness, unsanded stack at the nominal feed",
+                 ("thickness mm", "sheets", "p-p deg", "RMS deg", "gain loss dB", "k0(n-1)Δd deg",
+                  "meets budget"), rows, caption=f"exact trace of the stack as cut; k0(n−1)Δd the stair-step "
+                 f"estimate of seed-000 §7.3{chosen}")
+
+
+def _sensitivity(lens: Lens, section: Slabs | None, tol: TolerancesSpec, layup: LayupPlan | None):
+    """Phase error against εr spread, sheet (or lens) thickness and feed position, each at ± its
+    tolerance; the added errors combined by root-sum-square against the budget."""
+    t_ref = layup.sheet_thickness_mm if layup is not None else float(lens.back_z(0.0) - lens.front_z(0.0))
+    z0, y0 = lens.feed
+    nominal = _as_built(lens, section, lens.eps_r, 1.0)
+
+    def eps_r(s):
+        return _as_built(lens, section, lens.eps_r + s, 1.0), lens.feed
+
+    def thickness(s):
+        return _as_built(lens, section, lens.eps_r, 1 + s / t_ref), lens.feed
+
+    thick = "sheet thickness" if layup is not None else "lens thickness"
+    cases = (("εr", tol.eps_r_tolerance, "", eps_r),
+             (thick, tol.thickness_tolerance_mm, "mm", thickness),
+             ("feed axial", tol.feed_position_tolerance_mm, "mm", lambda s: (nominal, (z0 + s, y0))),
+             ("feed transverse", tol.feed_position_tolerance_mm, "mm", lambda s: (nominal, (z0, y0 + s))))
+    base = aperture_stats(lens, *trace_lens(lens, nominal, lens.feed))
+    rows, series, added = [], [], {}
+    for name, size, unit, at in cases:
+        stats = [base if k == 0 else aperture_stats(lens, *trace_lens(lens, *at(k * size))) for k in TOLERANCE_STEPS]
+        series.append(Series(f"{name} ±{size:g} {unit}".strip(), np.array(TOLERANCE_STEPS),
+                             np.array([s.p2p_deg for s in stats])))
+        ends = (stats[0], stats[-1])                                  # −1 and +1 tolerance
+        rows += [(name, f"{sign}{size:g} {unit}".strip(), _r(s.p2p_deg), _r(s.rms_deg), _r(s.gain_loss_db))
+                 for sign, s in zip("−+", ends)]
+        added[name] = tuple(max(0.0, max(getattr(s, k) ** 2 for s in ends) - getattr(base, k) ** 2)
+                            for k in ("p2p_deg", "rms_deg"))
+    p2p = float(np.sqrt(base.p2p_deg ** 2 + sum(a[0] for a in added.values())))
+    rms = float(np.sqrt(base.rms_deg ** 2 + sum(a[1] for a in added.values())))
+    dominant = max(added, key=lambda k: added[k][1])
+    figures = {"tolerance_rss_p2p_deg": p2p, "tolerance_rss_rms_deg": rms,
+               "tolerance_rss_gain_loss_db": ruze_loss_db(rms),
+               "tolerance_dominant_added_rms_deg": float(np.sqrt(added[dominant][1]))}
+    check = Check("tolerance_budget", "warn" if p2p > lens.budget_deg else "pass", p2p, lens.budget_deg, "deg",
+                  f"as built with every tolerance (RSS of the added errors): {p2p:.1f}° p-p, {rms:.1f}° RMS "
+                  f"vs budget {lens.budget_deg:g}°; dominant: {dominant} "
+                  f"(+{np.sqrt(added[dominant][1]):.2f}° RMS)")
+    table = Table("sensitivity", "Phase error against the build tolerances (nominal feed)",
+                  ("tolerance", "deviation", "p-p deg", "RMS deg", "gain loss dB"),
+                  (("nominal", "", _r(base.p2p_deg), _r(base.rms_deg), _r(base.gain_loss_db)), *rows),
+                  caption=f"dominant: {dominant}; RSS {p2p:.2f}° p-p, {rms:.2f}° RMS")
+    plot = Plot("sensitivity", "Phase error against the build tolerances", "deviation (units of the tolerance)",
+                "p-p phase error (deg)", tuple(series), hlines=(("budget", lens.budget_deg),))
+    return table, plot, figures, check
+
+
+def _profile_plot(lens: Lens, layup: LayupPlan) -> Plot:
+    """Upper half-section: the stepped stack (as cut) filled, the lens after sanding filled over it,
+    the sheets outlined; what of the stack shows outside the lens is the sanding allowance."""
+    r = np.linspace(0.0, lens.radius_mm, 201)
+    lens_z = np.concatenate([lens.front_z(r), lens.back_z(r[::-1])])
+    lens_r = np.concatenate([r, r[::-1]])
+    z = np.array([[s.z_min_mm, s.z_max_mm] for s in layup.sheets]).ravel()
+    rad = np.repeat([s.radius_mm for s in layup.sheets], 2)
+    step_z = np.concatenate([[z[0]], z, [z[-1]]])
+    step_r = np.concatenate([[0.0], rad, [0.0]])
+    boxes = np.array([[(s.z_min_mm, 0.0), (s.z_min_mm, s.radius_mm), (s.z_max_mm, s.radius_mm),
+                       (s.z_max_mm, 0.0), (np.nan, np.nan)] for s in layup.sheets]).reshape(-1, 2)
+    return Plot("profile", "Section: sheets, lens and sanding allowance", "z (mm)", "r (mm)",
+                (Series("stepped stack as cut (sanding allowance)", step_z, step_r, "fill"),
+                 Series("lens after sanding", lens_z, lens_r, "fill"),
+                 Series("sheets", boxes[:, 0], boxes[:, 1], "line")), equal_aspect=True,
+                caption=f"{layup.count} sheets of {layup.sheet_thickness_mm:g} mm; the stack outside the lens "
+                        "is sanded off")
+
+
+def _outline(lens: Lens, section: Slabs | None) -> np.ndarray:
+    """Closed outlines of the as-built section, NaN-separated (z, y) rows."""
+    if section is None:
+        y = np.linspace(-lens.radius_mm, lens.radius_mm, 201)
+        ring = np.concatenate([np.stack([lens.front_z(y), y], -1), np.stack([lens.back_z(y[::-1]), y[::-1]], -1)])
+        return np.concatenate([ring, ring[:1], [[np.nan, np.nan]]])
+    y_ext = np.concatenate([[-np.inf], section.y_breaks, [np.inf]])
+    out = []
+    for k, row in enumerate(section.material):
+        z0, z1 = section.z_edges[k], section.z_edges[k + 1]
+        edges = np.diff(np.concatenate([[0], row.astype(int), [0]]))
+        for lo, hi in zip(y_ext[np.nonzero(edges == 1)[0]], y_ext[np.nonzero(edges == -1)[0]]):
+            out += [(z0, lo), (z0, hi), (z1, hi), (z1, lo), (z0, lo), (np.nan, np.nan)]
+    return np.array(out)
+
+
+def _fan_plot(lens: Lens, medium: Medium, section: Slabs | None) -> Plot:
+    """About 30 rays from the nominal feed through the as-built lens to the antenna plane."""
+    tr, keep = trace_lens(lens, medium, lens.feed, FAN_RAYS)
+    start = max(lens.feed[0], float(lens.front_z(0.0)) - 4 * lens.radius_mm)
+    lines = []
+    for i in np.nonzero(keep)[0]:
+        pts = tr.points[:, i]
+        pts = pts[np.concatenate([[True], np.linalg.norm(np.diff(pts, axis=0), axis=-1) > 0])]
+        d = tr.directions[0, i]
+        pts[0] = pts[0] + (start - pts[0, 0]) / d[0] * d
+        lines += [pts, [[np.nan, np.nan]]]
+    rays = np.concatenate(lines)
+    outline = _outline(lens, section)
+    return Plot("ray-fan", "Ray fan through the lens as built", "z (mm)", "y (mm)",
+                (Series("lens as built", outline[:, 0], outline[:, 1], "line"),
+                 Series("rays", rays[:, 0], rays[:, 1], "line")), equal_aspect=True,
+                caption=f"feed at z {lens.feed[0]:.1f}, y {lens.feed[1]:.1f} mm; rays drawn from z {start:.0f} mm")

@@ -1,0 +1,241 @@
+"""As-built verification of the lenses of revolution (issue 6): the slab tracer against closed forms,
+the ideal lens, the stair-step estimate, the focus shift, the stock choice, the tolerance study, the
+manifest and the spec errors."""
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+import yaml
+from typer.testing import CliRunner
+
+from antenna_cad.cli import app
+from antenna_cad.fabrication.section import stepped_section
+from antenna_cad.kinds.asbuilt import Lens, focus_shift, trace_lens, aperture_stats
+from antenna_cad.pipeline import build
+from antenna_cad.raytrace.collimator import front_face
+from antenna_cad.raytrace.trace2d import Interface, Slabs, trace_slabs, transmitted_amplitude
+from antenna_cad.registry import adapter
+from antenna_cad.spec import parse_spec
+from antenna_cad.synthesis.collimator import profile_radius_mm, profile_z_mm, thickness_mm
+
+ROOT = Path(__file__).resolve().parents[1]
+SEED_LENS = yaml.safe_load((ROOT / "recipes" / "xps-collimator-0.5m.yaml").read_text())      # f/8
+SLOW_LENS = yaml.safe_load((ROOT / "recipes" / "xps-collimator-1.1m.yaml").read_text())      # f/23
+LAM = 299.792458 / 10.0                      # mm at 10 GHz
+K0N1 = 360.0 / LAM * (1.047 ** 0.5 - 1)      # k0(n−1) of XPS, deg per mm of foam: 0.2790
+
+
+def _spec(base: dict, **fabrication):
+    data = yaml.safe_load(yaml.safe_dump(base))
+    data["fabrication"].update(fabrication)
+    return parse_spec(data)
+
+
+def _verify(spec):
+    kind = adapter(spec.kind)
+    design = kind.synthesize(spec)
+    layup, panels = kind.plan(spec, design)
+    return design, layup, kind.verify(spec, design, layup, kind.fabricate(spec, design, layup, panels))
+
+
+@pytest.fixture(scope="module")
+def seed():
+    return _verify(_spec(SEED_LENS))
+
+
+# ------------------------------------------------------------------ the slab tracer
+
+def test_plate_path_and_transmission_closed_forms():
+    """One slab (a plane-parallel plate) crossed at 20°: optical path, lateral shift and the seed's
+    amplitude (Fresnel in and out, dielectric loss) from their closed forms."""
+    n, t, tan_d = 1.5, 40.0, 0.01
+    plate = Slabs.from_intervals([0.0, t], [[(-1e3, 1e3)]], n)
+    a = np.radians(20.0)
+    tr = trace_slabs(np.array([[-10.0, 0.0]]), np.array([[np.cos(a), np.sin(a)]]), plate, 100.0)
+    b = np.arcsin(np.sin(a) / n)
+    path = 10 / np.cos(a) + n * t / np.cos(b) + (100 - t) / np.cos(a)
+    assert tr.ok.all() and not tr.riser.any()
+    assert tr.opl[0] == pytest.approx(path, rel=1e-12)
+    assert tr.points[-1][0, 1] == pytest.approx((110 - t) * np.tan(a) + t * np.tan(b), rel=1e-12)
+    ca, cb = np.cos(a), np.cos(b)
+    tau = 2 * ca / (ca + n * cb) * 2 * n * cb / (n * cb + ca)                  # ⊥, in and out (2.20)
+    loss = np.exp(-np.pi * n * tan_d / LAM * t / cb)                           # (2.25)
+    assert transmitted_amplitude(tr, LAM, tan_d, "perp")[0] == pytest.approx(tau * loss, rel=1e-12)
+
+
+def test_riser_reflects_grazing_rays_and_refracts_steep_ones():
+    """A ray enters a sheet (n = 1.2) through its face and meets the sheet edge y = 50. Entering at 20°
+    it meets the riser at 73.5° from its normal, beyond the critical 56.4°: totally reflected, it stays
+    in the sheet. Entering at 70° it meets the riser at 38.5°: it refracts out, with n·cos(ray angle)
+    (the component along the riser) conserved."""
+    n = 1.2
+    sheet = Slabs.from_intervals([0.0, 200.0], [[(-50.0, 50.0)]], n)
+    for outside, reflected in ((20.0, True), (70.0, False)):
+        a = np.radians(outside)
+        tr = trace_slabs(np.array([[-1.0, 40.0]]), np.array([[np.cos(a), np.sin(a)]]), sheet, 300.0)
+        inside = np.arcsin(np.sin(a) / n)
+        assert tr.ok[0] and tr.riser[0]
+        assert (tr.directions[-1][0, 1] < 0) == reflected
+        if not reflected:
+            assert tr.directions[-1][0, 0] == pytest.approx(n * np.cos(inside), rel=1e-12)
+            assert np.degrees(np.arccos(np.sin(inside))) < np.degrees(np.arcsin(1 / n))
+
+
+# ------------------------------------------------------------------ physics of the traces
+
+def test_ideal_lenses_are_exact(seed):
+    """Seed-000 §7.4 case 11: the ideal lens at its design feed is flat to < 1e-6° (exact GO, the
+    default tracer tolerance); the gain loss is nil."""
+    _, _, v = seed
+    f = v.figures
+    assert f["ideal_on_axis_p2p_deg"] < 1e-6 and f["ideal_on_axis_gain_loss_db"] < 1e-12
+    assert f["ideal_on_axis_riser_fraction"] == 0.0
+    # the edge feed is where the ideal lens reaches the budget (seed-000 §5.5), 201 vs 1201 rays
+    assert f["ideal_edge_p2p_deg"] == pytest.approx(22.5, abs=0.5)
+    assert f["edge_feed_y_mm"] == f["scan_half_range_mm"] > 0
+
+
+def test_bifocal_ideal_is_exact_at_its_focus():
+    spec = parse_spec(yaml.safe_load((ROOT / "recipes" / "bifocal-nikulina-9m.yaml").read_text()))
+    kind = adapter("bifocal")
+    design = kind.synthesize(spec)
+    lens = kind._lens(spec, design, None)
+    st = aperture_stats(lens, *trace_lens(lens, lens.faces(lens.n), lens.feed))
+    assert st.p2p_deg < 0.01                     # residual path error of the construction < 1e-6 mm
+
+
+def _analytic_step_error_deg(spec, layup) -> float:
+    """k0(n−1)Δd with Δd the spread of the foam the steps add in front of the hyperbolic face along
+    the axis direction (seed-000 §7.3), from the sheets and the profile (1.9), not from the verifier."""
+    f, n = spec.design.focal_length_mm, 1.047 ** 0.5
+    r = np.linspace(0.0, spec.design.diameter_mm / 2, 20001)
+    radii = np.array([s.radius_mm for s in layup.sheets])
+    front = np.array([layup.sheets[i].z_min_mm for i in np.searchsorted(radii, r)])    # first disc covering r
+    excess = profile_z_mm(r, f, n) - front
+    return K0N1 * float(np.ptp(excess))
+
+
+def test_stepped_stack_matches_the_stair_step_estimate_on_a_slow_lens():
+    """F/D = 23: the exact trace of the stack as cut equals k0(n−1)Δd within 10 %."""
+    for t in (50.0, 100.0):
+        spec = _spec(SLOW_LENS, sheet_thickness_mm=t)
+        design, layup, v = _verify(spec)
+        expected = _analytic_step_error_deg(spec, layup)
+        assert expected == pytest.approx(K0N1 * t, rel=0.01)       # every full ring spans one sheet
+        assert v.figures["stepped_on_axis_p2p_deg"] == pytest.approx(expected, rel=0.10)
+
+
+def _seed_lens(back_z_mm: float) -> Lens:
+    f, n = 4000.0, 1.047 ** 0.5
+    return Lens(radius_mm=250.0, eps_r=1.047, tan_delta=2e-4, wavelength_mm=LAM, budget_deg=22.5,
+                antenna_z_mm=back_z_mm + 100, feed=(-f, 0.0),
+                faces=lambda n_lens: (front_face(f, n, n_lens), Interface.plane(back_z_mm, 1.0)))
+
+
+def test_fast_lens_adds_the_flat_facet_term():
+    """F/D = 8: flat sheet faces do not bend rays, which adds a non-collimation error of its own. It is
+    what a stack of very thin sheets (no stair steps to speak of) shows, and the same for any sheet."""
+    excess = {}
+    for t in (4.0, 20.0, 50.0):
+        spec = _spec(SEED_LENS, sheet_thickness_mm=t, dowel_diameter_mm=2)
+        kind = adapter("collimator")
+        layup, _ = kind.plan(spec, kind.synthesize(spec))
+        lens = _seed_lens(layup.sheets[-1].z_max_mm)
+        pp = aperture_stats(lens, *trace_lens(lens, stepped_section(layup, lens.n), lens.feed)).p2p_deg
+        excess[t] = pp - _analytic_step_error_deg(spec, layup)
+    assert 2.0 < excess[4.0] < 5.0                               # the facet term alone
+    assert excess[20.0] == pytest.approx(excess[4.0], abs=1.0)
+    assert excess[50.0] == pytest.approx(excess[4.0], abs=1.0)
+
+
+def test_focus_shift_recovers_a_misplaced_feed():
+    f = 4000.0
+    lens = _seed_lens(thickness_mm(500.0, f, 1.047 ** 0.5))
+    for dz in (-120.0, 60.0):
+        shift, refocused = focus_shift(lens, lens.faces(lens.n), (-f + dz, 0.0))
+        assert shift == pytest.approx(-dz, abs=0.5)
+        assert refocused.rms_deg < 0.01
+        assert aperture_stats(lens, *trace_lens(lens, lens.faces(lens.n), (-f + dz, 0.0))).rms_deg > 0.2
+
+
+def test_layer_table_and_sanding_allowance(seed):
+    design, layup, v = seed
+    layers = next(t for t in v.tables if t.name == "layers")
+    assert [row[3] for row in layers.rows] == pytest.approx([s.radius_mm for s in layup.sheets], abs=1e-3)
+    excess = [row[4] for row in layers.rows]
+    assert max(excess[:-1]) == pytest.approx(50.0, abs=0.2)     # a full step below each disc edge
+    assert excess[-1] == pytest.approx(design.thickness_mm - 300.0, abs=0.2)   # the last ring is short
+    r = profile_radius_mm(design.thickness_mm, 4000.0, 1.047 ** 0.5)
+    assert r == pytest.approx(250.0, abs=1e-6)
+
+
+# ------------------------------------------------------------------ stock thickness: auto
+
+def test_auto_picks_the_thickest_stock_within_budget():
+    """By hand, k0(n−1)t = 0.279 °/mm × t: 25 mm → 7.0°, 45 mm → 12.6°, 70 mm → 19.5°. With a 15°
+    budget the thickest that passes is 45 mm; with 5° none does: the thinnest, and sand."""
+    data = yaml.safe_load(yaml.safe_dump(SLOW_LENS))
+    data["design"]["phase_error_budget_deg"] = 15.0
+    spec = _spec(data, sheet_thickness_mm="auto", stock_thicknesses_mm=[70, 25, 45])
+    design, layup, v = _verify(spec)
+    assert layup.sheet_thickness_mm == 45.0
+    table = next(t for t in v.tables if t.name == "stock-candidates")
+    assert [(row[0], row[-1]) for row in table.rows] == [(25.0, "yes"), (45.0, "yes"), (70.0, "no")]
+    data["design"]["phase_error_budget_deg"] = 5.0
+    design, layup, v = _verify(_spec(data, sheet_thickness_mm="auto", stock_thicknesses_mm=[70, 25, 45]))
+    assert layup.sheet_thickness_mm == 25.0
+    check = next(c for c in v.checks if c.name == "unsanded_step_phase_error")
+    assert check.status == "warn" and "sanding required" in check.message
+
+
+def test_auto_build_writes_verification_into_the_manifest(tmp_path):
+    data = yaml.safe_load(yaml.safe_dump(SEED_LENS))
+    data["outputs"] = {"step": False, "stl": False, "templates": False, "report": False}
+    spec = _spec(data, sheet_thickness_mm="auto")
+    result = build(spec, tmp_path)
+    manifest = json.loads((result.out_dir / "manifest.json").read_text())
+    chosen = manifest["figures"]["sheet_thickness_mm"]
+    v = manifest["verification"]
+    assert {t["name"] for t in v["tables"]} == {"aperture", "layers", "stock-candidates", "sensitivity"}
+    rows = next(t for t in v["tables"] if t["name"] == "stock-candidates")["rows"]
+    assert chosen == max(r[0] for r in rows if r[-1] == "yes")
+    assert all(s["z_max_mm"] - s["z_min_mm"] == chosen for s in manifest["sheets"])
+    for key in ("fabricated_on_axis_p2p_deg", "fabricated_on_axis_rms_deg", "fabricated_on_axis_taper_db",
+                "fabricated_on_axis_gain_loss_db", "on_axis_focus_shift_mm", "fabricated_edge_p2p_deg",
+                "tolerance_rss_p2p_deg", "scan_half_range_mm"):
+        assert np.isfinite(v["figures"][key]), key
+    assert v["figures"]["fabricated_on_axis_p2p_deg"] <= spec.design.phase_error_budget_deg
+    assert result.seconds["verify"] < 2.0
+
+
+# ------------------------------------------------------------------ tolerances
+
+def test_tolerance_budget_names_the_dominant_tolerance(seed):
+    _, _, v = seed
+    check = next(c for c in v.checks if c.name == "tolerance_budget")
+    assert check.status == "warn" and "dominant: εr" in check.message       # ±0.01 of 1.047 (1 %)
+    data = yaml.safe_load(yaml.safe_dump(SEED_LENS))
+    data["tolerances"] = {"eps_r_tolerance": 0.0, "thickness_tolerance_mm": 0.0, "feed_position_tolerance_mm": 0.0}
+    _, _, quiet = _verify(parse_spec(data))
+    assert quiet.figures["tolerance_rss_p2p_deg"] == pytest.approx(quiet.figures["fabricated_on_axis_p2p_deg"])
+    assert next(c for c in quiet.checks if c.name == "tolerance_budget").status == "pass"
+
+
+# ------------------------------------------------------------------ spec errors
+
+@pytest.mark.parametrize("stocks, message", [
+    ([50, -5], "fabrication.stock_thicknesses_mm.1: must be > 0 (got -5)"),
+    ([50, 50], "fabrication.stock_thicknesses_mm: thicknesses must be distinct"),
+    ([], "fabrication.stock_thicknesses_mm:"),
+])
+def test_bad_stock_list_exits_2_naming_the_field(tmp_path, stocks, message):
+    data = yaml.safe_load(yaml.safe_dump(SEED_LENS))
+    data["fabrication"].update(sheet_thickness_mm="auto", stock_thicknesses_mm=stocks)
+    path = tmp_path / "bad.yaml"
+    path.write_text(yaml.safe_dump(data))
+    result = CliRunner().invoke(app, ["build", str(path), "-o", str(tmp_path / "out")])
+    assert result.exit_code == 2
+    assert f"{path}: {message}" in result.output
+    assert not (tmp_path / "out").exists()

@@ -116,6 +116,8 @@ def _overall(checks) -> str:
 
 
 def _cell(value) -> str:
+    if value is None:
+        return "<td>—</td>"
     if isinstance(value, bool):
         return f"<td>{'yes' if value else 'no'}</td>"
     if isinstance(value, (int, float)):

@@ -71,6 +71,8 @@ def format_table(columns, rows) -> list[str]:
 
 
 def _text(value) -> str:
+    if value is None:
+        return "-"
     if isinstance(value, bool):
         return "yes" if value else "no"
     if isinstance(value, float):

@@ -99,11 +99,15 @@ def build(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML"
         raise typer.Exit(1)
 
 
+HEADLINE_SUFFIXES = ("_p2p_deg", "_rms_deg", "_gain_loss_db")   # as-built figures for the terminal
+
+
 def _summary_table(result) -> Table:
     table = Table(title=f"{result.name} ({result.kind})")
     table.add_column("figure")
     table.add_column("value", justify="right")
-    for key, value in list(result.figures.items()) + [(f"as-built {k}", v) for k, v in result.verified.items()]:
+    headline = [(f"as-built {k}", v) for k, v in result.verified.items() if k.endswith(HEADLINE_SUFFIXES)]
+    for key, value in list(result.figures.items()) + headline:
         table.add_row(key, f"{value:.6g}" if isinstance(value, float) else str(value))
     for material, count in result.boards.items():
         table.add_row(f"boards {material}", str(count))

@@ -49,8 +49,8 @@ class Table:
 
 @dataclass(frozen=True)
 class Verification:
-    """As-built figures (merged into the manifest's ``figures`` under ``verify.``), checks that join
-    the build's checks, and tables and plots for the report."""
+    """As-built figures and tables (the manifest's ``verification`` block), checks that join the
+    build's checks, and plots for the report."""
     figures: dict[str, float] = field(default_factory=dict)
     checks: tuple[Check, ...] = ()
     tables: tuple[Table, ...] = ()

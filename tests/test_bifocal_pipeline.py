@@ -19,6 +19,7 @@ from antenna_cad.synthesis.bifocal import lens_volume_mm3
 RECIPES = Path(__file__).resolve().parents[1] / "recipes"
 NIK = RECIPES / "bifocal-nikulina-9m.yaml"
 DIEL = RECIPES / "bifocal-dielectric-160mm.yaml"
+KINBER = RECIPES / "bifocal-kinber-160mm.yaml"
 
 
 def _design(path):
@@ -49,7 +50,7 @@ def _watertight(path: Path) -> bool:
 
 
 def test_recipes_validate_fast():
-    for p in (NIK, DIEL):
+    for p in (NIK, DIEL, KINBER):
         spec = load_spec(p)
         assert spec.kind == "bifocal"
 
@@ -143,7 +144,10 @@ def _write(tmp_path: Path, mutate) -> Path:
 @pytest.mark.parametrize("mutate, field", [
     (lambda d: d["design"].update(antenna_x_mm=9200), "design.antenna_x_mm"),    # c < ρ2 ≈ 9308
     (lambda d: d["design"].update(beam_tilt_deg=None, focus_offset_mm=None), "design.beam_tilt_deg"),
-    (lambda d: d["design"].update(construction="kinber"), "design.construction"),
+    (lambda d: d["design"].update(construction="kinber"), "design.kinber"),              # parameters missing
+    (lambda d: d["design"].update(construction="kinber", kinber=dict(a0=-0.34, a2=0.49, h1=0.058, b0=0.34,
+                                                                     b2=-0.67, rho1=0.54)),
+     "design.edge_x_mm"),                                                                 # an output of kinber
     (lambda d: d["design"].update(shape="cylindrical"), "design.height_mm"),
     (lambda d: d["design"].update(edge_x_mm=-5), "design.edge_x_mm"),
     (lambda d: d["design"].update(shape="cylindrical", height_mm=300), "fabrication.method"),
@@ -154,3 +158,20 @@ def test_bad_specs_exit_2_naming_the_field(tmp_path, mutate, field):
     assert r.exit_code == 2, r.output
     assert field in r.output
     assert "Traceback" not in r.output
+
+
+def test_seed001_kinber_lens_builds_with_its_scan_band(tmp_path):
+    """Seed-001 §3.1 lens 3 by Kinber's construction at D = 160 mm: foci exact, focus angle 12.94°,
+    finite rim closed by a rim face, and a usable feed band around the focus (the axis itself is
+    beyond the budget for this fast lens) far wider than the single-surface lens's."""
+    res = pipeline.build(load_spec(KINBER), tmp_path)
+    m = json.loads((res.out_dir / "manifest.json").read_text())
+    f, v = m["figures"], m["verification"]["figures"]
+    assert max(f["residual_path_error_focus_1_mm"], f["residual_path_error_focus_2_mm"]) < 1e-6 * 160
+    assert f["beam_tilt_deg"] == pytest.approx(12.94, abs=0.05)
+    assert {c["name"]: c["status"] for c in m["checks"]}["lens_solid_volume"] == "pass"
+    assert _watertight(res.out_dir / "stl" / "lens.stl")
+    assert v["usable_feed_inner_mm"] < f["focus_offset_mm"] < v["usable_feed_half_range_mm"]
+    assert v["on_axis_phase_error_p2p_deg"] > 22.5                         # no band through the axis
+    band = v["usable_feed_half_range_mm"] - v["usable_feed_inner_mm"]
+    assert band > 2 * v["single_surface_usable_feed_half_range_mm"]

@@ -36,7 +36,8 @@ def synthesize(spec: BifocalSpec) -> BifocalDesign:
     g = spec.design
     return synthesize_bifocal(edge_y_mm=g.edge_y_mm, eps_r=m.eps_r, edge_x_mm=g.edge_x_mm,
                               focus_offset_mm=g.focus_offset_mm, beam_tilt_deg=g.beam_tilt_deg,
-                              antenna_x_mm=g.antenna_x_mm, shape=g.shape, construction=g.construction)
+                              antenna_x_mm=g.antenna_x_mm, shape=g.shape, construction=g.construction,
+                              kinber=g.kinber.model_dump() if g.kinber else None)
 
 
 def _slab_radius(design: BifocalDesign):
@@ -139,6 +140,7 @@ def verify(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None, fa
                                                  ("edge", 0.0, st.usable_half_range_mm)),
                     spec.tolerances, layup, fab, study)
     scan = {"usable_feed_half_range_mm": st.usable_half_range_mm, "usable_half_angle_deg": st.usable_half_angle_deg,
+            "usable_feed_inner_mm": st.usable_inner_mm,
             "single_surface_usable_feed_half_range_mm": st.single_usable_half_range_mm,
             "single_surface_usable_half_angle_deg": st.single_usable_half_angle_deg,
             "single_surface_thickness_mm": st.single_thickness_mm,
@@ -148,7 +150,7 @@ def verify(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None, fa
                 (Series("bifocal", st.feed_y_mm, st.p2p_deg),
                  Series(f"single-surface lens, f {design.edge_x_mm:g} mm, D {2 * design.edge_y_mm:g} mm",
                         st.feed_y_mm, st.single_p2p_deg, "dashed")),
-                caption=f"usable half range: bifocal {st.usable_half_range_mm:.0f} mm "
+                caption=f"usable feed band around the focus: bifocal {st.usable_inner_mm:.0f}…{st.usable_half_range_mm:.0f} mm "
                         f"({st.usable_half_angle_deg:.2f}°), single-surface {st.single_usable_half_range_mm:.0f} mm "
                         f"({st.single_usable_half_angle_deg:.2f}°)",
                 hlines=(("budget", budget),))

@@ -92,12 +92,24 @@ def usable_half_range_mm(p2p_deg, feed_y_mm: np.ndarray, budget_deg: float) -> t
     """Feed-scan study (seed-000 §5.5): ``p2p_deg(y)`` on the grid ``feed_y_mm`` (increasing from 0)
     and the first displacement where it reaches the budget (brentq between grid points; the last
     grid point when it never does, 0 when the budget is exceeded at once)."""
+    vals, _, hi = usable_interval_mm(p2p_deg, feed_y_mm, budget_deg, float(feed_y_mm[0]))
+    return vals, hi
+
+
+def usable_interval_mm(p2p_deg, feed_y_mm: np.ndarray, budget_deg: float,
+                       start_mm: float) -> tuple[np.ndarray, float, float]:
+    """``p2p_deg`` on the increasing grid ``feed_y_mm`` and the interval [lo, hi] around ``start_mm``
+    (a design focus) where it stays within the budget, each end by brentq between grid points (the
+    grid ends when never reached; lo = hi = start when the budget is exceeded at the start)."""
     vals = np.array([p2p_deg(y) for y in feed_y_mm])
-    over = np.nonzero(~(vals <= budget_deg))[0]
-    if len(over) == 0:
-        return vals, float(feed_y_mm[-1])
-    i = over[0]
-    if i == 0:
-        return vals, 0.0
-    return vals, float(brentq(lambda y: p2p_deg(y) - budget_deg, feed_y_mm[i - 1], feed_y_mm[i],
-                              xtol=1e-6 * feed_y_mm[-1]))
+    if not p2p_deg(start_mm) <= budget_deg:
+        return vals, start_mm, start_mm
+    ok = vals <= budget_deg
+    above, below = np.nonzero((feed_y_mm > start_mm) & ~ok)[0], np.nonzero((feed_y_mm < start_mm) & ~ok)[0]
+    xtol = 1e-6 * float(np.ptp(feed_y_mm))
+    root = lambda a, b: float(brentq(lambda y: p2p_deg(y) - budget_deg, a, b, xtol=xtol))  # noqa: E731
+    hi = float(feed_y_mm[-1]) if len(above) == 0 else root(max(start_mm, feed_y_mm[above[0] - 1]),
+                                                            feed_y_mm[above[0]])
+    lo = float(feed_y_mm[0]) if len(below) == 0 else root(feed_y_mm[below[-1]],
+                                                           min(start_mm, feed_y_mm[below[-1] + 1]))
+    return vals, lo, hi

@@ -11,8 +11,21 @@ from pydantic import Field, model_validator
 from antenna_cad.spec.common import SheetLayupSpec, SpecBase, StrictModel
 
 
+class KinberSpec(StrictModel):
+    """Seed-001 §3.1 central-segment parameters of Kinber's construction, in units of the aperture
+    D (the seed normalises D = 1; the lens is scaled to D = 2·edge_y_mm)."""
+    a0: float = Field(description="illuminated face vertex x")
+    a2: float = Field(description="illuminated central parabola coefficient")
+    h1: float = Field(gt=0, lt=0.5, description="half-height of the central segment")
+    b0: float = Field(description="shadow face vertex x")
+    b2: float = Field(description="shadow central parabola coefficient")
+    h2: float | None = Field(None, gt=0, lt=0.5, description="shadow segment half-height (None: A–O–B collinear)")
+    rho1: float = Field(gt=0, description="focal distance of F1 from the origin")
+
+
 class BifocalDesignSpec(StrictModel):
-    edge_x_mm: float = Field(gt=0, le=200000, description="X_B: axial position of the zero-thickness rim")
+    edge_x_mm: float | None = Field(None, gt=0, le=200000,
+                                    description="X_B: axial position of the zero-thickness rim (nikulina)")
     edge_y_mm: float = Field(gt=0, le=10000, description="Y_B: aperture half-size (rim radius)")
     focus_offset_mm: float | None = Field(None, gt=0, description="a: foci at (0, ±a); or give beam_tilt_deg")
     beam_tilt_deg: float | None = Field(None, gt=0, lt=90, description="α: beam tilt of each focus; or give a")
@@ -23,17 +36,30 @@ class BifocalDesignSpec(StrictModel):
         "cylindrical: the section extruded by height_mm (exact in every section)")
     height_mm: float | None = Field(None, gt=0, le=20000, description="extrusion height (cylindrical only)")
     construction: Literal["nikulina", "kinber"] = "nikulina"
+    kinber: KinberSpec | None = Field(None, description="construction: kinber only — its parameters")
     phase_error_budget_deg: float = Field(22.5, gt=0, le=180, description="budget of the scan-range study")
 
     @model_validator(mode="after")
     def _consistent(self):
+        if self.construction == "kinber":
+            given = [k for k in ("edge_x_mm", "focus_offset_mm", "beam_tilt_deg") if getattr(self, k) is not None]
+            if self.kinber is None:
+                raise ValueError("design.kinber: construction kinber needs its central-segment parameters "
+                                 "{a0, a2, h1, b0, b2, h2, rho1} (seed-001 §3.1)")
+            if given:
+                raise ValueError(f"design.{given[0]}: an output of the kinber construction (the foci, tilt and "
+                                 "rim follow from its parameters); leave it out")
+            return self._shape_fits()
+        if self.kinber is not None:
+            raise ValueError("design.kinber: only for construction: kinber")
+        if self.edge_x_mm is None:
+            raise ValueError("design.edge_x_mm: required by the nikulina construction (the zero-thickness rim)")
         if self.focus_offset_mm is None and self.beam_tilt_deg is None:
             raise ValueError("design.beam_tilt_deg: give beam_tilt_deg or focus_offset_mm "
                              "(the other is solved from the equal-edge ellipse (3.6))")
-        if self.construction == "kinber":
-            raise ValueError("design.construction: 'kinber' is built from the seed's own central-segment "
-                             "parameters, not from edge/focus/tilt inputs (fitting them is unstable at the "
-                             "rim); use construction: nikulina")
+        return self._shape_fits()
+
+    def _shape_fits(self):
         if self.shape == "cylindrical" and self.height_mm is None:
             raise ValueError("design.height_mm: required for shape: cylindrical")
         if self.shape == "revolved" and self.height_mm is not None:

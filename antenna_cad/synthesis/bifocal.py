@@ -45,7 +45,7 @@ import numpy as np
 from scipy.interpolate import CubicHermiteSpline
 from scipy.optimize import brentq, least_squares
 
-from antenna_cad.raytrace.collimator import single_surface_p2p_deg, usable_half_range_mm
+from antenna_cad.raytrace.collimator import single_surface_p2p_deg, usable_half_range_mm, usable_interval_mm
 from antenna_cad.raytrace.snell import refract
 from antenna_cad.raytrace.trace2d import Interface, Trace2D, aim_at_face, trace
 from antenna_cad.synthesis import collimator
@@ -829,19 +829,20 @@ class DefocusStudy:
     p2p_deg: np.ndarray
     single_p2p_deg: np.ndarray
     budget_deg: float
-    usable_half_range_mm: float          # bifocal: largest |y_feed| with p2p ≤ budget on [0, y]
+    usable_half_range_mm: float          # bifocal: outer end of the band around the focus a with p2p ≤ budget
     single_usable_half_range_mm: float
     usable_half_angle_deg: float         # atan(range / X_B)
     single_usable_half_angle_deg: float
     single_thickness_mm: float
     wavelength_mm: float
-
+    usable_inner_mm: float = 0.0         # inner end of that band: 0 when it runs through the axis
 
 def defocus_study(design: BifocalDesign, budget_deg: float = 22.5, frequency_ghz: float = 10.0,
                   feed_y_mm: np.ndarray | None = None, n_rays: int = 201,
                   surfaces: Literal["spline", "polynomial"] = "spline") -> DefocusStudy:
-    """Seed-000 §5.9 study by exact trace: p2p phase vs feed y on the line z = 0, the usable scan range
-    at ``budget_deg`` (default ΔΦ_m = π/8 = 22.5°), and the same for the single-surface lens
+    """Seed-000 §5.9 study by exact trace: p2p phase vs feed y on the line z = 0, the usable scan band
+    around the design focus at ``budget_deg`` (default ΔΦ_m = π/8 = 22.5°; it runs through the axis
+    for the seed's lenses, not for fast ones such as seed-001's), and the same for the single-surface lens
     (seed-000 §2.1, §5.5) with f = X_B, D = 2Y_B and the same lens-to-AUT gap."""
     lam = C0_MM_PER_NS / frequency_ghz
     if feed_y_mm is None:
@@ -851,11 +852,12 @@ def defocus_study(design: BifocalDesign, budget_deg: float = 22.5, frequency_ghz
     f, D = design.edge_x_mm, 2 * design.edge_y_mm
     gap = design.antenna_x_mm - design.rho2_mm
     sgl = lambda y: single_surface_p2p_deg(f, D, design.eps_r, y, gap, lam, n_rays)  # noqa: E731
-    pb, rb = usable_half_range_mm(bif, feed_y_mm, budget_deg)
+    pb, inner, rb = usable_interval_mm(bif, feed_y_mm, budget_deg, design.focus_offset_mm)
     ps, rs = usable_half_range_mm(sgl, feed_y_mm, budget_deg)
     d = collimator.thickness_mm(D, f, float(np.sqrt(design.eps_r)))
     return DefocusStudy(feed_y_mm, pb, ps, float(budget_deg), rb, rs,
-                        float(np.degrees(np.arctan2(rb, f))), float(np.degrees(np.arctan2(rs, f))), d, lam)
+                        float(np.degrees(np.arctan2(rb, f))), float(np.degrees(np.arctan2(rs, f))), d, lam,
+                        inner)
 
 
 # --------------------------------------------------------------------------------------------------

@@ -57,16 +57,16 @@ def test_step_reimport_parts_and_labels(x_build):
     top = import_step(str(result.out_dir / f"{spec.name}.step"))
     groups = {g.label: [c.label for c in g.children] for g in top.children}
     n = spec.array.count
-    expected_fab = {f"waveguide-{g:02d}" for g in range(n)} | {f"core-{g:02d}" for g in range(n)} \
-        | {"plate-0", "plate-1", "mirror-1"}
+    expected_fab = {f"{kind}-{g:02d}" for g in range(n) for kind in ("waveguide", "top", "core", "load")} \
+        | {"plate-0", "plate-1", "mirror-1"} | {f"horn-{k}" for k in range(1, spec.feeds.count + 1)}
+    assert set(groups) == {"fabricated"}
     assert set(groups["fabricated"]) == expected_fab
-    assert set(groups["reference"]) == {f"horn-{k}" for k in range(1, spec.feeds.count + 1)}
 
 
 def test_waveguide_body_stl_watertight(x_build):
     import trimesh
     _, _, result = x_build
-    for label in ("waveguide-00", "waveguide-09", "core-09"):
+    for label in ("waveguide-00", "top-00", "top-09", "core-09", "load-09", "horn-1", "plate-1"):
         mesh = trimesh.load(result.out_dir / "stl" / f"{label}.stl")
         mesh.merge_vertices()
         assert mesh.is_watertight, label

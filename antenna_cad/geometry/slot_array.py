@@ -95,7 +95,7 @@ def _prism(poly: Polygon, z0: float, z1: float, holes: tuple[Wire, ...] = ()) ->
     """A planar polygon (shapely, with its interiors) at z0 extruded to z1, plus extra inner wires."""
     wire = lambda ring: Wire.make_polygon([Vector(float(x), float(y), z0) for x, y in ring.coords[:-1]], close=True)
     face = Face(wire(poly.exterior), [wire(r) for r in poly.interiors] + list(holes))
-    return extrude(face, z1 - z0)
+    return extrude(face, z1 - z0, dir=(0, 0, 1))
 
 
 def _guide_parts(design: SlotArrayDesign, g: int, idx: np.ndarray, ext: GuideExtent, t: float,
@@ -155,13 +155,13 @@ def build_model(design: SlotArrayDesign, dielectric: Material, metal: Material, 
         solids = []
         for k in layer_indices(m):
             za, zb = st.layer(k)
-            solids.append(extrude(band_face(m, back, za), zb - za))
+            solids.append(extrude(band_face(m, back, za), zb - za, dir=(0, 0, 1)))
         parts.append(ModelPart(f"mirror-{j}", metal, "fabricated", Compound(solids)))
     for j, lens in enumerate(bf.lenses, start=1):
         za, zb = st.layer(layer_indices(lens)[0])
         face = band_face(bf.mirrors[0], clip_curve(lens, *bf.mirrors[0].x_range_mm), za)
         parts.append(ModelPart(f"lens-{j}" if len(bf.lenses) > 1 else "lens", dielectric, "fabricated",
-                               extrude(face, zb - za)))
+                               extrude(face, zb - za, dir=(0, 0, 1))))
     za, zb = st.layer(1)
     for k, horn in enumerate(horns, start=1):
         body = _prism(horn.footprint, za - t, zb + t).cut(_prism(horn.channel_cut, za, zb))

@@ -10,9 +10,10 @@ Phase of the −1st spatial harmonic radiated by cell m of guide g (seed-003 §3
     Φ_gm = k [L_g + n_g (y_gm − y_Q,g)] − 2π m,    n_g = γ(f; a_g, ε_g)/k,
 
 L_g the traced path from the feed to the guide entry Q_g on the last mirror, y_gm the first-slot
-centre of the cell. A plane k (u_x x + u_y y) + c fitted to Φ gives the beam direction
-(u_x = sin of the azimuth, u_y = sin θ, θ from broadside toward +y); the residual, detrended
-across the guides (:func:`antenna_cad.verification.detrended`), is the phase error at the slots.
+centre of the cell. The progression along the guides gives u_y = sin θ (θ from broadside toward
++y; cos β of (3.1) for nominal guides), the tilt across them u_x (sine of the azimuth); the
+residual of Φ − k u_y y detrended across the guides (:func:`antenna_cad.verification.detrended`)
+is the phase error at the slots (:func:`fit_beam`).
 Gain loss from it is the Ruze-type exp(−σ²) (σ the RMS residual in radians, unweighted by the
 aperture taper, so slightly pessimistic).
 """
@@ -95,22 +96,26 @@ def cell_phase_rad(path_mm: np.ndarray, entry_y_mm: np.ndarray, cells: Cells, f_
 
 
 def fit_beam(phase_rad: np.ndarray, cells: Cells, f_ghz) -> BeamFit:
-    """Plane fit of Φ (direction) and its residual detrended across the guides (error)."""
+    """Beam direction and phase error from Φ (F, G, M).
+
+    Along the guides every cell row radiates the −1st harmonic, so the elevation direction cosine
+    u_y is the mean over the guides of the least-squares slope dΦ/(k dy) (it is cos β of (3.1)
+    for nominal guides). Across the guides, Φ − k u_y y is fitted with a + k u_x x (azimuth) and
+    its residual (:func:`antenna_cad.verification.detrended`) is the phase error at the cells.
+    """
     f = np.atleast_1d(np.asarray(f_ghz, float))
     k = wavenumber_per_mm(f)
-    x = np.broadcast_to(cells.guide_x_mm[:, None], cells.y_mm.shape).reshape(-1)
-    y = cells.y_mm.reshape(-1)
-    rhs = (phase_rad.reshape(len(f), -1) / k[:, None]).T                     # (G·M, F), mm
-    coef, *_ = np.linalg.lstsq(np.column_stack([np.ones_like(x), x, y]), rhs, rcond=None)
-    ux, uy = coef[1], coef[2]
+    y = cells.y_mm
+    dy = y - y.mean(axis=1, keepdims=True)
+    uy = np.mean(np.sum(dy * phase_rad, axis=2) / np.sum(dy * dy, axis=1), axis=1) / k
+    x = np.broadcast_to(cells.guide_x_mm[:, None], y.shape).reshape(-1)
+    ref = (phase_rad - (k * uy)[:, None, None] * y).reshape(len(f), -1)
+    ux = np.polyfit(x, ref.T, 1)[0] / k
+    res = np.stack([detrended(x, np.degrees(r)) for r in ref])
     radiates = ux**2 + uy**2 < 1.0
-    res = np.stack([detrended(x, np.degrees(phase_rad[i].reshape(-1) - k[i] * uy[i] * y))
-                    for i in range(len(f))])
-    res = res.reshape(phase_rad.shape)
-    flat = res.reshape(len(f), -1)
     return BeamFit(f, np.where(radiates, np.arcsin(np.clip(uy, -1, 1)), np.nan),
-                   np.where(radiates, np.arcsin(np.clip(ux, -1, 1)), np.nan), res,
-                   np.sqrt(np.mean(flat**2, axis=1)), np.ptp(flat, axis=1))
+                   np.where(radiates, np.arcsin(np.clip(ux, -1, 1)), np.nan), res.reshape(phase_rad.shape),
+                   np.sqrt(np.mean(res**2, axis=1)), np.ptp(res, axis=1))
 
 
 def trace_beam(bf: BeamFormer, source_mm, cells: Cells, f_ghz) -> BeamFit:

@@ -273,3 +273,18 @@ def test_verification_plots_are_complete(x_model):
     assert {"harmonic -1, design", "harmonic 0, design", "harmonic -2, design",
             "centre feed, traced as built", "band edge 8.5 GHz"} <= set(labels)
     assert sum(s.label.startswith("horn-") for s in plots["beamformer-rays"].series) == spec.feeds.count
+
+
+def test_slot_outlines_hold_the_template_chord_tolerance():
+    # round ends circumscribed: the cut slot contains the nominal one, vertices ≤ CHORD_TOL_MM out
+    from shapely.geometry import LineString, Polygon
+
+    from antenna_cad.fabrication.outline import CHORD_TOL_MM
+    from antenna_cad.geometry.slot_layout import slot_outline
+    for length, width, angle in ((2.5, 0.4, 0.0), (8.0, 1.5, 0.3), (2.4, 0.44, np.pi / 2)):
+        ring = Polygon(slot_outline(1.0, 2.0, length, width, angle))
+        u = np.array([np.sin(angle), np.cos(angle)]) * (length - width) / 2
+        nominal = LineString([tuple(np.array([1.0, 2.0]) - u), tuple(np.array([1.0, 2.0]) + u)]).buffer(width / 2, 4096)
+        assert ring.is_valid and ring.exterior.is_ccw
+        assert ring.buffer(1e-9).contains(nominal)
+        assert ring.hausdorff_distance(nominal) <= CHORD_TOL_MM

@@ -11,6 +11,7 @@ from shapely.geometry import Polygon
 from shapely.geometry.polygon import orient
 from shapely.ops import unary_union
 
+from antenna_cad.fabrication.outline import CHORD_TOL_MM
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.slot_array import Curve, SlotArrayDesign, offset_curve
 
@@ -57,20 +58,25 @@ def coupling_edge(design: SlotArrayDesign, curve: Curve) -> Curve:
 
 
 def slot_outline(x: float, y: float, length: float, width: float, angle: float,
-                 n_arc: int = 8) -> np.ndarray:
-    """Rounded-end rectangle (ring of points, counter-clockwise) for templates."""
+                 tol_mm: float = CHORD_TOL_MM) -> np.ndarray:
+    """Rounded-end rectangle (ring of points, counter-clockwise) for templates.
+
+    Each round end is circumscribed (edges tangent to the arc, like
+    :func:`antenna_cad.fabrication.outline.circle_polygon`): the cut slot is never smaller than
+    nominal and no vertex lies more than ``tol_mm`` outside it.
+    """
     u = np.array([np.sin(angle), np.cos(angle)])
     nrm = np.array([-u[1], u[0]])
     r, s = width / 2, max(length / 2 - width / 2, 0.0)
+    n = max(2, int(np.ceil(np.pi / (2 * np.arccos(1.0 / (1.0 + tol_mm / r))))))
+    q = np.concatenate([[0.0], (np.arange(n) + 0.5) * np.pi / n, [np.pi]])
+    rad = np.concatenate([[r], np.full(n, r / np.cos(np.pi / (2 * n))), [r]])
     c = np.array([x, y])
-    pts = []
+    ends = []
     for sign in (1.0, -1.0):
-        centre = c + sign * s * u
-        phi0 = np.arctan2(*(sign * -nrm)[::-1])
-        for q in np.linspace(0, np.pi, n_arc + 1):
-            ang = phi0 + q
-            pts.append(centre + r * np.array([np.cos(ang), np.sin(ang)]))
-    return np.array(pts)
+        ang = np.arctan2(*(sign * -nrm)[::-1]) + q
+        ends.append(c + sign * s * u + rad[:, None] * np.stack([np.cos(ang), np.sin(ang)], -1))
+    return np.concatenate(ends)
 
 
 @dataclass(frozen=True)

@@ -1,9 +1,13 @@
 """Solids of the waveguide-slot array (seed-003): guides, beam-former plates, mirrors, lens, horns.
 
 Frame: x across the guides, y along them, z up (broadside). The guide layer sits on the top
-beam-former plate (z = 0); beam-former layers and plates stack downward. Slotted walls are one
-planar face per guide with the slots as inner wires, extruded once (DESIGN.md pitfalls: no
-per-slot 3-D booleans; small faces, separate parts) — cost is linear in the slot count.
+beam-former plate (z = 0); beam-former layers and plates stack downward. Per guide: a body
+(bottom, side and end walls), a slotted lid — one planar face with the slots as inner wires,
+extruded once (DESIGN.md pitfalls: no per-slot 3-D booleans; small faces, separate parts), so the
+cost is linear in the slot count —, the dielectric core and, for a matched termination, the
+absorber wedge in front of the end wall. Mirrors and lens are C¹ splines through the synthesised
+points; the horns are hollow metal bodies in the feed layer whose E-plane walls continue the
+plates (the plates are notched along the horn apertures: :mod:`antenna_cad.geometry.slot_layout`).
 """
 
 from __future__ import annotations

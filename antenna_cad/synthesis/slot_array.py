@@ -363,7 +363,9 @@ class BeamFormer:
     over the aperture), ``sigma_norm`` the same divided by ``aperture_mm``. ``guide_curve`` is
     the curve along which the guides start (last mirror; its coupling slot is offset from it
     toward +y). ``eikonal``: callable (x_mm, focus index) -> design path length (mm) from the
-    focus to the guide entry point on ``guide_curve``. ``focal_locus``: points of the feed arc,
+    focus to the guide entry point on ``guide_curve``. ``trace``: (source, x of the launch point
+    on the first surface) -> (end point on the last mirror, path, ok, vertices), through the
+    curves it was built with (:func:`with_surfaces` swaps them for as-built ones). ``focal_locus``: points of the feed arc,
     ``params``: normalised construction figures (l0, δ, …).
     """
     type: str

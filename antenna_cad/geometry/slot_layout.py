@@ -274,8 +274,7 @@ def band_ring(a: Curve, b: Curve, n: int = 241) -> list[tuple[float, float]]:
 def horn_checks(design: SlotArrayDesign, horns: tuple[HornOutline, ...], mirror_wall_mm: float) -> tuple[Check, ...]:
     """Horns vs each other (channels trimmed where apertures overlap) and vs the feed layer's
     mirror walls and lens (no overlap allowed)."""
-    f = design.feeds
-    lost = max(h.clipped_mm2 for h in horns) / (0.5 * (f.throat_mm[0] + f.aperture_mm[0]) * f.length_mm)
+    lost = max(h.clipped_mm2 / (h.channel.area + h.clipped_mm2) for h in horns)
     bf = design.beamformer
     obstacles = [Polygon(band_ring(m, offset_curve(m, mirror_back_sign(design, m) * mirror_wall_mm, "back")))
                  for m in bf.mirrors if 1 in layer_indices(m)]

@@ -596,8 +596,6 @@ def bifocal_two_mirror(*, a0: float, a2: float, h1: float, b0: float, b2: float,
 
     trace = partial(trace_two_mirror, mir1, mir2)
 
-    sign = np.array([1.0, -1.0])
-
     def eikonal(x_mm, j):
         """Design path focus j → point Q on mirror 2: l0 + u_j·Q (plane output) or
         l0 − |Q F_out| (focal output, F_out = F3 for F1, F4 for F2)."""

@@ -288,3 +288,30 @@ def test_slot_outlines_hold_the_template_chord_tolerance():
         assert ring.is_valid and ring.exterior.is_ccw
         assert ring.buffer(1e-9).contains(nominal)
         assert ring.hausdorff_distance(nominal) <= CHORD_TOL_MM
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("recipe", [KA_RECIPE, ML_RECIPE], ids=["two-mirror", "mirror-lens"])
+def test_ka_recipes_build_everything(recipe, tmp_path):
+    import json
+
+    import ezdxf
+    from pypdf import PdfReader
+
+    from antenna_cad.pipeline import build
+    spec = load_spec(recipe)
+    result = build(spec, tmp_path)
+    assert not [c for c in result.checks if c.status == "fail"]
+    manifest = json.loads((result.out_dir / "manifest.json").read_text())
+    parts = {p["label"]: p for p in manifest["parts"]}
+    assert all(p["valid"] and p["watertight"] for p in parts.values())
+    assert {f"top-{g:02d}" for g in range(40)} <= set(parts) and "horn-1" in parts
+    with open(result.out_dir / "slots.csv") as fh:
+        assert sum(1 for _ in fh) - 1 == result.figures["slot_count"] == 3200
+    doc = ezdxf.readfile(result.out_dir / "templates" / "top-17.dxf")
+    assert not doc.audit().has_errors and len([e for e in doc.modelspace() if e.dxf.layer == "CUT"]) == 81
+    pdf = PdfReader(result.out_dir / "templates" / f"{spec.name}-templates.pdf")
+    w, h = (float(v) * 25.4 / 72 for v in pdf.pages[0].mediabox.upper_right)
+    assert (round(w), round(h)) == (210, 297) and len(pdf.pages) >= 40
+    fig = manifest["verification"]["figures"]
+    assert fig["design_focus_phase_rms_deg"] < 1e-4 and fig["phase_rms_deg_as_built_worst_feed"] < 22.5

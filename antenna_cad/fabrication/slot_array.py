@@ -1,5 +1,6 @@
-"""Fabrication of the slot array: 1:1 drawings of slotted top walls and beam-former plates,
-the slot table (slots.csv) and the cut list. Pure numpy/shapely (no CAD kernel)."""
+"""Fabrication of the slot array: 1:1 drawings of the slotted lids, beam-former plates, mirror
+walls, lens and horns, the slot table (slots.csv) and the cut list. Pure numpy/shapely (no CAD
+kernel); outlines come from :mod:`antenna_cad.geometry.slot_layout`, as for the solids."""
 
 from __future__ import annotations
 
@@ -12,10 +13,11 @@ from shapely.geometry import Polygon
 from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.sheets import FabPlan
 from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
-from antenna_cad.geometry.slot_layout import (coupling_edge, guide_extent, layer_indices,
-                                              mirror_back_sign, plate_rect, slot_outline)
+from antenna_cad.geometry.slot_layout import (GuideExtent, PartSizes, band_ring, core_and_load_rings, coupling_edge,
+                                              guide_extent, horn_outlines, layer_indices, mirror_back_sign,
+                                              plate_polygon, slot_outline)
 from antenna_cad.materials import Material
-from antenna_cad.synthesis.slot_array import Curve, SlotArrayDesign, offset_curve
+from antenna_cad.synthesis.slot_array import SlotArrayDesign, offset_curve
 
 SLOT_FIELDS = ["guide", "cell", "slot", "slot_id", "x_mm", "y_mm", "local_x_mm", "local_y_mm",
                "length_mm", "width_mm", "offset_mm", "angle_deg"]
@@ -26,7 +28,7 @@ def slot_id(guide: int, cell: int, slot: int) -> str:
 
 
 def slots_csv(design: SlotArrayDesign, y0s: np.ndarray) -> str:
-    """One row per slot: array frame (x, y) and strip frame (from the strip's left/start edge)."""
+    """One row per slot: array frame (x, y) and lid frame (from the lid's axis / start edge)."""
     s = design.slots
     buf = io.StringIO()
     wr = csv.writer(buf, lineterminator="\n")
@@ -43,101 +45,138 @@ def _ring(points) -> list[tuple[float, float]]:
     return [(round(float(x), 4), round(float(y), 4)) for x, y in points]
 
 
-def _curve_ring(a: Curve, b: Curve, n: int = 241) -> list[tuple[float, float]]:
-    lo, hi = max(a.x_range_mm[0], b.x_range_mm[0]), min(a.x_range_mm[1], b.x_range_mm[1])
-    xs = np.linspace(lo, hi, n)
-    return _ring([(x, a.y_at(x)) for x in xs] + [(x, b.y_at(x)) for x in xs[::-1]])
+def _row(part: str, kind: str, material: Material, width: float, length: float, thickness: float,
+         area_mm2: float, volume_mm3: float, order: int, note: str) -> CutRow:
+    """Cut-list row; metal parts are milled from plate, dielectrics and absorber from stock."""
+    board = "stock" if material.eps_r > 1.0 else "plate"
+    return CutRow(part, kind, material.name, board, 0.0, 0.0, False, width, length, thickness, area_mm2 / 1e6,
+                  volume_mm3 * material.density_kg_m3 / 1e9, order, note)
 
 
-def fabricate_slot_array(design: SlotArrayDesign, dielectric: Material, metal: Material, *,
-                         broad_wall_mm: float, mirror_wall_mm: float, plate_margin_mm: float,
-                         title: str) -> FabPlan:
+def _guide_pieces(design: SlotArrayDesign, g: int, ext: GuideExtent, t: float, metal: Material,
+                  dielectric: Material, absorber: Material, title: str) -> tuple[Drawing, list[CutRow]]:
+    """Lid drawing (slot ids cell.slot at every slot) and the cut-list rows of guide g."""
+    s = design.slots
+    h, a, w = design.guide_height_mm, design.guide_width_mm, design.wall_mm
+    gx, y0, half = float(s.guide_x_mm[g]), float(ext.y0[g]), ext.half
+    L = float(ext.y_end[g] - y0)
+    sel = np.flatnonzero(s.guide_index == g)
+    text_h = float(min(1.0, max(0.4, 0.8 * s.period_mm / 4)))
+    d = Drawing(f"top-{g:02d}")
+    d.cut.append(_ring([(-half, 0), (half, 0), (half, L), (-half, L)]))
+    for i in sel:
+        d.cut.append(_ring(slot_outline(float(s.x_mm[i] - gx), float(s.y_mm[i]) - y0, float(s.length_mm[i]),
+                                        float(s.width_mm[i]), float(s.angle_rad[i]))))
+        d.texts.append((f"{int(s.cell_index[i]):02d}.{int(s.slot_in_cell[i])}", half + 1.0,
+                        float(s.y_mm[i]) - y0 - text_h / 2, text_h))
+    d.marks.append([(0.0, -3.0), (0.0, L + 3.0)])                      # guide axis
+    d.marks.append([(-half, float(ext.y_slots_end[g]) - y0), (half, float(ext.y_slots_end[g]) - y0)])
+    load = design.termination == "matched_load"
+    d.texts.append((f"{title} slotted lid of guide {g:02d}: {metal.name} {t:g} mm, {len(sel)} slots "
+                    f"(ids cell.slot; slots.csv); y = 0 at the coupling-slot end; MARK across: end of the slots"
+                    + (", load beyond" if load else ""), -half, L + 8.0, 3.0))
+    d.add_check_bar(-half, -20.0)
+    slot_area = float(np.sum(s.length_mm[sel] * s.width_mm[sel] - (4 - np.pi) * (s.width_mm[sel] / 2) ** 2))
+    core, wedge = core_and_load_rings(a, y0, float(ext.y_slots_end[g]), float(ext.y_load_end[g]))
+    cavity = a * float(ext.y_load_end[g] - y0)
+    rows = [_row(f"top-{g:02d}", "slotted-lid", metal, 2 * half, L, t, 2 * half * L - slot_area,
+                 (2 * half * L - slot_area) * t, 3, f"{len(sel)} slots, drawing top-{g:02d}"),
+            _row(f"waveguide-{g:02d}", "guide-body", metal, 2 * half, L, h + t, 2 * half * L,
+                 2 * half * L * (h + t) - cavity * h, 2,
+                 ("bottom, side and end walls" if w > 0 else "bottom and end walls (wall_mm = 0: no side walls)")
+                 + f"; cavity {a:g} × {h:g} mm"),
+            _row(f"core-{g:02d}", "guide-core", dielectric, a, float(ext.y_load_end[g] - y0), h,
+                 Polygon(core).area, Polygon(core).area * h, 2,
+                 f"εr {design.fill_eps_r:g}" + ("; tapered end: wedge to the load" if wedge else ""))]
+    if wedge:
+        rows.append(_row(f"load-{g:02d}", "load-wedge", absorber, a, design.load_length_mm, h, Polygon(wedge).area,
+                         Polygon(wedge).area * h, 2, "matched load: absorber wedge against the end wall"))
+    return d, rows
+
+
+def fabricate_slot_array(design: SlotArrayDesign, dielectric: Material, metal: Material, absorber: Material,
+                         sizes: PartSizes, *, title: str) -> FabPlan:
     bf, s = design.beamformer, design.slots
-    t, h, a, w = broad_wall_mm, design.guide_height_mm, design.guide_width_mm, design.wall_mm
-    y0s, y1s, half = guide_extent(design, w)
+    t = sizes.broad_wall_mm
+    ext = guide_extent(design, design.wall_mm, t)
     rows: list[CutRow] = []
     drawings: list[Drawing] = []
-    rho_m, rho_d = metal.density_kg_m3 / 1e9, dielectric.density_kg_m3 / 1e9
-    slot_area = s.length_mm * s.width_mm - (4 - np.pi) * (s.width_mm / 2) ** 2
-    text_h = float(min(1.0, max(0.4, 0.8 * s.period_mm / 4)))
-    for g, gx in enumerate(s.guide_x_mm):
-        L = float(y1s[g] - y0s[g])
-        sel = np.flatnonzero(s.guide_index == g)
-        d = Drawing(f"top-{g:02d}")
-        d.cut.append(_ring([(-half, 0), (half, 0), (half, L), (-half, L)]))
-        for i in sel:
-            d.cut.append(_ring(slot_outline(float(s.x_mm[i] - gx), float(s.y_mm[i] - y0s[g]),
-                                            float(s.length_mm[i]), float(s.width_mm[i]), float(s.angle_rad[i]))))
-            d.texts.append((f"{int(s.cell_index[i]):02d}.{int(s.slot_in_cell[i])}", half + 1.0,
-                            float(s.y_mm[i] - y0s[g]) - text_h / 2, text_h))
-        d.marks.append([(0.0, -3.0), (0.0, L + 3.0)])                  # guide axis
-        d.texts.append((f"{title} top wall of guide {g:02d}: {metal.name} {t:g} mm, {len(sel)} slots "
-                        f"(ids cell.slot; slots.csv); y = 0 at the coupling-slot end", -half, L + 8.0, 3.0))
-        d.add_check_bar(-half, -20.0)
+    for g in range(len(s.guide_x_mm)):
+        d, r = _guide_pieces(design, g, ext, t, metal, dielectric, absorber, title)
         drawings.append(d)
-        top_area = 2 * half * L - float(slot_area[sel].sum())
-        body = 2 * half * L * t + (2 * w * L * h)
-        rows.append(CutRow(f"top-{g:02d}", "slotted-top-wall", metal.name, "plate", 0.0, 0.0, False,
-                           2 * half, L, t, top_area / 1e6, top_area * t * rho_m, 3,
-                           f"{len(sel)} slots, drawing top-{g:02d}"))
-        rows.append(CutRow(f"waveguide-{g:02d}", "guide-body", metal.name, "plate", 0.0, 0.0, False,
-                           2 * half, L, h + t, 2 * half * L / 1e6, body * rho_m, 2,
-                           "bottom wall + side walls" if w > 0 else "bottom wall (wall_mm = 0: no side walls)"))
-        rows.append(CutRow(f"core-{g:02d}", "guide-core", dielectric.name, "stock", 0.0, 0.0, False,
-                           a, L, h, a * L / 1e6, a * L * h * rho_d, 2, f"εr {design.fill_eps_r:g}"))
-    x0, y0, x1, y1 = plate_rect(design, plate_margin_mm)
+        rows += r
+    horns = horn_outlines(design, sizes)
     n_layers = max(max(layer_indices(m)) for m in bf.mirrors)
     for k in range(n_layers):
         d = Drawing(f"plate-{k}")
-        d.cut.append(_ring([(x0, y0), (x1, y0), (x1, y1), (x0, y1)]))
+        outline = plate_polygon(design, k, sizes, horns)
+        d.add_polygon(outline)
         holes = [m for m in bf.mirrors if layer_indices(m)[0] == k and k > 0]
+        area = outline.area
         for m in holes:
-            d.cut.append(_curve_ring(m, coupling_edge(design, m)))
+            ring = band_ring(m, coupling_edge(design, m))
+            d.cut.append(ring)
+            area -= Polygon(ring).area
         for m in bf.mirrors:                                            # mirror lines to align walls
             d.marks.append(_ring(m.points_mm[:: max(1, len(m.points_mm) // 200)]))
         for c in design.feeds.aperture_centres_mm:
             d.add_cross(float(c[0]), float(c[1]), 3.0)
+        x0, y0, x1, y1 = outline.bounds
         d.texts.append((f"{title} plate-{k}: {metal.name} {t:g} mm, "
                         + (f"{len(holes)} coupling slot(s) {design.coupling_slot_mm:g} mm" if holes else "base plate")
+                        + ("; notched for the horns" if k <= 1 else "")
                         + "; MARK: mirror faces, + feed aperture centres", x0, y1 + 8.0, TEXT_HEIGHT_MM))
         d.add_check_bar(x0, y0 - 20.0)
         drawings.append(d)
-        area = (x1 - x0) * (y1 - y0)
-        rows.append(CutRow(f"plate-{k}", "beamformer-plate", metal.name, "plate", 0.0, 0.0, False,
-                           x1 - x0, y1 - y0, t, area / 1e6, area * t * rho_m, 1,
-                           f"{len(holes)} coupling slot(s)" if holes else "base plate"))
+        rows.append(_row(f"plate-{k}", "beamformer-plate", metal, x1 - x0, y1 - y0, t, area, area * t, 1,
+                         f"{len(holes)} coupling slot(s)" if holes else "base plate"))
     for j, m in enumerate(bf.mirrors, start=1):
-        back_sign = mirror_back_sign(design, m)
-        back = offset_curve(m, back_sign * mirror_wall_mm, f"{m.name}_back")
+        back = offset_curve(m, mirror_back_sign(design, m) * sizes.mirror_wall_mm, f"{m.name}_back")
+        ring = band_ring(m, back)
+        hgt = design.layer_height_mm * len(layer_indices(m)) + t * (len(layer_indices(m)) - 1)
         d = Drawing(f"mirror-{j}")
-        d.cut.append(_curve_ring(m, back))
-        d.texts.append((f"{title} mirror-{j} ({m.layer}): {metal.name} wall {mirror_wall_mm:g} mm, "
-                        f"height {design.layer_height_mm * len(layer_indices(m)) + t * (len(layer_indices(m)) - 1):g} mm",
-                        float(m.points_mm[0, 0]), float(m.points_mm[:, 1].max()) + 12.0, TEXT_HEIGHT_MM))
+        d.cut.append(ring)
+        d.texts.append((f"{title} mirror-{j} ({m.layer}): {metal.name} wall {sizes.mirror_wall_mm:g} mm, "
+                        f"height {hgt:g} mm", float(m.points_mm[0, 0]), float(m.points_mm[:, 1].max()) + 12.0,
+                        TEXT_HEIGHT_MM))
         d.add_check_bar(float(m.points_mm[0, 0]), float(m.points_mm[:, 1].min()) - 20.0)
         drawings.append(d)
         length = float(np.sum(np.linalg.norm(np.diff(m.points_mm, axis=0), axis=1)))
-        hgt = design.layer_height_mm * len(layer_indices(m))
-        rows.append(CutRow(f"mirror-{j}", "mirror-wall", metal.name, "plate", 0.0, 0.0, False,
-                           length, hgt, mirror_wall_mm, length * hgt / 1e6, length * hgt * mirror_wall_mm * rho_m,
-                           2, "C1 curve: mill to the drawing"))
+        rows.append(_row(f"mirror-{j}", "mirror-wall", metal, length, hgt, sizes.mirror_wall_mm,
+                         Polygon(ring).area, Polygon(ring).area * hgt, 2, "C1 curve: mill to the drawing"))
     for j, lens in enumerate(bf.lenses, start=1):
         label = f"lens-{j}" if len(bf.lenses) > 1 else "lens"
-        m = bf.mirrors[0]
+        ring = band_ring(bf.mirrors[0], lens)
         d = Drawing(label)
-        ring = _curve_ring(m, lens)
         d.cut.append(ring)
         area = Polygon(ring).area
         d.texts.append((f"{title} {label}: {dielectric.name} εr {design.fill_eps_r:g}, thickness "
                         f"{design.layer_height_mm:g} mm", ring[0][0], max(p[1] for p in ring) + 12.0, TEXT_HEIGHT_MM))
         d.add_check_bar(ring[0][0], min(p[1] for p in ring) - 20.0)
         drawings.append(d)
-        rows.append(CutRow(label, "lens-region", dielectric.name, "stock", 0.0, 0.0, False,
-                           float(np.ptp([p[0] for p in ring])), float(np.ptp([p[1] for p in ring])),
-                           design.layer_height_mm, area / 1e6, area * design.layer_height_mm * rho_d, 2, ""))
-    metal_kg = sum(r.mass_kg for r in rows if r.material == metal.name)
-    diel_kg = sum(r.mass_kg for r in rows if r.material == dielectric.name)
+        rows.append(_row(label, "lens-region", dielectric, float(np.ptp([p[0] for p in ring])),
+                         float(np.ptp([p[1] for p in ring])), design.layer_height_mm, area,
+                         area * design.layer_height_mm, 2, ""))
+    h1 = design.layer_height_mm
+    for k, horn in enumerate(horns, start=1):
+        d = Drawing(f"horn-{k}")
+        d.add_polygon(horn.footprint)
+        d.marks.append(_ring(horn.channel.exterior.coords[:-1]))
+        x0, y0, _, y1 = horn.footprint.bounds
+        d.texts.append((f"{title} horn-{k}: split block, {metal.name}. CUT: outline of body ({t + h1:g} mm) and "
+                        f"lid ({t:g} mm); MARK: channel, pocket {h1:g} mm deep through both ends",
+                        x0, y1 + 8.0, TEXT_HEIGHT_MM))
+        d.add_check_bar(x0, y0 - 20.0)
+        drawings.append(d)
+        area = horn.footprint.area
+        f = design.feeds
+        rows.append(_row(f"horn-{k}", "feed-horn", metal, f.aperture_mm[0] + 2 * sizes.horn_wall_mm,
+                         f.length_mm + sizes.flange_thickness_mm, 2 * t + h1, area,
+                         area * (2 * t + h1) - horn.channel.area * h1, 4,
+                         f"H-sectoral {f.throat_mm[0]:g} → {f.aperture_mm[0]:g} mm, E {h1:g} mm; body + lid"))
+    totals = {name: sum(r.mass_kg for r in rows if r.material == name)
+              for name in dict.fromkeys(m.name for m in (metal, dielectric, absorber))}
+    totals["all"] = sum(r.mass_kg for r in rows)
     rows.sort(key=lambda r: (r.assembly_order, r.part))
-    return FabPlan((), {}, {}, tuple(drawings), tuple(rows),
-                   {f"{metal.name}": metal_kg, f"{dielectric.name}": diel_kg, "all": metal_kg + diel_kg},
-                   {}, 0.0, files={"slots.csv": slots_csv(design, y0s)})
+    return FabPlan((), {}, {}, tuple(drawings), tuple(rows), totals, {}, 0.0,
+                   files={"slots.csv": slots_csv(design, ext.y0)})

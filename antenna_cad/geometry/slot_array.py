@@ -1,26 +1,33 @@
 """Solids of the waveguide-slot array (seed-003): guides, beam-former plates, mirrors, lens, horns.
 
 Frame: x across the guides, y along them, z up (broadside). The guide layer sits on the top
-beam-former plate (z = 0); beam-former layers and plates stack downward. Slotted walls are one
-planar face per guide with the slots as inner wires, extruded once (DESIGN.md pitfalls: no
-per-slot 3-D booleans; small faces, separate parts) — cost is linear in the slot count.
+beam-former plate (z = 0); beam-former layers and plates stack downward. Per guide: a body
+(bottom, side and end walls), a slotted lid — one planar face with the slots as inner wires,
+extruded once (DESIGN.md pitfalls: no per-slot 3-D booleans; small faces, separate parts), so the
+cost is linear in the slot count —, the dielectric core and, for a matched termination, the
+absorber wedge in front of the end wall. Mirrors and lens are C¹ splines through the synthesised
+points; the horns are hollow metal bodies in the feed layer whose E-plane walls continue the
+plates (the plates are notched along the horn apertures: :mod:`antenna_cad.geometry.slot_layout`).
 """
 
 from __future__ import annotations
 
 import numpy as np
 from build123d import Compound, Edge, Face, Location, Solid, Vector, Wire, extrude
+from OCP.BRepAdaptor import BRepAdaptor_Curve
 from OCP.BRepBuilderAPI import (BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon,
                                 BRepBuilderAPI_MakeWire)
 from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
 from OCP.GC import GC_MakeArcOfCircle
 from OCP.gp import gp_Pnt, gp_Vec
+from shapely.geometry import Polygon
 
 from antenna_cad.geometry.model import Model, ModelPart
+from antenna_cad.geometry.slot_layout import (GuideExtent, PartSizes, Stack, clip_curve, core_and_load_rings,
+                                              coupling_edge, end_overlap_mm, guide_extent, horn_checks,
+                                              horn_outlines, layer_indices, mirror_back_sign, plate_polygon)
 from antenna_cad.materials import Material
 from antenna_cad.synthesis.checks import Check
-from antenna_cad.geometry.slot_layout import (Stack, coupling_edge, end_overlap_mm, guide_extent, layer_indices,
-                                              mirror_back_sign, plate_rect)
 from antenna_cad.synthesis.slot_array import Curve, SlotArrayDesign, offset_curve
 
 SPLINE_POINTS = 61        # C¹ spline knots through the synthesised points (with their tangents)
@@ -34,6 +41,20 @@ def _spline(curve: Curve, z: float, reverse: bool = False) -> Edge:
     if reverse:
         pts, tan = pts[::-1], [-v for v in tan[::-1]]
     return Edge.make_spline(pts, tangents=tan, scale=True)
+
+
+def modelled_curve(curve: Curve, n_samples: int = 4001) -> Curve:
+    """The C¹ spline the model extrudes for ``curve`` (:func:`_spline`), sampled densely: the
+    surface as built, for the as-built ray trace of the verification."""
+    adaptor = BRepAdaptor_Curve(_spline(curve, 0.0).wrapped)
+    p, v = gp_Pnt(), gp_Vec()
+    rows = []
+    for u in np.linspace(adaptor.FirstParameter(), adaptor.LastParameter(), n_samples):
+        adaptor.D1(float(u), p, v)
+        rows.append((p.X(), p.Y(), v.X(), v.Y()))
+    a = np.array(rows)
+    tangents = a[:, 2:] / np.linalg.norm(a[:, 2:], axis=1, keepdims=True)
+    return Curve(curve.name, curve.layer, a[:, :2], tangents)
 
 
 def band_face(a: Curve, b: Curve, z: float = 0.0) -> Face:
@@ -74,75 +95,87 @@ def slotted_plate(x0: float, y0: float, x1: float, y1: float, z: float, thicknes
     return Solid(BRepPrimAPI_MakePrism(mf.Face(), gp_Vec(0, 0, thickness)).Shape())
 
 
-def build_model(design: SlotArrayDesign, dielectric: Material, metal: Material, *, broad_wall_mm: float,
-                mirror_wall_mm: float, plate_margin_mm: float) -> Model:
+def _prism(poly: Polygon, z0: float, z1: float, holes: tuple[Wire, ...] = ()) -> Solid:
+    """A planar polygon (shapely, with its interiors) at z0 extruded to z1, plus extra inner wires."""
+    wire = lambda ring: Wire.make_polygon([Vector(float(x), float(y), z0) for x, y in ring.coords[:-1]], close=True)
+    face = Face(wire(poly.exterior), [wire(r) for r in poly.interiors] + list(holes))
+    return extrude(face, z1 - z0, dir=(0, 0, 1))
+
+
+def _guide_parts(design: SlotArrayDesign, g: int, idx: np.ndarray, ext: GuideExtent, t: float,
+                 dielectric: Material, absorber: Material, metal: Material) -> tuple[list[ModelPart], int]:
+    """Guide g as machined: the body ``waveguide-g`` (bottom, side and end walls: a box less its
+    cavity), the slotted lid ``top-g`` (the top broad wall: one face with the slots as inner wires,
+    one prism), the dielectric core and the load wedge. Returns the parts and the number of slot
+    holes cut."""
+    s = design.slots
+    h, a = design.guide_height_mm, design.guide_width_mm
+    gx, y0, y1, yl, ye, half = (float(s.guide_x_mm[g]), float(ext.y0[g]), float(ext.y_slots_end[g]),
+                                float(ext.y_load_end[g]), float(ext.y_end[g]), ext.half)
+    holes = [slot_wire(float(s.x_mm[i]), float(s.y_mm[i]), float(s.length_mm[i]), float(s.width_mm[i]),
+                       float(s.angle_rad[i]), t + h) for i in idx]
+    lid = slotted_plate(gx - half, y0, gx + half, ye, t + h, t, holes)
+    eps = 0.01 * t
+    cw = a / 2 if half > a / 2 else half + eps             # no side walls: the cavity spans the width
+    box = Solid.make_box(2 * half, ye - y0, t + h).moved(Location((gx - half, y0, 0.0)))
+    cavity = Solid.make_box(2 * cw, yl - y0 + eps, h + eps).moved(Location((gx - cw, y0 - eps, t)))
+    parts = [ModelPart(f"waveguide-{g:02d}", metal, "fabricated", box.cut(cavity)),
+             ModelPart(f"top-{g:02d}", metal, "fabricated", lid)]
+    core, load = core_and_load_rings(a, y0, y1, yl)
+    shift = lambda ring: Polygon([(gx + x, y) for x, y in ring])
+    parts.append(ModelPart(f"core-{g:02d}", dielectric, "fabricated", _prism(shift(core), t, t + h)))
+    if load:
+        parts.append(ModelPart(f"load-{g:02d}", absorber, "fabricated", _prism(shift(load), t, t + h)))
+    return parts, len(holes)
+
+
+def build_model(design: SlotArrayDesign, dielectric: Material, metal: Material, absorber: Material,
+                sizes: PartSizes) -> Model:
+    """Every part of the array in the frame of the module docstring (labels: waveguide-07,
+    top-07, core-07, load-07, plate-1, mirror-1, lens, horn-3)."""
     bf, s = design.beamformer, design.slots
     n_layers = max(max(layer_indices(m)) for m in bf.mirrors)
-    st = Stack(n_layers, broad_wall_mm, design.layer_height_mm, design.guide_height_mm)
-    t, h, a, w = broad_wall_mm, design.guide_height_mm, design.guide_width_mm, design.wall_mm
+    t = sizes.broad_wall_mm
+    st = Stack(n_layers, t, design.layer_height_mm, design.guide_height_mm)
     parts: list[ModelPart] = []
-    y0s, y1s, half = guide_extent(design, w)
+    ext = guide_extent(design, design.wall_mm, t)
     order = np.argsort(s.guide_index, kind="stable")
     bounds = np.searchsorted(s.guide_index[order], np.arange(len(s.guide_x_mm) + 1))
-    z_top = t + h
-    wires_total = 0
-    for g, gx in enumerate(s.guide_x_mm):
-        gx, y0, y1 = float(gx), float(y0s[g]), float(y1s[g])
-        idx = order[bounds[g]:bounds[g + 1]]
-        holes = [slot_wire(float(s.x_mm[i]), float(s.y_mm[i]), float(s.length_mm[i]),
-                           float(s.width_mm[i]), float(s.angle_rad[i]), z_top) for i in idx]
-        wires_total += len(holes)
-        top = slotted_plate(gx - half, y0, gx + half, y1, z_top, t, holes)
-        if w > 0:      # bottom + side walls as one U-channel prism, fused to the slotted top
-            u = [(-half, 0), (half, 0), (half, t + h), (a / 2, t + h), (a / 2, t), (-a / 2, t),
-                 (-a / 2, t + h), (-half, t + h)]
-            face = Face(Wire.make_polygon([Vector(gx + px, y0, pz) for px, pz in u], close=True))
-            body = extrude(face, y1 - y0, dir=(0, 1, 0)).fuse(top)
-        else:          # pitch = width: no side walls of its own; bottom and slotted top plates
-            body = Compound([top, Solid.make_box(2 * half, y1 - y0, t).moved(Location((gx - half, y0, 0)))])
-        parts.append(ModelPart(f"waveguide-{g:02d}", metal, "fabricated", body))
-        parts.append(ModelPart(f"core-{g:02d}", dielectric, "fabricated",
-                               Solid.make_box(a, y1 - y0, h).moved(Location((gx - a / 2, y0, t)))))
+    holes_total = 0
+    for g in range(len(s.guide_x_mm)):
+        guide, n_holes = _guide_parts(design, g, order[bounds[g]:bounds[g + 1]], ext, t, dielectric, absorber, metal)
+        parts += guide
+        holes_total += n_holes
+    horns = horn_outlines(design, sizes)
     # beam-former plates: base plate, then one per layer transition with its coupling slot(s)
-    x0, yb0, x1, yb1 = plate_rect(design, plate_margin_mm)
     for k in range(n_layers):
         za, zb = st.plate(k)
-        outer = Wire.make_polygon([Vector(x0, yb0, za), Vector(x1, yb0, za), Vector(x1, yb1, za),
-                                   Vector(x0, yb1, za)], close=True)
-        holes = [band_wire(m, coupling_edge(design, m), za) for m in bf.mirrors
-                 if layer_indices(m)[0] == k and k > 0]
-        parts.append(ModelPart(f"plate-{k}", metal, "fabricated", extrude(Face(outer, holes), zb - za)))
+        holes = tuple(band_wire(m, coupling_edge(design, m), za) for m in bf.mirrors
+                      if layer_indices(m)[0] == k and k > 0)
+        parts.append(ModelPart(f"plate-{k}", metal, "fabricated",
+                               _prism(plate_polygon(design, k, sizes, horns), za, zb, holes)))
     for j, m in enumerate(bf.mirrors, start=1):
-        back = offset_curve(m, mirror_back_sign(design, m) * mirror_wall_mm, f"{m.name}_back")
+        back = offset_curve(m, mirror_back_sign(design, m) * sizes.mirror_wall_mm, f"{m.name}_back")
         solids = []
         for k in layer_indices(m):
             za, zb = st.layer(k)
-            solids.append(extrude(band_face(m, back, za), zb - za))
+            solids.append(extrude(band_face(m, back, za), zb - za, dir=(0, 0, 1)))
         parts.append(ModelPart(f"mirror-{j}", metal, "fabricated", Compound(solids)))
     for j, lens in enumerate(bf.lenses, start=1):
-        mirror = bf.mirrors[0]
-        lo, hi = max(lens.x_range_mm[0], mirror.x_range_mm[0]), min(lens.x_range_mm[1], mirror.x_range_mm[1])
-        xs = np.linspace(lo, hi, 241)
-        ring = [(x, float(mirror.y_at(x))) for x in xs] + [(x, float(lens.y_at(x))) for x in xs[::-1]]
         za, zb = st.layer(layer_indices(lens)[0])
-        face = Face(Wire.make_polygon([Vector(x, y, za) for x, y in ring], close=True))
+        face = band_face(bf.mirrors[0], clip_curve(lens, *bf.mirrors[0].x_range_mm), za)
         parts.append(ModelPart(f"lens-{j}" if len(bf.lenses) > 1 else "lens", dielectric, "fabricated",
-                               extrude(face, zb - za)))
-    f = design.feeds
+                               extrude(face, zb - za, dir=(0, 0, 1))))
     za, zb = st.layer(1)
-    for k, (c, aim) in enumerate(zip(f.aperture_centres_mm, f.aim), start=1):
-        side = np.array([-aim[1], aim[0]])
-        back = c - aim * f.length_mm
-        ring = [back - side * f.throat_mm[0] / 2, c - side * f.aperture_mm[0] / 2,
-                c + side * f.aperture_mm[0] / 2, back + side * f.throat_mm[0] / 2]
-        face = Face(Wire.make_polygon([Vector(float(p[0]), float(p[1]), za) for p in ring], close=True))
-        parts.append(ModelPart(f"horn-{k}", metal, "reference", extrude(face, zb - za)))
-    overlap = end_overlap_mm(design, w)
-    checks = (Check.upper("model_slot_count", abs(wires_total - s.count), 0, "",
-                          f"slot holes in the solids ({wires_total}) vs synthesised slots ({s.count})"),
+    for k, horn in enumerate(horns, start=1):
+        body = _prism(horn.footprint, za - t, zb + t).cut(_prism(horn.channel_cut, za, zb))
+        parts.append(ModelPart(f"horn-{k}", metal, "fabricated", body))
+    overlap = end_overlap_mm(design, design.wall_mm)
+    checks = (Check.upper("model_slot_count", abs(holes_total - s.count), 0, "",
+                          f"slot holes in the solids ({holes_total}) vs synthesised slots ({s.count})"),
               Check("guide_end_over_coupling_slot", "warn" if overlap > 0 else "pass", overlap, 0.0, "mm",
                     f"bottom-wall corner of the outer guide bodies overlaps the coupling slot's far edge by "
                     f"{overlap:.3g} mm (rectangular body ends vs a curved slot)" if overlap > 0 else
-                    "guide bodies clear of the coupling slot"))
+                    "guide bodies clear of the coupling slot"),
+              *horn_checks(design, horns, sizes.mirror_wall_mm))
     return Model(tuple(parts), checks, step_pcurves=False)
-

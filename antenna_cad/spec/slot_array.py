@@ -2,16 +2,21 @@
 
 ``material`` is the dielectric that fills the guides (and the lens region of a mirror-lens beam
 former); ``waveguide.fill_eps_r`` defaults to its εr. The metal of bodies, plates and mirror walls
-is named in ``fabrication`` (method ``machined_plates``).
+is named in ``fabrication`` (method ``machined_plates``). The absorber of the matched loads
+(``waveguide.load_material``) defaults to a carbon-loaded epoxy estimate (εr 4, tanδ 0.3,
+1600 kg/m³; not in the seed: it only enters the mass figures).
 """
 
 from __future__ import annotations
 
 from typing import Literal
 
-from pydantic import Field, model_validator
+from pydantic import Field, field_validator, model_validator
 
-from antenna_cad.spec.common import SpecBase, StrictModel, resolve_material
+from antenna_cad.spec.common import (InlineMaterial, MaterialRef, SpecBase, StrictModel, _library_name,
+                                     resolve_material)
+
+ABSORBER = InlineMaterial(name="absorber", eps_r=4.0, tan_delta=0.3, density_kg_m3=1600.0)
 
 
 class BandSpec(StrictModel):
@@ -25,6 +30,19 @@ class WaveguideSpec(StrictModel):
     height_mm: float = Field(gt=0, le=500, description="narrow-wall inner height b")
     fill_eps_r: float | None = Field(None, ge=1.0, le=100, description="default: εr of `material`")
     wall_mm: float = Field(0.0, ge=0, le=50, description="narrow (side) wall thickness; pitch ≥ a + 2·wall")
+    termination: Literal["matched_load", "short"] = Field(
+        "matched_load", description="far end of every guide: matched_load = absorber wedge in front of "
+        "an end wall (takes the 1 − η left in the guide); short = end wall right after the last cell "
+        "(the residual power reflects and radiates a mirrored beam)")
+    load_length_mm: float | None = Field(None, gt=0, le=2000,
+                                         description="absorber wedge length; default one guide wavelength "
+                                         "at band.min_ghz")
+    load_material: MaterialRef = Field(ABSORBER, description="lossy material of the load wedge")
+
+    @field_validator("load_material")
+    @classmethod
+    def _known(cls, v):
+        return _library_name(v) if isinstance(v, str) else v
 
 
 class ArraySpec(StrictModel):
@@ -45,12 +63,24 @@ class SlotsSpec(StrictModel):
     layout: Literal["longitudinal_4", "longitudinal_pair", "transverse_3"]
     width_mm: float = Field(gt=0, le=100)
     period_mm: float | Literal["auto"] = "auto"
+    design_angle_deg: float | None = Field(
+        None, ge=-80, le=80, description="−1st-harmonic beam angle from broadside at band.design_ghz "
+        "(+ toward the guides' far end); sets period_mm: auto (default 0: broadside, p = λg)")
     taper: TaperSpec = TaperSpec()
     lengths_mm: list[float] | None = Field(None, description="per cell (or s1..s3 for transverse_3)")
     l2_ratio: float = Field(0.68, gt=0, le=2)
     offset_mm: float | None = Field(None, ge=0)
     min_web_mm: float = Field(0.3, ge=0)
     wall_clearance_mm: float = Field(0.2, ge=0)
+    min_coupling_gap_mm: float = Field(0.0, ge=0, description="first slot at least this far from the "
+                                       "coupling slot's far edge (d2 = 7.8 mm in seed-003 §2.4)")
+
+    @model_validator(mode="after")
+    def _angle_or_period(self):
+        if self.design_angle_deg is not None and self.period_mm != "auto":
+            raise ValueError("slots.design_angle_deg: only with period_mm: auto (an explicit period "
+                             "fixes the angle)")
+        return self
 
 
 BEAMFORMER_PARAMS = {"single_mirror": ("minor_semi_axis_mm", "focal_separation_mm"),
@@ -104,6 +134,10 @@ class FeedsSpec(StrictModel):
     length_mm: float = Field(gt=0)
     count: int = Field(1, ge=1, le=99)
     placement: Literal["optimal", "circle"] = "optimal"
+    wall_mm: float = Field(1.0, gt=0, le=50, description="H-plane side-wall thickness (the E-plane walls "
+                           "are fabrication.broad_wall_mm thick, flush with the beam-former plates)")
+    flange_mm: float = Field(3.0, ge=0, le=200, description="flange collar beyond the side walls at the throat")
+    flange_thickness_mm: float = Field(3.0, gt=0, le=200, description="flange (throat section) length along the axis")
 
 
 class MachinedPlatesSpec(StrictModel):
@@ -135,6 +169,11 @@ class SlotArraySpec(SpecBase):
                              f"({b.design_ghz:g} not in [{b.min_ghz:g}, {b.max_ghz:g}])")
         if abs(self.frequency_ghz - b.design_ghz) > 1e-9:
             raise ValueError(f"frequency_ghz: must equal band.design_ghz ({self.frequency_ghz:g} ≠ {b.design_ghz:g})")
+        for name, size in (("throat_mm", self.feeds.throat_mm), ("aperture_mm", self.feeds.aperture_mm)):
+            if abs(size[1] - self.beamformer.layer_height_mm) > 1e-9:
+                raise ValueError(f"feeds.{name}: E-plane size {size[1]:g} mm must equal "
+                                 f"beamformer.layer_height_mm {self.beamformer.layer_height_mm:g} mm (an "
+                                 "H-plane sectoral horn in the feed layer)")
         eps = self.fill_eps_r
         m = resolve_material(self.material)
         if abs(eps / m.eps_r - 1) > 0.05:

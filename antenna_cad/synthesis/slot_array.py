@@ -24,8 +24,8 @@ slotted guide is ≈ 1 % lower (10.7 vs 10.80 GHz, §3.1).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from functools import cached_property
+from dataclasses import dataclass, field, replace
+from functools import cached_property, partial
 from typing import Callable, Sequence
 
 import numpy as np
@@ -363,7 +363,9 @@ class BeamFormer:
     over the aperture), ``sigma_norm`` the same divided by ``aperture_mm``. ``guide_curve`` is
     the curve along which the guides start (last mirror; its coupling slot is offset from it
     toward +y). ``eikonal``: callable (x_mm, focus index) -> design path length (mm) from the
-    focus to the guide entry point on ``guide_curve``. ``focal_locus``: points of the feed arc,
+    focus to the guide entry point on ``guide_curve``. ``trace``: (source, x of the launch point
+    on the first surface) -> (end point on the last mirror, path, ok, vertices), through the
+    curves it was built with (:func:`with_surfaces` swaps them for as-built ones). ``focal_locus``: points of the feed arc,
     ``params``: normalised construction figures (l0, δ, …).
     """
     type: str
@@ -380,6 +382,52 @@ class BeamFormer:
     eikonal: Callable = field(repr=False)
     trace: Callable = field(repr=False)
     params: dict = field(default_factory=dict)
+
+
+# Ray traces through the (interpolated) curves of a beam former. Each maps a source point and the
+# x of the launch point on the first surface to (end point on the last mirror (N, 2), optical
+# path (N,), ok (N,), vertices: the hit points in order, the end point last).
+
+def trace_single_mirror(mirror: Curve, src, x_hit_mm):
+    """Source → mirror point at x_hit (the mirror edge is the layer transition), §3.5."""
+    xh = np.asarray(x_hit_mm, float)
+    p = np.stack([xh, mirror.y_at(xh)], axis=-1)
+    return p, np.linalg.norm(p - np.asarray(src, float), axis=-1), np.ones(xh.shape, bool), (p,)
+
+
+def trace_two_mirror(mir1: Curve, mir2: Curve, src, x_hit_mm):
+    """Source → mirror 1 at x_hit (reflection) → mirror 2, §3.3."""
+    xh = np.asarray(x_hit_mm, float)
+    P = np.stack([xh, mir1.y_at(xh)], -1)
+    F = np.asarray(src, float)
+    e = reflect(_unit(P - F), _normal_from_slope(mir1.slope_at(xh)))
+    Q, ok = intersect_rays_with_curve(P, e, mir2)
+    return Q, np.linalg.norm(P - F, axis=-1) + np.linalg.norm(Q - P, axis=-1), ok, (P, Q)
+
+
+def trace_mirror_lens(lens: Curve, mirror: Curve, n: float, src, x_hit_mm):
+    """Source → lens surface at x_hit (refraction into index n) → mirror, §3.4."""
+    xh = np.asarray(x_hit_mm, float)
+    K = np.stack([xh, lens.y_at(xh)], -1)
+    F = np.asarray(src, float)
+    e, ok1 = refract(_unit(K - F), _normal_from_slope(lens.slope_at(xh)), 1.0, n)
+    Q, ok2 = intersect_rays_with_curve(K, _unit(e), mirror)
+    return Q, np.linalg.norm(K - F, axis=-1) + n * np.linalg.norm(Q - K, axis=-1), ok1 & ok2, (K, Q)
+
+
+def with_surfaces(bf: "BeamFormer", mirrors: Sequence[Curve], lenses: Sequence[Curve] = (),
+                  lens_index: float | None = None) -> "BeamFormer":
+    """The same beam former traced through other surfaces (the as-built curves, a perturbed lens
+    index); foci, design eikonal and beam directions stay those of the design."""
+    mirrors, lenses = tuple(mirrors), tuple(lenses)
+    if bf.type == "single_mirror":
+        trace = partial(trace_single_mirror, mirrors[0])
+    elif bf.type == "bifocal_two_mirror":
+        trace = partial(trace_two_mirror, *mirrors)
+    else:
+        n = bf.params["n"] if lens_index is None else float(lens_index)
+        trace = partial(trace_mirror_lens, lenses[0], mirrors[0], n)
+    return replace(bf, mirrors=mirrors, lenses=lenses, guide_curve=mirrors[-1], trace=trace)
 
 
 def ellipse_mirror(minor_semi_axis_mm: float, focal_separation_mm: float,
@@ -411,17 +459,11 @@ def ellipse_mirror(minor_semi_axis_mm: float, focal_separation_mm: float,
     def eikonal(x_mm, j):
         return r0 + (1 if j == 0 else -1) * np.asarray(x_mm, float) * sa
 
-    def trace(src, x_hit):
-        """Path source → mirror point at x_hit (the mirror edge is the layer transition)."""
-        x_hit = np.asarray(x_hit, float)
-        p = np.stack([x_hit, mirror.y_at(x_hit)], axis=-1)
-        return p, np.linalg.norm(p - np.asarray(src, float), axis=-1), np.ones(x_hit.shape, bool)
-
+    trace = partial(trace_single_mirror, mirror)
     sig = []
     xs = np.linspace(-half_width_mm, half_width_mm, N_SIGMA_RAYS)
     for j in range(2):
-        p, L, _ = trace(foci[j], xs)
-        sig.append(_rms(L - eikonal(xs, j)))
+        sig.append(_rms(trace(foci[j], xs)[1] - eikonal(xs, j)))
     sig = np.array(sig)
     phi = np.linspace(-np.pi / 3, np.pi / 3, 121)
     locus = np.stack([r0 * np.sin(phi), r0 * np.cos(phi)], axis=-1)
@@ -552,16 +594,7 @@ def bifocal_two_mirror(*, a0: float, a2: float, h1: float, b0: float, b2: float,
     else:
         dirs = np.array([_unit(F3 - np.array([0, b0])), _unit(F4 - np.array([0, b0]))])
 
-    def trace(src, x_hit_mm):
-        """Trace source point (mm) via mirror-1 point at x_hit (mm) -> (mirror-2 point, path, ok)."""
-        xh = np.asarray(x_hit_mm, float)
-        P = np.stack([xh, mir1.y_at(xh)], -1)
-        F = np.asarray(src, float)
-        e = reflect(_unit(P - F), _normal_from_slope(mir1.slope_at(xh)))
-        Q, ok = intersect_rays_with_curve(P, e, mir2)
-        return Q, np.linalg.norm(P - F, axis=-1) + np.linalg.norm(Q - P, axis=-1), ok
-
-    sign = np.array([1.0, -1.0])
+    trace = partial(trace_two_mirror, mir1, mir2)
 
     def eikonal(x_mm, j):
         """Design path focus j → point Q on mirror 2: l0 + u_j·Q (plane output) or
@@ -575,7 +608,7 @@ def bifocal_two_mirror(*, a0: float, a2: float, h1: float, b0: float, b2: float,
     sig = []
     xs = np.linspace(-half_width, half_width, N_SIGMA_RAYS) * sc
     for j in range(2):
-        Q, L, ok = trace(foci[j], xs)
+        Q, L, ok, _ = trace(foci[j], xs)
         if plane:
             tot = L - Q @ dirs[j]
             ref = l0 * sc
@@ -730,15 +763,7 @@ def bifocal_mirror_lens(*, lens_a2: float, lens_vertex: float, x0: float, p1: fl
     dirs = np.array([u1, u2])
     Rsc, p2sc = R0 * sc, p2 * sc
 
-    def trace(src, x_hit_mm):
-        """Source point (mm) → lens point at x_hit (mm) → mirror -> (mirror point, path, ok)."""
-        xh = np.asarray(x_hit_mm, float)
-        Kp = np.stack([xh, lens.y_at(xh)], -1)
-        F = np.asarray(src, float)
-        e, ok1 = refract(_unit(Kp - F), _normal_from_slope(lens.slope_at(xh)), 1.0, n)
-        Q, ok2 = intersect_rays_with_curve(Kp, _unit(e), mir)
-        path = np.linalg.norm(Kp - F, axis=-1) + n * np.linalg.norm(Q - Kp, axis=-1)
-        return Q, path, ok1 & ok2
+    trace = partial(trace_mirror_lens, lens, mir, n)
 
     def eikonal(x_mm, j):
         x = np.asarray(x_mm, float)
@@ -748,7 +773,7 @@ def bifocal_mirror_lens(*, lens_a2: float, lens_vertex: float, x0: float, p1: fl
     sig = []
     xs = np.linspace(-half_width, half_width, N_SIGMA_RAYS) * sc
     for j in range(2):
-        Q, L, ok = trace(foci[j], xs)
+        Q, L, ok, _ = trace(foci[j], xs)
         if not ok.all():
             raise DesignError(fp, f"focus {j + 1}: {int((~ok).sum())} rays miss the mirror")
         sig.append(_rms(L + p2sc - Q @ dirs[j] - Rsc))
@@ -792,8 +817,9 @@ def slot_line_t_mm(bf: BeamFormer, x_mm, n_guide: float, cos_beta: float,
     return t0_mm + num / (n_guide - cos_beta)
 
 
-def traced_eikonal_mm(bf: BeamFormer, source, x_mm, iterations: int = 30) -> np.ndarray:
-    """Ray-traced path (mm) from a source to the guide entry point at x on the guide curve.
+def traced_rays(bf: BeamFormer, source, x_mm, iterations: int = 30) -> tuple[np.ndarray, tuple]:
+    """Ray-traced path (mm) from a source to the guide entry point at x on the guide curve, and
+    the ray vertices (hit points on each surface, the entry point last).
 
     ``source``: design-focus index (int) or a point (mm) in the feed layer. Independent of the
     construction: rays go through the interpolated curves with Snell / reflection; the launch
@@ -802,24 +828,30 @@ def traced_eikonal_mm(bf: BeamFormer, source, x_mm, iterations: int = 30) -> np.
     src = bf.foci_mm[source] if np.ndim(source) == 0 else np.asarray(source, float)
     x = np.asarray(x_mm, float)
     if bf.type == "single_mirror":
-        return bf.trace(src, x)[1]
+        _, L, _, vertices = bf.trace(src, x)
+        return L, vertices
     tol = 1e-12 * bf.aperture_mm
     xh0 = x.copy()
-    Q0, L0, _ = bf.trace(src, xh0)
+    Q0 = bf.trace(src, xh0)[0]
     xh1 = x - (Q0[:, 0] - x)
     for _ in range(iterations):
-        Q1, L1, _ = bf.trace(src, xh1)
+        Q1 = bf.trace(src, xh1)[0]
         f0, f1 = Q0[:, 0] - x, Q1[:, 0] - x
         if np.max(np.abs(f1)) < tol:
             break
         den = np.where(np.abs(f1 - f0) > 0, f1 - f0, 1.0)
         xh2 = np.where(np.abs(f1) < tol, xh1, xh1 - f1 * (xh1 - xh0) / den)
-        xh0, Q0, L0, xh1 = xh1, Q1, L1, xh2
-    Q, L, ok = bf.trace(src, xh1)
+        xh0, Q0, xh1 = xh1, Q1, xh2
+    Q, L, ok, vertices = bf.trace(src, xh1)
     if not ok.all() or np.max(np.abs(Q[:, 0] - x)) > 1e-9 * bf.aperture_mm:
         raise DesignError("beamformer", "could not trace rays from the source to every guide "
                           "entry (source outside the usable field of view?)")
-    return L
+    return L, vertices
+
+
+def traced_eikonal_mm(bf: BeamFormer, source, x_mm) -> np.ndarray:
+    """Ray-traced path (mm) from a source to the guide entry at x (:func:`traced_rays`)."""
+    return traced_rays(bf, source, x_mm)[0]
 
 
 def feed_phase_errors(bf: BeamFormer, sources_mm, x_mm, t_mm, n_guide: float, cos_beta: float,
@@ -1173,7 +1205,8 @@ class SlotArrayDesign:
     ``beamformer.guide_curve`` (slot near edge) by ``coupling_slot_mm`` toward +y;
     ``figures``: scalar key figures (mm, GHz, dBi, rad); ``phase_spread_wavelengths``: peak-to-
     peak slot-phase spread per design focus (ray-traced); per-feed aberration and beam azimuth
-    are in ``feeds``.
+    are in ``feeds``. ``termination``: ``matched_load`` (absorber wedge of ``load_length_mm``
+    before the end wall) or ``short`` (end wall after the last cell, ``load_length_mm`` = 0).
     """
     scan: ScanFigures
     beamformer: BeamFormer
@@ -1187,6 +1220,8 @@ class SlotArrayDesign:
     fill_eps_r: float
     layer_height_mm: float
     coupling_slot_mm: float
+    termination: str
+    load_length_mm: float
     phase_spread_wavelengths: np.ndarray
     figures: dict
     checks: tuple[Check, ...]
@@ -1219,6 +1254,7 @@ def synthesize_slot_array(
         feed_count: int = 1, feed_throat_mm=(7.2, 1.6), feed_aperture_mm=(16.0, 1.6),
         feed_length_mm: float = 30.0, feed_placement: str = "optimal",
         wall_clearance_mm: float = 0.2, min_web_mm: float = 0.3, min_coupling_gap_mm: float = 0.0,
+        termination: str = "matched_load", load_length_mm: float | None = None,
         strict: bool = True) -> SlotArrayDesign:
     """Synthesise a frequency-scanning planar multibeam waveguide-slot array (seed-003).
 
@@ -1238,6 +1274,8 @@ def synthesize_slot_array(
     a/4), ``pair_shift_mm`` (default λg/2), ``transverse_spacings_mm`` (d1, d2); see
     :func:`cell_pattern`. Feeds: ``feed_placement`` = optimal | circle (:func:`place_feeds`).
     Manufacturability limits: ``wall_clearance_mm``, ``min_web_mm``, ``min_coupling_gap_mm``.
+    Far end (:func:`termination_check`): ``termination`` = matched_load (absorber wedge of
+    ``load_length_mm``, default λg at ``min_ghz``) or short.
     With ``strict`` a failed check raises :class:`DesignError` naming the spec field and the
     number; with ``strict=False`` failures are returned in ``checks``.
     """
@@ -1355,6 +1393,11 @@ def synthesize_slot_array(
                         f"worst RMS slot-phase aberration over {feed_count} feed(s): {worst:.3g} λ"
                         + ("" if np.isfinite(feed_rms).all() else
                            f"; rays from {int((~np.isfinite(feed_rms)).sum())} feed(s) miss")))
+    if termination == "matched_load" and load_length_mm is None:
+        load_length_mm = float(guide_wavelength_mm(min_ghz, a, eps))
+    load_length_mm = float(load_length_mm) if termination == "matched_load" else 0.0
+    checks.append(termination_check(termination, load_length_mm,
+                                     float(guide_wavelength_mm(min_ghz, a, eps)), taper_eta))
     figures = {
         "period_mm": period_mm, "n_cells": n_cells, "slot_count": slots.count,
         "broadside_ghz": scan.broadside_ghz, "beta_design_rad": scan.beta_design_rad,
@@ -1363,10 +1406,35 @@ def synthesize_slot_array(
         "ideal_gain_dbi": ideal_gain_dbi(span, length_mm, design_ghz),
         "beam_azimuth_rad": float(np.arcsin(abs(bf.beam_dirs[0][0]))),
         "slot_line_sag_mm": float(t.max() - t.min()),
+        "load_length_mm": load_length_mm, "load_power_fraction": 1.0 - taper_eta,
     }
     return SlotArrayDesign(scan, bf, slots, slot_line, coupling_edge, feeds, a,
                            float(guide_height_mm), float(wall_mm), eps, float(layer_height_mm),
-                           float(coupling_slot_mm), spread, figures, tuple(checks))
+                           float(coupling_slot_mm), termination, load_length_mm, spread, figures,
+                           tuple(checks))
+
+
+def termination_check(termination: str, load_length_mm: float, guide_wavelength_max_mm: float,
+                      eta: float) -> Check:
+    """The far end of a leaky-wave guide takes the 1 − η not radiated (seed-003 §3.2, (1.1)).
+
+    ``matched_load``: an absorber wedge shorter than one guide wavelength at the band minimum
+    reflects noticeably (warn). ``short``: the residual power reflects; the backward wave's −1st
+    harmonic radiates at β' = π − β, a beam mirrored about broadside about 10·log10(1 − η) dB
+    below the main beam (warn).
+    """
+    if termination == "short":
+        return Check("termination", "warn", 1.0 - eta, 0.0, "",
+                     f"short-circuit guide ends: the residual {100 * (1 - eta):.0f} % reflects and "
+                     f"radiates a beam mirrored about broadside ≈ {10 * np.log10(1 - eta):.1f} dB "
+                     "below the main beam (waveguide.termination: matched_load avoids it)")
+    if termination != "matched_load":
+        raise DesignError("waveguide.termination", f"use matched_load or short (got {termination!r})")
+    short = load_length_mm < guide_wavelength_max_mm
+    return Check("termination", "warn" if short else "pass", load_length_mm, guide_wavelength_max_mm,
+                 "mm", f"matched-load wedge {load_length_mm:.4g} mm "
+                 + ("shorter than" if short else "≥") + f" one guide wavelength at the band minimum "
+                 f"({guide_wavelength_max_mm:.4g} mm); it takes {100 * (1 - eta):.0f} % of the input")
 
 
 def _slot_line_curve(bf: BeamFormer, span_mm: float, n_guide: float, cos_beta: float,

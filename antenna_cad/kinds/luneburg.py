@@ -120,20 +120,25 @@ def summary(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | N
             f"{m.density_kg_m3:.1f} kg/m³")
     if layup is not None:
         figures |= {"sheet_count": layup.count, "sheet_thickness_mm": layup.sheet_thickness_mm,
-                    "ring_count": len(layup.rings), "ring_sizing": layup.sizing}
+                    "ring_count": len(layup.rings), "piece_count": sum(r.sectors for r in layup.rings),
+                    "ring_sizing": layup.sizing, "dowel_count": len(layup.dowels),
+                    "undowelled_shell_joints": layup.undowelled_joints}
         per: dict[str, list] = {}
         for r in layup.rings:
             per.setdefault(r.material.name, []).append(r)
         for name, rings in sorted(per.items()):
-            figures[f"rings {name}"] = f"{len(rings)} rings in {len({r.sheet_index for r in rings})} sheets"
+            figures[f"rings {name}"] = (f"{len(rings)} rings ({sum(r.sectors for r in rings)} pieces) in "
+                                        f"{len({r.sheet_index for r in rings})} sheets")
     return figures
 
 
 def fabrication_checks(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | None) -> list[Check]:
     """Rings against their shells over the slab (contain: holds it, no excess), the finishing
-    allowance, and the board saved by nesting rings in ring holes."""
-    if layup is None or layup.shape != "sphere":
+    allowance, and the registration dowels."""
+    if layup is None:
         return []
+    if layup.shape != "sphere":
+        return [_registration_check(layup)]
     L = {l.index: l for l in design.layers}
     fit = 0.0
     allowance = 0.0
@@ -157,7 +162,23 @@ def fabrication_checks(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLa
                             float(layup.dropped_caps), 0.0, "caps",
                             f"rings sized at sheet mid-planes (stepped); {layup.dropped_caps} shell caps "
                             "missing their mid-plane are dropped"))
-    return checks
+    return checks + [_registration_check(layup)]
+
+
+def _registration_check(layup: RingLayupPlan) -> Check:
+    """Every joint between consecutive sheets carries at least one dowel (rings of a sheet are
+    located on each other by their turned or butting faces)."""
+    if layup.registration_hole_mm <= 0:
+        return Check("registration_dowels", "warn", 0.0, 1.0, "dowels",
+                     "registration_hole_mm = 0: sheets are not dowelled; align them on a jig")
+    joined = {dw.sheets for dw in layup.dowels}
+    if layup.shape == "sphere":
+        loose = [k for k in range(1, layup.count) if (k, k + 1) not in joined]
+    else:                                            # through pins: one set ties every sheet and plate
+        loose = [] if joined else [0]
+    return Check("registration_dowels", "warn" if loose else "pass", float(len(loose)), 0.0, "joints",
+                 f"{len(layup.dowels)} dowels of the rings' own grades; {len(loose)} sheet joints without one; {layup.undowelled_joints} shell crossings too thin for a "
+                 f"Ø{layup.registration_hole_mm:g} mm dowel (those rings sit on their neighbours' faces)")
 
 
 

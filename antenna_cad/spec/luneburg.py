@@ -87,7 +87,10 @@ class LuneburgLayupSpec(StrictModel):
     ring_sizing: Literal["contain", "mid_plane"] = Field(
         "contain", description="contain: every ring holds its shell over the whole slab (sanding/turning "
         "only removes material); mid_plane: ring radii at the sheet mid-plane (stepped, no finishing)")
-    registration_hole_mm: float = Field(6.0, ge=0, le=50, description="axial hole for a foam alignment rod; 0: none")
+    registration_hole_mm: float = Field(
+        6.0, ge=0, le=50, description="registration dowel holes: across every sheet joint, 3 dowels at 120° per "
+        "shell crossed by both sheets, inside that shell and of its grade (cylinder: 3 through pins per ring); "
+        "0: none")
 
 
 class LuneburgSpec(SpecBase):

@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 
+from antenna_cad.kinds.luneburg_verify import verify_luneburg
 from antenna_cad.verification import Verification
 from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.rings import FabPlanRings, RingLayupPlan, fabricate_rings, plan_rings
@@ -182,6 +183,7 @@ def _registration_check(layup: RingLayupPlan) -> Check:
 
 
 
-def verify(spec, design, layup, fab) -> Verification:
-    """As-built verification (issue 6): filled in per kind."""
-    return Verification()
+def verify(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | None, fab) -> Verification:
+    """As-built GO verification: ideal, stepped and as-built lenses, scanned feeds, tolerances
+    (:mod:`antenna_cad.kinds.luneburg_verify`)."""
+    return verify_luneburg(spec, design, layup, fab, layer_materials(spec, design))

@@ -40,11 +40,11 @@ import numpy as np
 from antenna_cad.fabrication.rings import RingLayupPlan, ring_radii
 from antenna_cad.raytrace.graded import trace_graded
 from antenna_cad.raytrace.luneburg import (RUZE_DB_PER_RAD2, Fan, added_phase_rms, fan_figures, feed_fan,
-                                           feed_move_opl, first_order_opl, focus_shift, SURFACE_GAP_MM)
+                                           feed_move_opl, first_order_opl, focus_shift)
 from antenna_cad.raytrace.media import Shells, Staircase, trace_media
 from antenna_cad.spec.luneburg import LuneburgShellsSpec
 from antenna_cad.synthesis.checks import Check
-from antenna_cad.synthesis.luneburg import LuneburgDesign, eps_of_r2
+from antenna_cad.synthesis.luneburg import LuneburgDesign, traced_law
 from antenna_cad.verification import Plot, Series, Table, Verification
 
 FEEDS = (("axis", 0.0), ("scan45", 45.0), ("scan90", 90.0))
@@ -141,9 +141,10 @@ def _lenses(spec, design: LuneburgDesign, layup: RingLayupPlan | None, grade_eps
                         in_scan_plane=_traced(design, _shells(design, grade_eps, radius_shift)) if boss else None)
     if as_built_only:
         return {"as_built": built}
-    law = eps_of_r2(design.law, design.focal_distance_ratio, design.outer_shell, R)
+    law = traced_law(design.law, design.focal_distance_ratio, design.outer_shell, R)
     ideal_eps = [L.eps_r_design for L in design.layers]
-    return {"ideal": _Lens(design, lambda o, d: trace_graded(law, R, o, d, steps_per_radius=200)),
+    return {"ideal": _Lens(design, lambda o, d: trace_graded(law.eps_of_r2, R, o, d, steps_per_radius=200,
+                                                            core_mm=law.core_mm, shell_eps=law.shell_eps)),
             "stepped": _staircase_lens(design, layup, ideal_eps, facets) if stair else
             _traced(design, _shells(design, ideal_eps)),
             "as_built": built}
@@ -160,15 +161,7 @@ def verify_luneburg(spec, design: LuneburgDesign, layup: RingLayupPlan | None, f
         for feed, scan in FEEDS:
             use, angle = lens.scanned(scan)
             if (id(use), angle) not in done:
-                fan = use.fan(angle)
-                ff = figs(fan)
-                shift = focus_shift(fan, lam, R)
-                if design.focal_distance_mm + shift < R:          # never into the lens
-                    shift = R + SURFACE_GAP_MM - design.focal_distance_mm
-                rms_at = figs(use.fan(angle, axial_mm=shift)).phase_rms_deg
-                if rms_at >= ff.phase_rms_deg:
-                    shift, rms_at = 0.0, ff.phase_rms_deg
-                done[(id(use), angle)] = (fan, (ff, shift, rms_at))
+                done[(id(use), angle)] = _trace_with_focus(use, angle, figs)
             fans[(case, feed)], results[(case, feed)] = done[(id(use), angle)]
     stair = layup is not None and shape == "sphere"
     if stair and not staircase_as_facets(design, layup):     # the staircase as GO facets, for comparison
@@ -196,14 +189,26 @@ def verify_luneburg(spec, design: LuneburgDesign, layup: RingLayupPlan | None, f
               Table("sensitivity", "Tolerances: phase and gain they add to the as-built lens (on axis)",
                     ("parameter", "tolerance", "model", "added phase RMS deg", "added Ruze loss dB"),
                     tuple(sens_rows), f"dominant: {dominant}; first order along the nominal rays, tilt removed"))
-    scan_fan = fans.get(("stepped_go_facets", "scan90"), fans[("stepped", "scan90")])
-    plots = (_fan_plot(design, layup, fans[("as_built", "axis")], "ray-fan",
-                       "Ray fan through the as-built lens, feed on axis"),
-             *([_fan_plot(design, layup, scan_fan, "ray-fan-scan90",
+    plots = (_fan_plot(design, layup if stair and layup.sizing == "mid_plane" else None, fans[("as_built", "axis")],
+                       "ray-fan", "Ray fan through the as-built lens, feed on axis"),
+             *([_fan_plot(design, layup, fans[("stepped", "scan90")], "ray-fan-scan90",
                           "Ray fan through the sheet staircase (GO facets), feed at 90° to the sheet normal")]
-               if stair else []),
+               if stair and staircase_as_facets(design, layup) else []),
              _phase_plot(results, stair), _eps_plot(design), sens_plot)
     return Verification(figures, tuple(_checks(design, layup, results, dominant)), tables, plots)
+
+
+def _trace_with_focus(lens: _Lens, angle: float, figs) -> tuple[Fan, tuple]:
+    """The fan, its figures, and the focus shift (first order, never into the lens) with the RMS
+    traced there (0 and the nominal RMS if the move does not help)."""
+    d = lens.design
+    fan = lens.fan(angle)
+    ff = figs(fan)
+    shift = max(focus_shift(fan, d.wavelength_mm, d.radius_mm), d.radius_mm - d.focal_distance_mm)
+    rms_at = figs(lens.fan(angle, axial_mm=shift)).phase_rms_deg if shift else ff.phase_rms_deg
+    if rms_at >= ff.phase_rms_deg:
+        shift, rms_at = 0.0, ff.phase_rms_deg
+    return fan, (ff, shift, rms_at)
 
 
 # ---------------------------------------------------------------- sensitivity
@@ -340,8 +345,9 @@ def _polylines(paths: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
     return np.concatenate(xs), np.concatenate(ys)
 
 
-def _fan_plot(design, layup, fan: Fan, name: str, title: str) -> Plot:
-    """Rays (z, y) from the feed to the exit and on for R/3 along the beam; layer outlines."""
+def _fan_plot(design, layup: RingLayupPlan | None, fan: Fan, name: str, title: str) -> Plot:
+    """Rays (z, y) from the feed to the exit and on for R/3 along the beam; layer outlines: the
+    sheet staircase of ``layup``, or circles."""
     R = design.radius_mm
     pick = np.unique(np.linspace(0, len(fan.ok) - 1, FAN_RAYS).round().astype(int))
     paths = []
@@ -353,15 +359,15 @@ def _fan_plot(design, layup, fan: Fan, name: str, title: str) -> Plot:
         p = p[keep]
         paths.append(np.vstack([p, p[-1] + R / 3 * fan.trace.direction[i]]))
     rz, ry = _polylines(paths)
-    a = np.linspace(0, 2 * np.pi, 721)
-    outlines = []
-    if layup is not None and design.shape == "sphere":
-        for s in layup.sheets:                                   # mid-plane staircase outline of every shell
-            for L in design.layers:
-                r = math.sqrt(max(L.r_outer_mm**2 - (0.5 * (s.z_min_mm + s.z_max_mm)) ** 2, 0.0))
-                if r > 0:
-                    outlines += [np.array([[s.z_min_mm, r], [s.z_max_mm, r]]), np.array([[s.z_min_mm, -r], [s.z_max_mm, -r]])]
+    if layup is not None:                                        # each shell boundary as its staircase
+        outlines = []
+        for L in design.layers:
+            steps = [(z, r) for sh in layup.sheets
+                     for r in [math.sqrt(max(L.r_outer_mm**2 - (0.5 * (sh.z_min_mm + sh.z_max_mm)) ** 2, 0.0))]
+                     for z in (sh.z_min_mm, sh.z_max_mm)]
+            outlines += [np.array(steps), np.array(steps) * [1.0, -1.0]]
     else:
+        a = np.linspace(0, 2 * np.pi, 721)
         outlines = [np.column_stack([L.r_outer_mm * np.cos(a), L.r_outer_mm * np.sin(a)]) for L in design.layers]
     oz, oy = _polylines(outlines)
     return Plot(name, title, "z (mm)", "y (mm)",
@@ -385,7 +391,7 @@ def _phase_plot(results, stair: bool) -> Plot:
 
 def _eps_plot(design: LuneburgDesign) -> Plot:
     r = np.linspace(0.0, design.radius_mm, 401)
-    law = eps_of_r2(design.law, design.focal_distance_ratio, design.outer_shell, design.radius_mm)
+    law = traced_law(design.law, design.focal_distance_ratio, design.outer_shell, design.radius_mm)
     edges = np.array([0.0] + [L.r_outer_mm for L in design.layers])
 
     def steps(values):
@@ -394,5 +400,5 @@ def _eps_plot(design: LuneburgDesign) -> Plot:
     xd, yd = steps([L.eps_r_design for L in design.layers])
     xg, yg = steps([L.eps_r for L in design.layers])
     return Plot("eps-profile", "Permittivity vs radius", "r (mm)", "εr",
-                (Series("continuous law", r, law(r * r)[0], "line"), Series("layers (ideal εr)", xd, yd, "steps"),
+                (Series("continuous law", r, law.eps(r), "line"), Series("layers (ideal εr)", xd, yd, "steps"),
                  Series("chosen grades", xg, yg, "steps")), "seed-002 §2.1 law, §2.2 layers, grades as chosen")

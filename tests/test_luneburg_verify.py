@@ -240,7 +240,7 @@ def test_layup_verification_traces_the_staircase_when_scanned():
     assert f["ideal_axis_phase_rms_deg"] < lv.IDEAL_RMS_LIMIT_DEG
     assert f["stepped_scan90_phase_rms_deg"] != f["stepped_axis_phase_rms_deg"]       # staircase: not symmetric
     assert f["as_built_scan90_phase_rms_deg"] == f["as_built_axis_phase_rms_deg"]       # turned to spheres
-    assert "stepped_go_facets_axis_phase_rms_deg" in f                                  # 20 mm < √(λR) = 39 mm
+    assert "stepped_go_facets_axis_phase_rms_deg" in f                                  # 10 mm < √(λR) = 39 mm
     checks = {c.name: c for c in v.checks}
     assert checks["ideal_lens_focus"].status == "pass" and "staircase_model" in checks
     assert {t.name for t in v.tables} == {"layers", "grades", "aperture", "sensitivity"}

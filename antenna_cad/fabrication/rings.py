@@ -17,14 +17,17 @@ keep clear of the joints).
 
 Registration (seed-002 §5.1 item 5, "registration holes through stacked sheets"): across every
 joint between sheets k and k+1, each shell crossed by both sheets gets three dowels at 120° on
-one circle; the pattern turns by 60° from one joint to the next, so the two joints of a sheet
-never share a hole. The circle is the middle of the band of radii where a dowel lies inside the
-shell over both slabs, and the dowels are cut from the shell's own grade, so they leave every
-layer's εr unchanged. A Luneburg sphere has no region outside the aperture (its beam scans over
-the whole sphere), which is why the holes are made electrically invisible instead of being moved
-out of the ray path; they stay off the axis and off sector joints. A cylinder (parallel-plate)
-lens is sliced along its axis and its rings are the layer radii; its dowels are through pins at
-each ring's mid-radius that also locate the rings in matching holes of the plates.
+one circle, in blind holes drilled ``depth`` = min(t/2, 2·Ø) into the joint faces of both sheets
+(top face of sheet k, bottom face of sheet k+1); the pattern turns by 60° from one joint to the
+next. The circle is the middle of the band of radii where a dowel lies in both rings and
+(``contain``, rings turned to the spheres) inside its shell over its length; through the lens's
+outer surface turning trims it with the rings. The dowels are cut from the shell's own grade, so
+they leave every layer's εr unchanged. A Luneburg sphere has no region outside the aperture (its
+beam scans over the whole sphere), which is why the holes are made electrically invisible
+instead of being moved out of the ray path; they stay off the axis and off sector joints. A
+cylinder (parallel-plate) lens is sliced along its axis and its rings are the layer radii; its
+dowels are pins through the whole stack at each ring's mid-radius that also locate the rings in
+matching holes of the plates.
 
 Pure numpy/shapely: no CAD imports. Outlines, kerf offsets and nesting sizes are analytic, so
 the cost is linear in sheets × rings (+ sector pieces); polygons are built only for drawings.
@@ -41,7 +44,6 @@ import numpy as np
 from shapely.geometry import Polygon
 
 from antenna_cad.fabrication.cutlist import CutRow, cutlist_csv
-from antenna_cad.fabrication.layup import Hole
 from antenna_cad.fabrication.nesting import Placement, nest
 from antenna_cad.fabrication.outline import CHORD_TOL_MM, NEST_SPACING_MM, fits_board
 from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
@@ -54,6 +56,17 @@ HOLE_CHORD_TOL_MM = 0.01
 
 
 @dataclass(frozen=True)
+class DowelHole:
+    """A registration hole in the sheet frame: ``face`` "top" (z_max) or "bottom" (z_min) for a
+    blind hole ``depth_mm`` deep, "through" for a hole cut through the ring."""
+    x_mm: float
+    y_mm: float
+    diameter_mm: float
+    depth_mm: float
+    face: str
+
+
+@dataclass(frozen=True)
 class RingPlan:
     label: str               # "sheet-03-ring-02" (ring of shell 2 in sheet 3)
     sheet_index: int
@@ -63,7 +76,7 @@ class RingPlan:
     material: Material       # the shell's foam grade
     sectors: int = 1         # equal sectors with radial butt joints (1: one piece)
     sector_start_rad: float = 0.0   # angle of the first radial joint, sheet frame, from +X
-    holes: tuple[Hole, ...] = ()    # registration dowel holes, sheet frame
+    holes: tuple[DowelHole, ...] = ()    # registration dowel holes
 
     @property
     def joint_angles_rad(self) -> np.ndarray:
@@ -106,7 +119,9 @@ class RingSheet:
         return {"material": sorted({r.material.name for r in self.rings}),
                 "rings": [{"label": r.label, "shell": r.shell_index, "r_inner_mm": r.r_inner_mm,
                            "r_outer_mm": r.r_outer_mm, "material": r.material.name,
-                           "sectors": r.sectors, "holes": [[h.x_mm, h.y_mm, h.diameter_mm] for h in r.holes]}
+                           "sectors": r.sectors,
+                           "holes": [{"x_mm": h.x_mm, "y_mm": h.y_mm, "diameter_mm": h.diameter_mm,
+                                      "depth_mm": h.depth_mm, "face": h.face} for h in r.holes]}
                           for r in self.rings]}
 
 
@@ -221,56 +236,64 @@ def plan_rings(r_inner_mm, r_outer_mm, materials: list[Material], *, shape: str,
             rings.append(RingPlan(f"{label}-ring-{j + 1:02d}", k + 1, j + 1, float(inner[j]), float(outer[j]),
                                   materials[j], parts, start))
         sheets.append(RingSheet(k + 1, label, z_lo, z_hi, tuple(rings)))
-    sheets, dowels, missing = _registration(sheets, ri, ro, shape, registration_hole_mm, kerf_mm)
+    sheets, dowels, missing = _registration(sheets, ri, ro, shape, sizing, registration_hole_mm, kerf_mm)
     return RingLayupPlan(tuple(sheets), t, sizing, shape, kerf_mm, board_width_mm, board_length_mm,
                          registration_hole_mm, dropped, tuple(dowels), missing)
 
 
-def _registration(sheets: list[RingSheet], ri: np.ndarray, ro: np.ndarray, shape: str, d: float,
+def _registration(sheets: list[RingSheet], ri: np.ndarray, ro: np.ndarray, shape: str, sizing: str, d: float,
                   kerf: float) -> tuple[list[RingSheet], list[Dowel], int]:
     """Dowel holes (module docstring): per joint and shared shell, three at 120° on the middle of
-    the band where a dowel stays inside the shell over both slabs, nudged off sector joints."""
+    the band of radii where a dowel lies in both rings and, once the rings are turned to the
+    spheres (``contain``), inside its shell along its length — except through the lens surface,
+    where turning trims the dowel with the rings (it must still reach the joint plane inside
+    the lens). Nudged off sector joints."""
     if d <= 0:
         return sheets, [], 0
     by_label = {r.label: r for s in sheets for r in s.rings}
-    holes: dict[str, list[Hole]] = {label: [] for label in by_label}
+    holes: dict[str, list[DowelHole]] = {label: [] for label in by_label}
     dowels, missing = [], 0
     if shape == "sphere":
         joints = [(k, (sheets[k - 1], sheets[k])) for k in range(1, len(sheets))]
     else:
         joints = [(0, tuple(sheets))]                  # through pins, also into the plates
+    turned = shape == "sphere" and sizing == "contain"
     for k, members in joints:
-        z_lo, z_hi = members[0].z_min_mm, members[-1].z_max_mm
         if shape == "sphere":
-            z_near = 0.0 if z_lo <= 0.0 <= z_hi else min(abs(z_lo), abs(z_hi))
-            z_far = max(abs(z_lo), abs(z_hi))
-            band_in = np.sqrt(np.maximum(ri**2 - z_near**2, 0.0))
-            band_out = np.sqrt(np.maximum(ro**2 - z_far**2, 0.0))
+            z_joint = members[0].z_max_mm
+            depth = min(0.5 * min(s.thickness_mm for s in members), 2 * d)
+            z_lo, z_hi, faces = z_joint - depth, z_joint + depth, ("top", "bottom")
         else:
-            band_in, band_out = ri, ro
-        length = z_hi - z_lo
+            z_lo, z_hi = members[0].z_min_mm, members[-1].z_max_mm
+            depth, faces = members[0].thickness_mm, ("through",) * len(members)
+        z_near = 0.0 if z_lo <= 0.0 <= z_hi else min(abs(z_lo), abs(z_hi))
+        z_far = max(abs(z_lo), abs(z_hi))
         for j in range(len(ro)):
             rings = [by_label.get(f"{s.label}-ring-{j + 1:02d}") for s in members]
             if any(r is None for r in rings):
                 continue
-            if band_out[j] - band_in[j] < d + 2 * REG_CLEARANCE_MM:
+            band_in = max(r.r_inner_mm for r in rings)
+            band_out = min(r.r_outer_mm for r in rings)
+            if turned:
+                band_in = max(band_in, math.sqrt(max(ri[j] ** 2 - z_near**2, 0.0)))
+                z_out = abs(z_joint) if j == len(ro) - 1 else z_far
+                band_out = min(band_out, math.sqrt(max(ro[j] ** 2 - z_out**2, 0.0)))
+            if band_out - band_in < d + 2 * REG_CLEARANCE_MM:
                 missing += 1
                 continue
-            rho = 0.5 * (band_in[j] + band_out[j])
+            rho = 0.5 * (band_in + band_out)
             cuts = np.concatenate([r.joint_angles_rad for r in rings])
             gap = (d / 2 + REG_CLEARANCE_MM + kerf / 2) / rho
             for base in DOWEL_PATTERN_DEG:
                 a = _clear_of(math.radians(base + 60.0 * (k % 2)), cuts, gap)
                 if a is None:
                     continue
-                hole = Hole(round(rho * math.cos(a), 6), round(rho * math.sin(a), 6), d)
-                if any(math.hypot(hole.x_mm - h.x_mm, hole.y_mm - h.y_mm) < d + REG_CLEARANCE_MM
-                       for r in rings for h in holes[r.label]):
+                x, y = round(rho * math.cos(a), 6), round(rho * math.sin(a), 6)
+                if any(math.hypot(x - h.x_mm, y - h.y_mm) < d + REG_CLEARANCE_MM for r in rings for h in holes[r.label]):
                     continue
-                for r in rings:
-                    holes[r.label].append(hole)
-                dowels.append(Dowel(j + 1, tuple(s.index for s in members), hole.x_mm, hole.y_mm, d, length,
-                                    rings[0].material))
+                for r, face in zip(rings, faces):
+                    holes[r.label].append(DowelHole(x, y, d, depth, face))
+                dowels.append(Dowel(j + 1, tuple(s.index for s in members), x, y, d, z_hi - z_lo, rings[0].material))
     out = [RingSheet(s.index, s.label, s.z_min_mm, s.z_max_mm,
                      tuple(RingPlan(r.label, r.sheet_index, r.shell_index, r.r_inner_mm, r.r_outer_mm, r.material,
                                     r.sectors, r.sector_start_rad, tuple(holes[r.label])) for r in s.rings),
@@ -332,7 +355,7 @@ class RingPiece:
         return self.a0_rad is not None
 
     @property
-    def holes(self) -> tuple[Hole, ...]:
+    def holes(self) -> tuple[DowelHole, ...]:
         if not self.is_sector:
             return self.ring.holes
         return tuple(h for h in self.ring.holes
@@ -350,20 +373,21 @@ class RingPiece:
     @property
     def area_mm2(self) -> float:
         r = self.ring
-        return self.half_rad * (r.r_outer_mm**2 - r.r_inner_mm**2) - sum(math.pi * h.diameter_mm**2 / 4
-                                                                          for h in self.holes)
+        return self.half_rad * (r.r_outer_mm**2 - r.r_inner_mm**2) - sum(
+            math.pi * h.diameter_mm**2 / 4 for h in self.holes if h.face == "through")
 
     def size_mm(self, kerf_mm: float = 0.0) -> tuple[float, float]:
         """Bounding box on the board (nesting orientation) of the cut path."""
         return sector_box(self.ring.r_inner_mm, self.ring.r_outer_mm, self.half_rad, kerf_mm)
 
     def cut_path(self, kerf_mm: float) -> Polygon:
-        """Tool path: outline offset outward (holes inward) by half the kerf, mitred corners."""
+        """Tool path: outline offset outward (through holes inward) by half the kerf, mitred
+        corners. Blind dowel holes are drilled, not cut (drawn on MARK)."""
         r, c = self.ring, kerf_mm / 2
         count = vertex_count(r.r_outer_mm)
         ro, ri = r.r_outer_mm + c, r.r_inner_mm - c
         holes = [_arc(h.diameter_mm / 2 - c, 0.0, 2 * math.pi, vertex_count(h.diameter_mm / 2, HOLE_CHORD_TOL_MM),
-                      True)[:-1][::-1] + (h.x_mm, h.y_mm) for h in self.holes]
+                      True)[:-1][::-1] + (h.x_mm, h.y_mm) for h in self.holes if h.face == "through"]
         if not self.is_sector:
             outer = _arc(ro, 0.0, 2 * math.pi, count, True)[:-1]
             if r.r_inner_mm > 0:
@@ -492,7 +516,7 @@ def _row(p: RingPiece, pl: Placement, host: str | None, plan: RingLayupPlan) -> 
         notes.append(f"sector {math.degrees(p.a0_rad) % 360:.2f}° to {math.degrees(p.a1_rad) % 360:.2f}° of the "
                      f"sheet frame, nested turned {p.nest_rotation_deg:.2f}°; butt-joint radially")
     if p.holes:
-        notes.append(f"{len(p.holes)} dowel holes Ø{p.holes[0].diameter_mm:g}")
+        notes.append(_holes_text(p.holes))
     if plan.sizing == "contain" and plan.shape == "sphere":
         notes.append("turn/sand bevelled faces to the shell spheres")
     return CutRow(p.label, kind, m.name, pl.board_id, pl.x_mm, pl.y_mm, pl.rotated, w, h, p.thickness_mm,
@@ -511,7 +535,7 @@ def _dowel_rows(plan: RingLayupPlan) -> list[CutRow]:
         rows.append(CutRow(f"dowels-{grade}-L{length:g}", "dowel-rod", grade, "offcuts", 0.0, 0.0, False, d, length,
                            d, volume / length / 1e6, volume / 1e9 * m.density_kg_m3, 0,
                            f"{len(items)} dowels Ø{d:g} × {length:g} mm of this grade; glue into the "
-                           "registration holes of both sheets"))
+                           "registration holes of the sheets they join"))
     return rows
 
 
@@ -548,11 +572,13 @@ def _sheet_drawing(plan: RingLayupPlan, sheet: RingSheet, pieces: list[RingPiece
         for a0 in ring.joint_angles_rad:                     # sector ids next to their first joint
             d.texts.append((_suffix(int(round((a0 - ring.sector_start_rad) / (2 * math.pi) * ring.sectors))),
                             rm * math.cos(a0 + 0.02), rm * math.sin(a0 + 0.02), 3.0))
+        _mark_holes(d, ring.holes, 0.0)
     _frame_marks(d, max(sheet.radius_mm, 20.0))
     _title(d, [f"{title}  {sheet.label} of {plan.count}: z {sheet.z_min_mm:g} to {sheet.z_max_mm:g} mm, "
                f"thickness {sheet.thickness_mm:g} mm, {len(sheet.rings)} rings ({plan.sizing} sizing)",
                "assembly view, seen from +Z: each ring is cut from its own grade (see the ring templates); "
-               "holes: registration dowels of the ring's grade"])
+               "dowel holes (T: drilled into the top face, B: the bottom face; positions as seen from +Z) "
+               "take dowels of the ring's grade"])
     return d
 
 
@@ -577,8 +603,8 @@ def _piece_drawing(plan: RingLayupPlan, sheet: RingSheet, piece: RingPiece, titl
         d.add_polygon(path)
         _frame_marks(d, max(ring.r_outer_mm, 20.0))
         where = ["drawn in the sheet frame: align the +X tick with the sheet's +X mark"]
-    holes = (f"{len(piece.holes)} dowel holes Ø{plan.registration_hole_mm:g} (CUT circles)"
-             if piece.holes else "no dowel holes")
+    holes = _holes_text(piece.holes) if piece.holes else "no dowel holes"
+    _mark_holes(d, piece.holes, piece.nest_rotation_deg)
     _title(d, [f"{title}  {piece.label}: sheet {sheet.label} (z {sheet.z_min_mm:g} to {sheet.z_max_mm:g} mm), "
                f"ring of shell {ring.shell_index:02d}",
                f"grade {ring.material.name}: εr {ring.material.eps_r:.4g}, {ring.material.density_kg_m3:.4g} kg/m³, "
@@ -586,6 +612,31 @@ def _piece_drawing(plan: RingLayupPlan, sheet: RingSheet, piece: RingPiece, titl
                f"R out {ring.r_outer_mm:.2f} mm, R in {ring.r_inner_mm:.2f} mm; {holes}; CUT = tool path "
                f"(kerf {plan.kerf_mm:g} mm)", *where])
     return d
+
+
+def _holes_text(holes) -> str:
+    """"3 × Ø6 ↑12 (top face), 3 × Ø6 ↓12 (bottom face)" for a cut-list note or a title."""
+    groups: dict[tuple, int] = {}
+    for h in holes:
+        key = (h.diameter_mm, h.depth_mm, h.face)
+        groups[key] = groups.get(key, 0) + 1
+    words = {"top": "blind from the top face", "bottom": "blind from the bottom face", "through": "through"}
+    return "dowel holes " + ", ".join(f"{n} × Ø{dia:g}" + (f" {depth:g} deep " if face != "through" else " ")
+                                      + words[face] for (dia, depth, face), n in sorted(groups.items()))
+
+
+def _mark_holes(drawing: Drawing, holes, rotate_deg: float) -> None:
+    """Blind holes on MARK: a circle, a cross, and "T"/"B" for the face they are drilled from
+    (through holes are CUT paths already)."""
+    c, s_ = math.cos(math.radians(rotate_deg)), math.sin(math.radians(rotate_deg))
+    for h in holes:
+        if h.face == "through":
+            continue
+        x, y = c * h.x_mm - s_ * h.y_mm, s_ * h.x_mm + c * h.y_mm
+        ring = _arc(h.diameter_mm / 2, 0.0, 2 * math.pi, 48, False) + (x, y)
+        drawing.marks.append([tuple(p) for p in ring])
+        drawing.add_cross(x, y, h.diameter_mm * 0.4)
+        drawing.texts.append(("T" if h.face == "top" else "B", x + h.diameter_mm * 0.7, y, 3.0))
 
 
 def _frame_marks(drawing: Drawing, r: float) -> None:

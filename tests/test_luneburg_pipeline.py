@@ -62,10 +62,15 @@ def test_seed_cases():
     ({"law": "outer_shell"}, "design.outer_shell"),
     ({"focal_distance_ratio": 0.9}, "design.focal_distance_ratio"),
     ({"layers": {"split": "ladder"}}, "design.layers"),
+    ({"shape": "cylinder", "height_mm": 10, "fab": {"pedestal_height_mm": 50}}, "fabrication.pedestal_height_mm"),
+    ({"fab": {"pedestal_height_mm": 50, "pedestal_width_mm": 250}}, "fabrication.pedestal_width_mm"),
 ])
 def test_spec_errors(design, field):
+    data = _data(**{k: v for k, v in design.items() if k != "fab"})
+    if "fab" in design:
+        data["fabrication"] = {"method": "sheet_layup", "sheet_thickness_mm": 10} | design["fab"]
     with pytest.raises(SpecError) as e:
-        parse_spec(_data(**design), "x.yaml")
+        parse_spec(data, "x.yaml")
     assert field in str(e.value)
 
 
@@ -195,6 +200,27 @@ def test_dowels_clear_sector_joints():
     for p in fab.pieces:                                     # every hole lies wholly in one piece
         for h in p.holes:
             assert p.polygon.contains(circle_polygon(h.x_mm, h.y_mm, h.diameter_mm / 2 + 1.0).exterior)
+
+
+def test_stand_feet_stay_below_the_aperture_and_are_dowelled():
+    from shapely.geometry import Point
+    spec = _spec("luneburg-layup-200")
+    kind = adapter("luneburg")
+    design = kind.synthesize(spec)
+    layup, _ = kind.plan(spec, design)
+    fab = kind.fabricate(spec, design, layup, ())
+    R = design.radius_mm
+    feet = [p for p in fab.pieces if p.label.endswith("-foot")]
+    outer = kind.layer_materials(spec, design)[-1].name
+    assert len(feet) == layup.count
+    for p in feet:                                              # outside the aperture disc, below the lens
+        assert p.polygon.intersection(Point(0, 0).buffer(R - 0.01, 256)).area < 1e-6
+        assert p.polygon.bounds[1] == pytest.approx(-R - 60.0) and p.polygon.bounds[3] <= -0.5 * R
+        assert p.polygon.is_valid and p.material.name == outer
+        assert fab.placements[p.label].board_id.startswith(outer + "-B")
+    joined = {dw.sheets for dw in layup.dowels if dw.shell_index == 0}
+    assert joined == {(k, k + 1) for k in range(1, layup.count)}
+    assert next(c for c in kind.fabrication_checks(spec, design, layup) if c.name == "stand_outside_aperture").status == "pass"
 
 
 def test_mid_plane_rings_butt():

@@ -45,7 +45,7 @@ from shapely.geometry import Polygon
 
 from antenna_cad.fabrication.cutlist import CutRow, cutlist_csv
 from antenna_cad.fabrication.nesting import Placement, nest
-from antenna_cad.fabrication.outline import CHORD_TOL_MM, NEST_SPACING_MM, fits_board
+from antenna_cad.fabrication.outline import CHORD_TOL_MM, NEST_SPACING_MM, circle_polygon, fits_board, foot_polygon
 from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
 from antenna_cad.materials import Material
 from antenna_cad.synthesis.checks import Check
@@ -105,6 +105,7 @@ class RingSheet:
     z_max_mm: float
     rings: tuple[RingPlan, ...]
     has_neck: bool = False
+    foot_holes: tuple[DowelHole, ...] = ()     # stand foot's dowel holes (with a stand)
 
     @property
     def thickness_mm(self) -> float:
@@ -138,6 +139,19 @@ class RingLayupPlan:
     dropped_caps: int        # mid_plane: shell caps that miss their sheet's mid-plane
     dowels: tuple[Dowel, ...] = ()
     undowelled_joints: int = 0   # (joint, shell) pairs whose band is too thin for a dowel
+    lens_radius_mm: float = 0.0
+    pedestal_width_mm: float | None = None     # the stand (None: none); names as ``layup.LayupPlan``
+    pedestal_height_mm: float | None = None
+    stand_material: Material | None = None
+
+    @property
+    def foot_bottom_y_mm(self) -> float:
+        return -self.lens_radius_mm - self.pedestal_height_mm
+
+    @property
+    def foot_corner_y_mm(self) -> float:
+        """y where the foot's sides meet the aperture circle (top corners of the cradle)."""
+        return -math.sqrt(self.lens_radius_mm**2 - (self.pedestal_width_mm / 2) ** 2)
 
     @property
     def count(self) -> int:
@@ -210,8 +224,9 @@ def sector_count(r_in: float, r_out: float, board_w: float, board_l: float, kerf
 
 def plan_rings(r_inner_mm, r_outer_mm, materials: list[Material], *, shape: str, height_mm: float | None,
                sheet_thickness_mm: float, sizing: str, kerf_mm: float, board_width_mm: float,
-               board_length_mm: float, registration_hole_mm: float) -> RingLayupPlan:
-    """Sheets, their rings (radii, grade, sector split, dowel holes) and the dowels."""
+               board_length_mm: float, registration_hole_mm: float, pedestal_height_mm: float | None = None,
+               pedestal_width_mm: float | None = None) -> RingLayupPlan:
+    """Sheets, their rings (radii, grade, sector split, dowel holes), the dowels, and the stand."""
     ri, ro = np.asarray(r_inner_mm, float), np.asarray(r_outer_mm, float)
     span = 2.0 * ro[-1] if shape == "sphere" else float(height_mm)
     t = sheet_thickness_mm
@@ -237,8 +252,33 @@ def plan_rings(r_inner_mm, r_outer_mm, materials: list[Material], *, shape: str,
                                   materials[j], parts, start))
         sheets.append(RingSheet(k + 1, label, z_lo, z_hi, tuple(rings)))
     sheets, dowels, missing = _registration(sheets, ri, ro, shape, sizing, registration_hole_mm, kerf_mm)
+    R = float(ro[-1])
+    width = None if pedestal_height_mm is None else (pedestal_width_mm or 1.2 * R)
+    if width is not None:
+        sheets, feet = _stand_dowels(sheets, R, width, pedestal_height_mm, registration_hole_mm, materials[-1])
+        dowels += feet
     return RingLayupPlan(tuple(sheets), t, sizing, shape, kerf_mm, board_width_mm, board_length_mm,
-                         registration_hole_mm, dropped, tuple(dowels), missing)
+                         registration_hole_mm, dropped, tuple(dowels), missing, R, width, pedestal_height_mm,
+                         materials[-1] if width is not None else None)
+
+
+def _stand_dowels(sheets: list[RingSheet], R: float, width: float, height: float, d: float, grade: Material
+                  ) -> tuple[list[RingSheet], list[Dowel]]:
+    """Two dowels per joint between consecutive feet, at ±w/4 halfway down the foot, in blind
+    holes as the rings'."""
+    if d <= 0:
+        return sheets, []
+    holes: dict[int, list[DowelHole]] = {s.index: [] for s in sheets}
+    dowels = []
+    y = -R - height / 2
+    for a, b in zip(sheets, sheets[1:]):
+        depth = min(0.5 * min(a.thickness_mm, b.thickness_mm), 2 * d)
+        for x in (-width / 4, width / 4):
+            holes[a.index].append(DowelHole(x, y, d, depth, "top"))
+            holes[b.index].append(DowelHole(x, y, d, depth, "bottom"))
+            dowels.append(Dowel(0, (a.index, b.index), x, y, d, 2 * depth, grade))
+    return [RingSheet(s.index, s.label, s.z_min_mm, s.z_max_mm, s.rings, s.has_neck, tuple(holes[s.index]))
+            for s in sheets], dowels
 
 
 def _registration(sheets: list[RingSheet], ri: np.ndarray, ro: np.ndarray, shape: str, sizing: str, d: float,
@@ -412,6 +452,30 @@ class RingPiece:
         return self.cut_path(0.0)
 
 
+@dataclass(frozen=True)
+class FootPiece:
+    """A stand foot (sheet frame): the cradle outline, cut with shapely's kerf offset."""
+    label: str
+    sheet_index: int
+    thickness_mm: float
+    polygon: Polygon
+    material: Material
+    holes: tuple[DowelHole, ...]
+    is_sector = False
+    nest_rotation_deg = 0.0
+
+    @property
+    def area_mm2(self) -> float:
+        return float(self.polygon.area)
+
+    def cut_path(self, kerf_mm: float) -> Polygon:
+        return self.polygon if kerf_mm == 0 else self.polygon.buffer(kerf_mm / 2, quad_segs=64)
+
+    def size_mm(self, kerf_mm: float = 0.0) -> tuple[float, float]:
+        x0, y0, x1, y1 = self.cut_path(kerf_mm).bounds
+        return x1 - x0, y1 - y0
+
+
 def ring_pieces(ring: RingPlan, thickness_mm: float) -> list[RingPiece]:
     """The ring itself, or its sectors labelled -a, -b, … counter-clockwise from its first joint."""
     if ring.sectors == 1:
@@ -458,10 +522,14 @@ def fabricate_rings(plan: RingLayupPlan, title: str, drawings: bool = True) -> F
     """Pieces, nesting per grade (discs/rings inside ring holes first, then rectpack), cut list
     (all grades and one file per grade), dowels, mass per grade, templates per sheet and piece."""
     kerf = plan.kerf_mm
-    pieces = [p for s in plan.sheets for r in s.rings for p in ring_pieces(r, s.thickness_mm)]
-    by_grade: dict[str, list[RingPiece]] = {}
+    pieces: list = [p for s in plan.sheets for r in s.rings for p in ring_pieces(r, s.thickness_mm)]
+    if plan.pedestal_height_mm is not None:
+        foot = foot_polygon(plan, circle_polygon(0.0, 0.0, plan.lens_radius_mm))
+        pieces += [FootPiece(f"{s.label}-foot", s.index, s.thickness_mm, foot, plan.stand_material, s.foot_holes)
+                   for s in plan.sheets]
+    by_grade: dict[str, list] = {}
     for p in pieces:
-        by_grade.setdefault(p.ring.material.name, []).append(p)
+        by_grade.setdefault(_material(p).name, []).append(p)
     placements: dict[str, Placement] = {}
     in_hole: dict[str, str] = {}
     saving: dict[str, float] = {}
@@ -471,7 +539,7 @@ def fabricate_rings(plan: RingLayupPlan, title: str, drawings: bool = True) -> F
         saving[grade] = saved
         free = [(p.label, *p.size_mm(kerf)) for p in items if p.label not in hosted]
         placements |= {pl.key: pl for pl in nest(free, plan.board_width_mm, plan.board_length_mm, grade)}
-        whole = {p.label: p.ring for p in items}
+        whole = {p.label: p.ring for p in items if isinstance(p, RingPiece)}
         for label in sorted(hosted, key=lambda s: -whole[s].r_outer_mm):    # hosts are placed before guests
             host = placements[hosted[label]]
             hr, r = whole[hosted[label]].r_outer_mm, whole[label].r_outer_mm
@@ -497,6 +565,10 @@ def fabricate_rings(plan: RingLayupPlan, title: str, drawings: bool = True) -> F
                         {m: len(ids) for m, ids in sorted(boards.items())}, kerf, in_hole, saving, files)
 
 
+def _material(piece) -> Material:
+    return piece.material if isinstance(piece, FootPiece) else piece.ring.material
+
+
 def _totals(rows: list[CutRow]) -> dict[str, float]:
     totals: dict[str, float] = {}
     for r in rows:
@@ -504,10 +576,15 @@ def _totals(rows: list[CutRow]) -> dict[str, float]:
     return dict(sorted(totals.items())) | {"all": sum(totals.values())}
 
 
-def _row(p: RingPiece, pl: Placement, host: str | None, plan: RingLayupPlan) -> CutRow:
-    m, ring = p.ring.material, p.ring
+def _row(p, pl: Placement, host: str | None, plan: RingLayupPlan) -> CutRow:
     w, h = p.size_mm()
     area = p.area_mm2 / 1e6
+    if isinstance(p, FootPiece):
+        return CutRow(p.label, "stand-foot", p.material.name, pl.board_id, pl.x_mm, pl.y_mm, pl.rotated, w, h,
+                      p.thickness_mm, area, area * p.thickness_mm / 1e3 * p.material.density_kg_m3, p.sheet_index,
+                      "stand cradle below the aperture; " + _holes_text(p.holes) if p.holes else
+                      "stand cradle below the aperture")
+    m, ring = p.ring.material, p.ring
     kind = ("disc" if ring.r_inner_mm == 0 else "ring") + ("-sector" if p.is_sector else "")
     notes = []
     if host:
@@ -539,10 +616,11 @@ def _dowel_rows(plan: RingLayupPlan) -> list[CutRow]:
     return rows
 
 
-def _nest_in_holes(items: list[RingPiece], kerf: float) -> tuple[dict[str, str], float]:
+def _nest_in_holes(items: list, kerf: float) -> tuple[dict[str, str], float]:
     """Greedy, largest first: each whole ring/disc goes into the smallest free ring hole of the
     same grade that holds it with the nesting gap; its own hole then becomes free. O(n log n)."""
-    whole = sorted((p for p in items if not p.is_sector), key=lambda p: (-p.ring.r_outer_mm, p.label))
+    whole = sorted((p for p in items if isinstance(p, RingPiece) and not p.is_sector),
+                   key=lambda p: (-p.ring.r_outer_mm, p.label))
     holes: list[tuple[float, str]] = []                 # sorted (usable radius, host label)
     hosted: dict[str, str] = {}
     saved = 0.0
@@ -573,6 +651,7 @@ def _sheet_drawing(plan: RingLayupPlan, sheet: RingSheet, pieces: list[RingPiece
             d.texts.append((_suffix(int(round((a0 - ring.sector_start_rad) / (2 * math.pi) * ring.sectors))),
                             rm * math.cos(a0 + 0.02), rm * math.sin(a0 + 0.02), 3.0))
         _mark_holes(d, ring.holes, 0.0)
+    _mark_holes(d, sheet.foot_holes, 0.0)
     _frame_marks(d, max(sheet.radius_mm, 20.0))
     _title(d, [f"{title}  {sheet.label} of {plan.count}: z {sheet.z_min_mm:g} to {sheet.z_max_mm:g} mm, "
                f"thickness {sheet.thickness_mm:g} mm, {len(sheet.rings)} rings ({plan.sizing} sizing)",
@@ -582,10 +661,21 @@ def _sheet_drawing(plan: RingLayupPlan, sheet: RingSheet, pieces: list[RingPiece
     return d
 
 
-def _piece_drawing(plan: RingLayupPlan, sheet: RingSheet, piece: RingPiece, title: str) -> Drawing:
-    """Whole rings in the sheet frame (centre cross, +X tick: the holes' reference); sectors turned
-    to their nesting orientation (bisector up) with the arc centre marked on the bisector."""
+def _piece_drawing(plan: RingLayupPlan, sheet: RingSheet, piece, title: str) -> Drawing:
+    """Whole rings and feet in the sheet frame (centre cross, +X tick: the holes' reference);
+    sectors turned to their nesting orientation (bisector up) with the arc centre marked on the
+    bisector."""
     d = Drawing(piece.label)
+    if isinstance(piece, FootPiece):
+        d.add_polygon(piece.cut_path(plan.kerf_mm))
+        _mark_holes(d, piece.holes, 0.0)
+        d.add_cross(0.0, 0.0, 10.0)
+        _title(d, [f"{title}  {piece.label}: stand foot of {sheet.label} (z {sheet.z_min_mm:g} to "
+                   f"{sheet.z_max_mm:g} mm), lens centre at the cross",
+                   f"grade {piece.material.name}, board thickness {sheet.thickness_mm:g} mm; "
+                   + (_holes_text(piece.holes) if piece.holes else "no dowel holes")
+                   + f"; CUT = tool path (kerf {plan.kerf_mm:g} mm)"])
+        return d
     ring = piece.ring
     path = piece.cut_path(plan.kerf_mm)
     if piece.is_sector:

@@ -56,7 +56,8 @@ def plan(spec: LuneburgSpec, design: LuneburgDesign):
                       layer_materials(spec, design), shape=design.shape, height_mm=design.height_mm,
                       sheet_thickness_mm=fab.sheet_thickness_mm, sizing=fab.ring_sizing, kerf_mm=fab.kerf_mm,
                       board_width_mm=fab.board.width_mm, board_length_mm=fab.board.length_mm,
-                      registration_hole_mm=fab.registration_hole_mm), ()
+                      registration_hole_mm=fab.registration_hole_mm, pedestal_height_mm=fab.pedestal_height_mm,
+                      pedestal_width_mm=fab.pedestal_width_mm), ()
 
 
 def model(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | None, panels):
@@ -124,6 +125,8 @@ def summary(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | N
                     "ring_count": len(layup.rings), "piece_count": sum(r.sectors for r in layup.rings),
                     "ring_sizing": layup.sizing, "dowel_count": len(layup.dowels),
                     "undowelled_shell_joints": layup.undowelled_joints}
+        if layup.pedestal_height_mm is not None:
+            figures |= {"stand_width_mm": layup.pedestal_width_mm, "stand_height_mm": layup.pedestal_height_mm}
         per: dict[str, list] = {}
         for r in layup.rings:
             per.setdefault(r.material.name, []).append(r)
@@ -140,6 +143,12 @@ def fabrication_checks(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLa
         return []
     if layup.shape != "sphere":
         return [_registration_check(layup)]
+    stand = []
+    if layup.pedestal_height_mm is not None:
+        stand.append(Check("stand_outside_aperture", "pass", layup.foot_corner_y_mm, -layup.lens_radius_mm, "mm",
+                           f"stand feet ({layup.pedestal_width_mm:g} mm wide) reach up to the aperture circle only: "
+                           f"top corners at y = {layup.foot_corner_y_mm:.1f} mm, cradle touching the lens at "
+                           f"y = −R; nothing inside the aperture cylinder of the on-axis beam"))
     L = {l.index: l for l in design.layers}
     fit = 0.0
     allowance = 0.0
@@ -163,7 +172,7 @@ def fabrication_checks(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLa
                             float(layup.dropped_caps), 0.0, "caps",
                             f"rings sized at sheet mid-planes (stepped); {layup.dropped_caps} shell caps "
                             "missing their mid-plane are dropped"))
-    return checks + [_registration_check(layup)]
+    return checks + [_registration_check(layup)] + stand
 
 
 def _registration_check(layup: RingLayupPlan) -> Check:

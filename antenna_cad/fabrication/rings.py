@@ -44,6 +44,7 @@ import numpy as np
 from shapely.geometry import Polygon
 
 from antenna_cad.fabrication.cutlist import CutRow, cutlist_csv
+from antenna_cad.fabrication.layup import Cradle
 from antenna_cad.fabrication.nesting import Placement, nest
 from antenna_cad.fabrication.outline import CHORD_TOL_MM, NEST_SPACING_MM, circle_polygon, fits_board, foot_polygon
 from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
@@ -127,7 +128,7 @@ class RingSheet:
 
 
 @dataclass(frozen=True)
-class RingLayupPlan:
+class RingLayupPlan(Cradle):
     sheets: tuple[RingSheet, ...]
     sheet_thickness_mm: float
     sizing: str
@@ -143,15 +144,6 @@ class RingLayupPlan:
     pedestal_width_mm: float | None = None     # the stand (None: none); names as ``layup.LayupPlan``
     pedestal_height_mm: float | None = None
     stand_material: Material | None = None
-
-    @property
-    def foot_bottom_y_mm(self) -> float:
-        return -self.lens_radius_mm - self.pedestal_height_mm
-
-    @property
-    def foot_corner_y_mm(self) -> float:
-        """y where the foot's sides meet the aperture circle (top corners of the cradle)."""
-        return -math.sqrt(self.lens_radius_mm**2 - (self.pedestal_width_mm / 2) ** 2)
 
     @property
     def count(self) -> int:

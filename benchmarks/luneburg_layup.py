@@ -1,49 +1,81 @@
-"""Build time of a large Luneburg sheet layup: 20 layers, D/λ = 100, 10 mm sheets.
+"""Build time of large Luneburg sheet layups: 20 layers, 10 mm sheets, D/λ = 25, 50, 100.
 
-Plan + fabrication (rings, board splitting, nesting per grade, cut list; templates optional)
-without CAD export. Prints time per stage and per sheet×ring, for D/λ = 25, 50, 100 to show the
-scaling is linear in sheets × rings. Not a unit test:  python benchmarks/luneburg_layup.py
+Stages without CAD export: synthesis, plan (sheets, rings, sector splits, dowels), fabrication
+(pieces, nesting per grade, cut lists), templates (the drawings, not the files), verification
+(ray traces). Prints one row per size and a sheet-thickness sweep at D/λ = 100 (same rings,
+more or fewer sheets), with ms per ring and per piece: linear scaling shows as flat columns.
+``--full`` also runs the whole pipeline (STEP, STL, templates off) for the D/λ = 100 case.
+
+    PYTHONPATH=. python benchmarks/luneburg_layup.py [--full]
 """
 
 from __future__ import annotations
 
 import sys
+import tempfile
 import time
+from pathlib import Path
 
+from antenna_cad.fabrication.rings import fabricate_rings
 from antenna_cad.kinds import luneburg as kind
 from antenna_cad.spec import parse_spec
 
 
-def spec_for(d_over_lambda: float, frequency_ghz: float = 10.0):
+def spec_for(d_over_lambda: float, sheet_mm: float = 10.0, frequency_ghz: float = 10.0):
     lam = 299.792458 / frequency_ghz
     return parse_spec({
         "name": "bench", "kind": "luneburg", "frequency_ghz": frequency_ghz, "material": "polystyrene",
         "design": {"diameter_mm": d_over_lambda * lam, "law": "classic", "layers": {"count": 20}},
-        "fabrication": {"method": "sheet_layup", "sheet_thickness_mm": 10, "kerf_mm": 0.5,
+        "fabrication": {"method": "sheet_layup", "sheet_thickness_mm": sheet_mm, "kerf_mm": 0.5,
                         "board": {"width_mm": 1200, "length_mm": 2400}},
         "outputs": {"templates": False}})
 
 
-def run(d_over_lambda: float, drawings: bool) -> None:
-    spec = spec_for(d_over_lambda)
-    t0 = time.perf_counter()
+def run(d_over_lambda: float, sheet_mm: float) -> None:
+    spec = spec_for(d_over_lambda, sheet_mm)
+    clock = [time.perf_counter()]
+
+    def lap() -> float:
+        clock.append(time.perf_counter())
+        return clock[-1] - clock[-2]
+
     design = kind.synthesize(spec)
-    t1 = time.perf_counter()
+    t_syn = lap()
     layup, _ = kind.plan(spec, design)
-    t2 = time.perf_counter()
-    from antenna_cad.fabrication.rings import fabricate_rings
-    fab = fabricate_rings(layup, spec.name, drawings=drawings)
-    t3 = time.perf_counter()
+    t_plan = lap()
+    fab = kind.fabricate(spec, design, layup, ())
+    t_fab = lap()
+    drawn = fabricate_rings(layup, spec.name, drawings=True)
+    t_draw = lap() - t_fab
     kind.fabrication_checks(spec, design, layup)
-    t4 = time.perf_counter()
-    n = len(layup.rings)
-    print(f"D/λ {d_over_lambda:5.0f}  D {design.diameter_mm:7.1f} mm  sheets {layup.count:4d}  rings {n:5d}  "
-          f"pieces {len(fab.pieces):5d}  in-hole {len(fab.in_hole):5d}  boards {sum(fab.boards.values()):4d}  "
-          f"synth {t1 - t0:5.2f} s  plan {t2 - t1:5.3f} s  fabricate {t3 - t2:6.2f} s  checks {t4 - t3:5.2f} s  "
-          f"= {1e3 * (t3 - t1) / n:5.2f} ms/ring" + ("  (+templates)" if drawings else ""), flush=True)
+    t_chk = lap()
+    kind.verify(spec, design, layup, fab)
+    t_ver = lap()
+    rings, pieces = len(layup.rings), len(fab.pieces)
+    work = t_plan + t_fab
+    print(f"{d_over_lambda:5.0f} {sheet_mm:5.0f} {layup.count:6d} {rings:6d} {pieces:7d} {len(drawn.drawings):7d} "
+          f"{sum(fab.boards.values()):6d} | {t_syn:6.2f} {t_plan:6.2f} {t_fab:6.2f} {t_draw:7.2f} {t_chk:6.2f} "
+          f"{t_ver:6.2f} | {1e3 * work / rings:7.3f} {1e3 * work / pieces:7.3f} {1e3 * t_draw / pieces:7.3f}",
+          flush=True)
+
+
+def full_build() -> None:
+    from antenna_cad.pipeline import build
+    import build123d  # noqa: F401  (import cost kept out of the build time)
+    spec = spec_for(100)
+    with tempfile.TemporaryDirectory() as out:
+        result = build(spec, Path(out))
+    total = sum(result.seconds.values())
+    print("full build, D/λ 100, 10 mm sheets (templates off), seconds after imports: "
+          + ", ".join(f"{k} {v:.1f}" for k, v in result.seconds.items()) + f"; total {total:.1f}")
 
 
 if __name__ == "__main__":
-    drawings = "--templates" in sys.argv
+    print("  D/λ  t_mm sheets  rings  pieces drawings boards |  synth   plan    fab drawings checks verify"
+          " | ms/ring ms/piece draw ms/piece")
     for dl in (25, 50, 100):
-        run(dl, drawings)
+        run(dl, 10.0)
+    for t in (20.0, 5.0):
+        run(100, t)
+    if "--full" in sys.argv:
+        full_build()

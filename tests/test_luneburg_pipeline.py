@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from antenna_cad.fabrication.rings import fabricate_rings, plan_rings, ring_radii
+from antenna_cad.fabrication.outline import circle_polygon
 from antenna_cad.materials import Material
 from antenna_cad.registry import ADAPTERS, adapter
 from antenna_cad.spec import SPEC_MODELS, SpecError, load_spec, parse_spec
@@ -61,10 +62,15 @@ def test_seed_cases():
     ({"law": "outer_shell"}, "design.outer_shell"),
     ({"focal_distance_ratio": 0.9}, "design.focal_distance_ratio"),
     ({"layers": {"split": "ladder"}}, "design.layers"),
+    ({"shape": "cylinder", "height_mm": 10, "fab": {"pedestal_height_mm": 50}}, "fabrication.pedestal_height_mm"),
+    ({"fab": {"pedestal_height_mm": 50, "pedestal_width_mm": 250}}, "fabrication.pedestal_width_mm"),
 ])
 def test_spec_errors(design, field):
+    data = _data(**{k: v for k, v in design.items() if k != "fab"})
+    if "fab" in design:
+        data["fabrication"] = {"method": "sheet_layup", "sheet_thickness_mm": 10} | design["fab"]
     with pytest.raises(SpecError) as e:
-        parse_spec(_data(**design), "x.yaml")
+        parse_spec(data, "x.yaml")
     assert field in str(e.value)
 
 
@@ -128,6 +134,8 @@ def test_layup_plan_covers_sphere_and_nests_per_grade():
     labels = {d.label for d in fab.drawings}
     assert {s.label for s in plan.sheets} <= labels and {r.label for r in plan.rings} <= labels
     for row in fab.rows:                                      # each ring on a board of its own grade
+        if row.kind == "dowel-rod":
+            continue
         ring = next(r for r in plan.rings if row.part.startswith(r.label))
         assert row.material == ring.material.name and row.board.startswith(ring.material.name + "-B")
     for guest, host in fab.in_hole.items():                   # discs inside ring holes fit
@@ -136,6 +144,83 @@ def test_layup_plan_covers_sphere_and_nests_per_grade():
         assert gi.material == hi.material and gi.r_outer_mm + 10 <= hi.r_inner_mm
     assert fab.in_hole and sum(fab.in_hole_saving_m2.values()) > 0
     assert fab.totals_kg["all"] == pytest.approx(sum(v for k, v in fab.totals_kg.items() if k != "all"))
+
+
+@pytest.mark.parametrize("sizing", ["contain", "mid_plane"])
+def test_registration_dowels_inside_their_shell(sizing):
+    """Every dowel lies in the rings of both sheets it joins, in blind holes from their joint
+    faces; turned (contain) it lies inside its shell along its length (so its own grade leaves
+    the layer εr unchanged) except through the lens surface, which trims it — it still crosses
+    the joint plane inside the lens. Off the axis; holes never overlap; every sheet joint is
+    dowelled (mid-plane rings: but the polar caps', whose rings are smaller)."""
+    plan = _plan(sizing, t=10.0)
+    shells = {1: (0.0, 30.0), 2: (30.0, 60.0), 3: (60.0, 90.0), 4: (90.0, 100.0)}
+    assert plan.dowels and plan.undowelled_joints > 0           # e.g. the thin outer shell at the equator
+    rings = {(r.sheet_index, r.shell_index): r for r in plan.rings}
+    for dw in plan.dowels:
+        r_in, r_out = shells[dw.shell_index]
+        z_joint = plan.sheets[dw.sheets[0] - 1].z_max_mm
+        assert dw.length_mm == pytest.approx(10.0)                 # min(t/2, 2·Ø) into each sheet
+        z_lo, z_hi = z_joint - dw.length_mm / 2, z_joint + dw.length_mm / 2
+        rho = math.hypot(dw.x_mm, dw.y_mm)
+        assert rho > dw.diameter_mm
+        edges = rho + np.array([-1, 1]) * dw.diameter_mm / 2
+        if sizing == "contain":
+            z = np.linspace(z_lo, z_hi, 101)[:, None]
+            rr = np.hypot(edges, z)
+            assert np.all(rr >= r_in - 1e-9)
+            assert np.all(rr <= r_out + 1e-9) if dw.shell_index < 4 else np.all(np.hypot(edges, z_joint) <= r_out)
+        for k, face in zip(dw.sheets, ("top", "bottom")):
+            ring = rings[(k, dw.shell_index)]
+            assert any((h.x_mm, h.y_mm, h.face, h.depth_mm) == (dw.x_mm, dw.y_mm, face, 5.0) for h in ring.holes)
+            assert ring.r_inner_mm <= edges[0] and edges[1] <= ring.r_outer_mm
+    for ring in plan.rings:
+        pts = np.array([(h.x_mm, h.y_mm) for h in ring.holes]).reshape(-1, 2)
+        gaps = np.hypot(*(pts[:, None, :] - pts[None, :, :]).transpose(2, 0, 1)) + np.eye(len(pts)) * 1e9
+        assert np.all(gaps >= 6.0 + 3.0)
+    loose = {(k, k + 1) for k in range(1, plan.count)} - {dw.sheets for dw in plan.dowels}
+    assert loose == (set() if sizing == "contain" else {(1, 2), (19, 20)})
+    if sizing == "contain":   # equator joint, z −5…5: 90–99.9 mm is too thin for the 4th shell
+        assert sorted({d.shell_index for d in plan.dowels if d.sheets == (10, 11)}) == [1, 2, 3]
+
+
+def test_dowels_clear_sector_joints():
+    mats = [Material("g", 1.5, 1e-4, 50.0)]
+    plan = plan_rings([0.0], [900.0], mats, shape="sphere", height_mm=None, sheet_thickness_mm=30.0,
+                      sizing="contain", kerf_mm=0.5, board_width_mm=600, board_length_mm=1200,
+                      registration_hole_mm=8.0)
+    split = [r for r in plan.rings if r.sectors > 1 and r.holes]
+    assert split
+    for r in split:                                          # radial joints keep clear of the holes
+        for h in r.holes:
+            rho, a = math.hypot(h.x_mm, h.y_mm), math.atan2(h.y_mm, h.x_mm)
+            delta = (a - r.joint_angles_rad + math.pi) % (2 * math.pi) - math.pi
+            assert np.all(np.abs(delta) * rho >= 4.0 + 3.0 - 1e-6)
+    fab = fabricate_rings(plan, "t", drawings=False)
+    for p in fab.pieces:                                     # every hole lies wholly in one piece
+        for h in p.holes:
+            assert p.polygon.contains(circle_polygon(h.x_mm, h.y_mm, h.diameter_mm / 2 + 1.0).exterior)
+
+
+def test_stand_feet_stay_below_the_aperture_and_are_dowelled():
+    from shapely.geometry import Point
+    spec = _spec("luneburg-layup-200")
+    kind = adapter("luneburg")
+    design = kind.synthesize(spec)
+    layup, _ = kind.plan(spec, design)
+    fab = kind.fabricate(spec, design, layup, ())
+    R = design.radius_mm
+    feet = [p for p in fab.pieces if p.label.endswith("-foot")]
+    outer = kind.layer_materials(spec, design)[-1].name
+    assert len(feet) == layup.count
+    for p in feet:                                              # outside the aperture disc, below the lens
+        assert p.polygon.intersection(Point(0, 0).buffer(R - 0.01, 256)).area < 1e-6
+        assert p.polygon.bounds[1] == pytest.approx(-R - 60.0) and p.polygon.bounds[3] <= -0.5 * R
+        assert p.polygon.is_valid and p.material.name == outer
+        assert fab.placements[p.label].board_id.startswith(outer + "-B")
+    joined = {dw.sheets for dw in layup.dowels if dw.shell_index == 0}
+    assert joined == {(k, k + 1) for k in range(1, layup.count)}
+    assert next(c for c in kind.fabrication_checks(spec, design, layup) if c.name == "stand_outside_aperture").status == "pass"
 
 
 def test_mid_plane_rings_butt():
@@ -196,14 +281,19 @@ def test_recipe_builds_read_back(tmp_path, name):
 def test_large_rings_split_into_sectors_that_fit_boards():
     from shapely import affinity
     from antenna_cad.fabrication.outline import fits_board
-    from antenna_cad.fabrication.rings import RingPlan, ring_polygon, split_ring_sectors
-    from antenna_cad.fabrication.outline import Piece
+    from antenna_cad.fabrication.rings import RingPlan, ring_pieces, sector_count
     for r_in in (0.0, 700.0):
-        ring = RingPlan("sheet-02-ring-03", 2, 3, r_in, 800.0, Material("g", 1.5, 1e-4, 50.0))
-        piece = Piece(ring.label, 2, ring_polygon(ring, 6.0), 10.0)
-        parts, angles = split_ring_sectors(piece, ring, 600.0, 1200.0, 0.5)
-        assert len(parts) > 1
-        assert sum(p.polygon.area for p in parts) == pytest.approx(piece.polygon.area, rel=2e-3)
-        for p, a in zip(parts, angles):
-            x0, y0, x1, y1 = affinity.rotate(p.cut_path(0.5), a, origin=(0, 0)).bounds
-            assert p.polygon.is_valid and fits_board(x1 - x0, y1 - y0, 600.0, 1200.0)
+        k = sector_count(r_in, 800.0, 600.0, 1200.0, 0.5)
+        assert k > 1
+        ring = RingPlan("sheet-02-ring-03", 2, 3, r_in, 800.0, Material("g", 1.5, 1e-4, 50.0), k, 0.1)
+        whole = RingPlan("w", 2, 3, r_in, 800.0, ring.material)
+        parts = ring_pieces(ring, 10.0)
+        assert len(parts) == k and len({p.label for p in parts}) == k
+        assert sum(p.polygon.area for p in parts) == pytest.approx(ring_pieces(whole, 10.0)[0].polygon.area, rel=1e-6)
+        assert sum(p.area_mm2 for p in parts) == pytest.approx(math.pi * (800.0**2 - r_in**2), rel=1e-12)
+        for p in parts:
+            x0, y0, x1, y1 = affinity.rotate(p.cut_path(0.5), p.nest_rotation_deg, origin=(0, 0)).bounds
+            w, h = p.size_mm(0.5)
+            assert p.polygon.is_valid and fits_board(w, h, 600.0, 1200.0)
+            assert 0 <= w - (x1 - x0) < 0.01 and 0 <= h - (y1 - y0) < 0.01      # analytic size holds the path
+            assert p.cut_path(0.5).contains(p.polygon)

@@ -53,8 +53,23 @@ class SheetPlan:
         return self.z_max_mm - self.z_min_mm
 
 
+class Cradle:
+    """Height range of the pedestal feet — a cradle from ``pedestal_height_mm`` below the lens up
+    to the aperture circle — for a plan with ``lens_radius_mm``, ``pedestal_width_mm`` and
+    ``pedestal_height_mm`` (this layup, and the Luneburg ring layup's stand)."""
+
+    @property
+    def foot_bottom_y_mm(self) -> float:
+        return -self.lens_radius_mm - self.pedestal_height_mm
+
+    @property
+    def foot_corner_y_mm(self) -> float:
+        """y where the foot's sides meet the aperture circle (top corners of the cradle)."""
+        return -math.sqrt(self.lens_radius_mm**2 - (self.pedestal_width_mm / 2) ** 2)
+
+
 @dataclass(frozen=True)
-class LayupPlan:
+class LayupPlan(Cradle):
     lens_radius_mm: float
     sheet_thickness_mm: float
     lens_thickness_mm: float        # synthesized (hyperbolic part)
@@ -77,14 +92,6 @@ class LayupPlan:
     def stack_thickness_mm(self) -> float:
         return self.sheets[-1].z_max_mm - self.z_origin_mm
 
-    @property
-    def foot_bottom_y_mm(self) -> float:
-        return -self.lens_radius_mm - self.pedestal_height_mm
-
-    @property
-    def foot_corner_y_mm(self) -> float:
-        """y where the foot's sides meet the aperture circle (top corners of the cradle)."""
-        return -math.sqrt(self.lens_radius_mm**2 - (self.pedestal_width_mm / 2) ** 2)
 
 
 def plan_layup(*, radius_at, lens_thickness_mm: float, lens_radius_mm: float,

@@ -10,8 +10,9 @@ from __future__ import annotations
 
 import math
 
-from build123d import Axis, Compound, Edge, Plane, Pos, Solid
+from build123d import Axis, Edge, Plane, Pos, Solid, extrude
 
+from antenna_cad.geometry.layup import foot_sketch
 from antenna_cad.geometry.model import Model, ModelPart, relative_volume_check
 from antenna_cad.geometry.profiles import polyline_edges, revolve_closed
 from antenna_cad.materials import Material
@@ -113,12 +114,17 @@ def build_model(design, grades: list[Material], fab, base: Material) -> Model:
 
 
 def build_layup_model(plan, base: Material) -> Model:
-    """The layup's rings as flat solids (as cut, before turning), one part per ring."""
+    """The layup's rings as flat solids (as cut, before turning; dowel holes refilled by their
+    dowels), one part per ring, and the stand's feet (the spine's cradle, ``geometry.layup``)."""
     parts = []
+    foot = foot_sketch(plan) if plan.pedestal_height_mm is not None else None
     for s in plan.sheets:
         for r in s.rings:
             solid = annulus_solid(r.r_inner_mm, r.r_outer_mm, s.z_min_mm, s.z_max_mm)
             if plan.shape == "cylinder":
                 solid = solid.rotate(Axis.X, -90)
             parts.append(ModelPart(r.label, r.material, "fabricated", solid))
+        if foot is not None:
+            parts.append(ModelPart(f"{s.label}-foot", plan.stand_material, "fabricated",
+                                   Pos(0, 0, s.z_min_mm) * extrude(foot, s.thickness_mm)))
     return Model(tuple(parts), ())

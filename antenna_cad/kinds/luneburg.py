@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 
+from antenna_cad.kinds.luneburg_verify import verify_luneburg
 from antenna_cad.verification import Verification
 from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.rings import FabPlanRings, RingLayupPlan, fabricate_rings, plan_rings
@@ -55,7 +56,8 @@ def plan(spec: LuneburgSpec, design: LuneburgDesign):
                       layer_materials(spec, design), shape=design.shape, height_mm=design.height_mm,
                       sheet_thickness_mm=fab.sheet_thickness_mm, sizing=fab.ring_sizing, kerf_mm=fab.kerf_mm,
                       board_width_mm=fab.board.width_mm, board_length_mm=fab.board.length_mm,
-                      registration_hole_mm=fab.registration_hole_mm), ()
+                      registration_hole_mm=fab.registration_hole_mm, pedestal_height_mm=fab.pedestal_height_mm,
+                      pedestal_width_mm=fab.pedestal_width_mm), ()
 
 
 def model(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | None, panels):
@@ -120,20 +122,33 @@ def summary(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | N
             f"{m.density_kg_m3:.1f} kg/m³")
     if layup is not None:
         figures |= {"sheet_count": layup.count, "sheet_thickness_mm": layup.sheet_thickness_mm,
-                    "ring_count": len(layup.rings), "ring_sizing": layup.sizing}
+                    "ring_count": len(layup.rings), "piece_count": sum(r.sectors for r in layup.rings),
+                    "ring_sizing": layup.sizing, "dowel_count": len(layup.dowels),
+                    "undowelled_shell_joints": layup.undowelled_joints}
+        if layup.pedestal_height_mm is not None:
+            figures |= {"stand_width_mm": layup.pedestal_width_mm, "stand_height_mm": layup.pedestal_height_mm}
         per: dict[str, list] = {}
         for r in layup.rings:
             per.setdefault(r.material.name, []).append(r)
         for name, rings in sorted(per.items()):
-            figures[f"rings {name}"] = f"{len(rings)} rings in {len({r.sheet_index for r in rings})} sheets"
+            figures[f"rings {name}"] = (f"{len(rings)} rings ({sum(r.sectors for r in rings)} pieces) in "
+                                        f"{len({r.sheet_index for r in rings})} sheets")
     return figures
 
 
 def fabrication_checks(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | None) -> list[Check]:
     """Rings against their shells over the slab (contain: holds it, no excess), the finishing
-    allowance, and the board saved by nesting rings in ring holes."""
-    if layup is None or layup.shape != "sphere":
+    allowance, and the registration dowels."""
+    if layup is None:
         return []
+    if layup.shape != "sphere":
+        return [_registration_check(layup)]
+    stand = []
+    if layup.pedestal_height_mm is not None:
+        stand.append(Check("stand_outside_aperture", "pass", layup.foot_corner_y_mm, -layup.lens_radius_mm, "mm",
+                           f"stand feet ({layup.pedestal_width_mm:g} mm wide) reach up to the aperture circle only: "
+                           f"top corners at y = {layup.foot_corner_y_mm:.1f} mm, cradle touching the lens at "
+                           f"y = −R; nothing inside the aperture cylinder of the on-axis beam"))
     L = {l.index: l for l in design.layers}
     fit = 0.0
     allowance = 0.0
@@ -157,10 +172,27 @@ def fabrication_checks(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLa
                             float(layup.dropped_caps), 0.0, "caps",
                             f"rings sized at sheet mid-planes (stepped); {layup.dropped_caps} shell caps "
                             "missing their mid-plane are dropped"))
-    return checks
+    return checks + [_registration_check(layup)] + stand
+
+
+def _registration_check(layup: RingLayupPlan) -> Check:
+    """Every joint between consecutive sheets carries at least one dowel (rings of a sheet are
+    located on each other by their turned or butting faces)."""
+    if layup.registration_hole_mm <= 0:
+        return Check("registration_dowels", "warn", 0.0, 1.0, "dowels",
+                     "registration_hole_mm = 0: sheets are not dowelled; align them on a jig")
+    joined = {dw.sheets for dw in layup.dowels}
+    if layup.shape == "sphere":
+        loose = [k for k in range(1, layup.count) if (k, k + 1) not in joined]
+    else:                                            # through pins: one set ties every sheet and plate
+        loose = [] if joined else [0]
+    return Check("registration_dowels", "warn" if loose else "pass", float(len(loose)), 0.0, "joints",
+                 f"{len(layup.dowels)} dowels of the rings' own grades; {len(loose)} sheet joints without one; {layup.undowelled_joints} shell crossings too thin for a "
+                 f"Ø{layup.registration_hole_mm:g} mm dowel (those rings sit on their neighbours' faces)")
 
 
 
-def verify(spec, design, layup, fab) -> Verification:
-    """As-built verification (issue 6): filled in per kind."""
-    return Verification()
+def verify(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | None, fab) -> Verification:
+    """As-built GO verification: ideal, stepped and as-built lenses, scanned feeds, tolerances
+    (:mod:`antenna_cad.kinds.luneburg_verify`)."""
+    return verify_luneburg(spec, design, layup, fab, layer_materials(spec, design))

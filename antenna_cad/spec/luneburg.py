@@ -87,7 +87,15 @@ class LuneburgLayupSpec(StrictModel):
     ring_sizing: Literal["contain", "mid_plane"] = Field(
         "contain", description="contain: every ring holds its shell over the whole slab (sanding/turning "
         "only removes material); mid_plane: ring radii at the sheet mid-plane (stepped, no finishing)")
-    registration_hole_mm: float = Field(6.0, ge=0, le=50, description="axial hole for a foam alignment rod; 0: none")
+    registration_hole_mm: float = Field(
+        6.0, ge=0, le=50, description="registration dowel holes: across every sheet joint, 3 dowels at 120° per "
+        "shell crossed by both sheets, inside that shell and of its grade (cylinder: 3 through pins per ring); "
+        "0: none")
+    pedestal_height_mm: float | None = Field(
+        None, ge=20, le=1000, description="sphere: a stand — under every sheet a foot of the outer grade from "
+        "the aperture circle down this far below the lens (a cradle, outside the aperture cylinder, feet "
+        "dowelled to each other); none: no stand")
+    pedestal_width_mm: float | None = Field(None, gt=0, description="stand width; default 60 % of the diameter")
 
 
 class LuneburgSpec(SpecBase):
@@ -95,3 +103,15 @@ class LuneburgSpec(SpecBase):
     design: LuneburgDesignSpec
     fabrication: Annotated[Union[LuneburgShellsSpec, LuneburgLayupSpec], Field(discriminator="method")] = \
         LuneburgShellsSpec(method="shells")
+
+    @model_validator(mode="after")
+    def _stand(self):
+        fab, d = self.fabrication, self.design
+        if isinstance(fab, LuneburgLayupSpec) and fab.pedestal_height_mm is not None:
+            if d.shape != "sphere":
+                raise ValueError("fabrication.pedestal_height_mm: a stand is for the sphere (the cylinder sits "
+                                 "between its plates)")
+            if fab.pedestal_width_mm is not None and fab.pedestal_width_mm >= d.diameter_mm:
+                raise ValueError(f"fabrication.pedestal_width_mm: must be < design.diameter_mm "
+                                 f"({fab.pedestal_width_mm:g} ≥ {d.diameter_mm:g})")
+        return self

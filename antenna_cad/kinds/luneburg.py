@@ -138,7 +138,7 @@ def summary(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | N
 
 def fabrication_checks(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | None) -> list[Check]:
     """Rings against their shells over the slab (contain: holds it, no excess), the finishing
-    allowance, and the registration dowels."""
+    allowance, the registration dowels and the stand."""
     if layup is None:
         return []
     if layup.shape != "sphere":
@@ -181,15 +181,16 @@ def _registration_check(layup: RingLayupPlan) -> Check:
     if layup.registration_hole_mm <= 0:
         return Check("registration_dowels", "warn", 0.0, 1.0, "dowels",
                      "registration_hole_mm = 0: sheets are not dowelled; align them on a jig")
-    joined = {dw.sheets for dw in layup.dowels}
+    rings = [dw for dw in layup.dowels if dw.shell_index]           # not the stand's feet
+    joined = {dw.sheets for dw in rings}
     if layup.shape == "sphere":
         loose = [k for k in range(1, layup.count) if (k, k + 1) not in joined]
     else:                                            # through pins: one set ties every sheet and plate
         loose = [] if joined else [0]
     return Check("registration_dowels", "warn" if loose else "pass", float(len(loose)), 0.0, "joints",
-                 f"{len(layup.dowels)} dowels of the rings' own grades; {len(loose)} sheet joints without one; {layup.undowelled_joints} shell crossings too thin for a "
-                 f"Ø{layup.registration_hole_mm:g} mm dowel (those rings sit on their neighbours' faces)")
-
+                 f"{len(rings)} ring dowels of the rings' own grades; {len(loose)} sheet joints without one; "
+                 f"{layup.undowelled_joints} shell crossings too thin for a Ø{layup.registration_hole_mm:g} mm "
+                 "dowel (those rings sit on their neighbours' faces)")
 
 
 def verify(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | None, fab) -> Verification:

@@ -188,14 +188,15 @@ def verify_luneburg(spec, design: LuneburgDesign, layup: RingLayupPlan | None, f
               _aperture_table(results, stair),
               Table("sensitivity", "Tolerances: phase and gain they add to the as-built lens (on axis)",
                     ("parameter", "tolerance", "model", "added phase RMS deg", "added Ruze loss dB"),
-                    tuple(sens_rows), f"dominant: {dominant}; first order along the nominal rays, tilt removed"))
+                    tuple(sens_rows), f"dominant: {dominant[0]}; first order along the nominal rays, tilt removed"))
     plots = (_fan_plot(design, layup if stair and layup.sizing == "mid_plane" else None, fans[("as_built", "axis")],
                        "ray-fan", "Ray fan through the as-built lens, feed on axis"),
              *([_fan_plot(design, layup, fans[("stepped", "scan90")], "ray-fan-scan90",
                           "Ray fan through the sheet staircase (GO facets), feed at 90° to the sheet normal")]
                if stair and staircase_as_facets(design, layup) else []),
              _phase_plot(results, stair), _eps_plot(design), sens_plot)
-    return Verification(figures, tuple(_checks(design, layup, results, dominant)), tables, plots)
+    checks = _checks(design, layup, results, dominant, sens_figs["sens_total_gain_loss_db"])
+    return Verification(figures, tuple(checks), tables, plots)
 
 
 def _trace_with_focus(lens: _Lens, angle: float, figs) -> tuple[Fan, tuple]:
@@ -214,7 +215,8 @@ def _trace_with_focus(lens: _Lens, angle: float, figs) -> tuple[Fan, tuple]:
 # ---------------------------------------------------------------- sensitivity
 
 def _sensitivity(spec, design: LuneburgDesign, layup, grade_eps, materials, built: _Lens, nominal: Fan):
-    """Added phase RMS and Ruze loss per tolerance (module docstring), first order."""
+    """Added phase RMS and Ruze loss per tolerance (module docstring), first order: table rows,
+    plot, figures and the dominant tolerance (label, loss dB)."""
     tol = spec.tolerances
     lam = design.wavelength_mm
     rng = np.random.default_rng(20041223)                 # seeded: reproducible files
@@ -258,15 +260,15 @@ def _sensitivity(spec, design: LuneburgDesign, layup, grade_eps, materials, buil
         figs |= {f"sens_{key}_phase_rms_deg": phase, f"sens_{key}_gain_loss_db": loss}
         series.append(Series(label, scale, loss * scale**2, "line"))
     figs["sens_total_gain_loss_db"] = sum(losses.values())
-    dominant = max(losses, key=losses.get)
+    dominant = max(losses.items(), key=lambda item: item[1])
     plot = Plot("sensitivity", "Added Ruze loss vs tolerance (as built, on axis)", "tolerance (× spec value)",
-                "added gain loss (dB)", tuple(series), f"first order: loss ∝ tolerance²; dominant at 1×: {dominant}")
+                "added gain loss (dB)", tuple(series), f"first order: loss ∝ tolerance²; dominant at 1×: {dominant[0]}")
     return rows, plot, figs, dominant
 
 
 # ---------------------------------------------------------------- checks, tables, plots
 
-def _checks(design, layup, results, dominant) -> list[Check]:
+def _checks(design, layup, results, dominant: tuple[str, float], total: float) -> list[Check]:
     ideal = results[("ideal", "axis")][0]
     built = results[("as_built", "axis")][0]
     out = [Check.upper("ideal_lens_focus", ideal.phase_rms_deg, IDEAL_RMS_LIMIT_DEG, "deg",
@@ -275,7 +277,9 @@ def _checks(design, layup, results, dominant) -> list[Check]:
                  built.phase_rms_deg, GUIDE_RMS_DEG, "deg",
                  f"as-built GO aperture phase {built.phase_rms_deg:.3g}° RMS on axis, gain loss "
                  f"{built.gain_loss_db:.3g} dB (λ/16 = 22.5° guide; GO overstates few-layer errors, seed-002 §2.1b)"),
-           Check("tolerance_dominant", "pass", 0.0, 0.0, "", f"largest added loss from the tolerances: {dominant}")]
+           Check("tolerance_dominant", "pass", dominant[1], total, "dB",
+                 f"largest added Ruze loss from the tolerances: {dominant[0]}, {dominant[1]:.3g} dB "
+                 f"of {total:.3g} dB in all (first order, on axis)")]
     if layup is not None and design.shape == "sphere":
         t, zone = layup.sheet_thickness_mm, math.sqrt(design.wavelength_mm * design.radius_mm)
         facets = staircase_as_facets(design, layup)

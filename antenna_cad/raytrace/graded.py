@@ -144,7 +144,7 @@ def trace_graded(eps_of_r2: EpsOfR2, radius: float, origins: np.ndarray, directi
     pts.append(X.copy())
     left = entered & (region == 0) & np.isfinite(exit_opl)
     direction = P / np.linalg.norm(P, axis=1, keepdims=True)
-    return MediaTrace(np.array(pts), direction, opl, left | ~entered, np.zeros(N, int), exit_zy, exit_opl)
+    return MediaTrace(np.array(pts), direction, opl, left | ~entered, exit_zy, exit_opl)
 
 
 def _exit_parameter(x0, p0, x1, p1, h, R2):

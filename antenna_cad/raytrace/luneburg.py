@@ -54,7 +54,6 @@ class Fan:
     ok: np.ndarray
     trace: MediaTrace
     feed_zy_mm: np.ndarray
-    beam: np.ndarray           # u
 
 
 def feed_fan(tracer: Tracer, radius_mm: float, b_mm: float, q: float, shape: str, *, scan_rad: float = 0.0,
@@ -74,7 +73,7 @@ def feed_fan(tracer: Tracer, radius_mm: float, b_mm: float, q: float, shape: str
         (np.abs(s) <= radius_mm * (1 + 1e-9))
     opl = tr.exit_opl + (2.0 * radius_mm - tr.exit_zy @ u)
     impact = np.abs(feed[0] * dirs[:, 1] - feed[1] * dirs[:, 0])
-    return Fan(th, w, impact, np.where(ok, s, np.nan), np.where(ok, opl, np.nan), ok, tr, feed, u)
+    return Fan(th, w, impact, np.where(ok, s, np.nan), np.where(ok, opl, np.nan), ok, tr, feed)
 
 
 TAPER_BINS = 10

@@ -3,7 +3,8 @@
 Frame as :mod:`antenna_cad.raytrace.trace2d`: points and directions are ``(z, y)`` pairs, z along
 the axis, y transverse. A medium answers two questions for arrays of rays: the refractive index
 at points (:meth:`index`) and the distance to the next boundary along a ray with the boundary
-normal there (:meth:`next_hit`). :func:`trace_media` walks every ray from boundary to boundary:
+normal there (:meth:`next_hit`); it also states its ``size`` (a radius holding it) and its
+number of ``boundaries`` (the event budget). :func:`trace_media` walks every ray from boundary to boundary:
 straight segments, vector Snell where the index changes (:mod:`antenna_cad.raytrace.snell`,
 seed-000 §2.7), mirror reflection where it is total, optical path Σ n·length. Fresnel losses
 are ignored. Two media:
@@ -39,7 +40,6 @@ class MediaTrace:
     direction: np.ndarray    # (N, 2)
     opl: np.ndarray          # (N,)
     ok: np.ndarray           # (N,) bool
-    reflections: np.ndarray  # (N,) total internal reflections met
     exit_zy: np.ndarray      # (N, 2)
     exit_opl: np.ndarray     # (N,)
 
@@ -61,6 +61,10 @@ class Shells:
     radii: np.ndarray
     n: np.ndarray
     boss: tuple[float, float, float, float, float] | None = None
+
+    @property
+    def boundaries(self) -> int:
+        return len(self.radii) + (0 if self.boss is None else 3)
 
     @property
     def size(self) -> float:
@@ -135,6 +139,10 @@ class Staircase:
         return Staircase(np.asarray(z_edges, float), breaks, n)
 
     @property
+    def boundaries(self) -> int:
+        return int(np.isfinite(self.breaks).sum()) + len(self.z_edges)
+
+    @property
     def size(self) -> float:
         finite = np.where(np.isfinite(self.breaks), self.breaks, 0.0)
         return float(np.hypot(finite.max(), np.abs(self.z_edges).max()))
@@ -185,10 +193,9 @@ def trace_media(medium, origins: np.ndarray, directions: np.ndarray, max_events:
     d = d / np.linalg.norm(d, axis=1, keepdims=True)
     size = medium.size
     tiny = NUDGE * size
-    budget = max_events or 64 + 4 * (getattr(medium, "breaks", np.empty((1, 1))).size + len(getattr(medium, "radii", ())))
+    budget = max_events or 64 + 4 * medium.boundaries
     n_cur = medium.index(p + tiny * d)
     opl = np.zeros(len(p))
-    bounces = np.zeros(len(p), int)
     active = np.ones(len(p), bool)
     left = np.full(len(p), np.inf) if stop_mm is None else np.array(stop_mm, float)
     pts = [p.copy()]
@@ -217,6 +224,5 @@ def trace_media(medium, origins: np.ndarray, directions: np.ndarray, max_events:
         leave = change & ok & (n_next == 1.0)
         exit_zy = np.where(leave[:, None], p, exit_zy)
         exit_opl = np.where(leave, opl, exit_opl)
-        bounces += tir
         pts.append(p.copy())
-    return MediaTrace(np.array(pts), d, opl, ~active, bounces, exit_zy, exit_opl)
+    return MediaTrace(np.array(pts), d, opl, ~active, exit_zy, exit_opl)

@@ -153,10 +153,13 @@ def _write_manifest(spec, out: Path, figures, checks, parts, layup, fab, sheet_f
                    for r in fab.rows],
     }
     if layup is not None:
+        pieces: dict[int, list[str]] = {}
+        for piece in fab.pieces:                      # one pass: linear in pieces, not sheets × pieces
+            pieces.setdefault(piece.sheet_index, []).append(piece.label)
         content["sheets"] = [
             {"index": s.index, "label": s.label, "z_min_mm": s.z_min_mm, "z_max_mm": s.z_max_mm,
              "radius_mm": s.radius_mm, "material": material.name, "has_neck": s.has_neck,
-             "pieces": [p.label for p in fab.pieces if p.sheet_index == s.index],
+             "pieces": pieces.get(s.index, []),
              "joints": [asdict(j) for j in fab.joints.get(s.index, ())], "file": sheet_files.get(s.label)}
             | (s.manifest_extra() if hasattr(s, "manifest_extra") else {})
             for s in layup.sheets]

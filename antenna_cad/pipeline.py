@@ -68,7 +68,7 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None) -> B
     checks += list(model.checks)
     stage("model")
     fab = kind.fabricate(spec, design, layup, panels)
-    checks += list(kind.fabrication_checks(spec, design, layup)) + list(getattr(fab, "checks", ()))
+    checks += list(kind.fabrication_checks(spec, design, layup)) + list(fab.checks)
     stage("fabricate")
     verification = kind.verify(spec, design, layup, fab)
     checks += list(verification.checks)
@@ -161,7 +161,7 @@ def _write_manifest(spec, out: Path, figures, checks, parts, layup, fab, sheet_f
              "radius_mm": s.radius_mm, "material": material.name, "has_neck": s.has_neck,
              "pieces": pieces.get(s.index, []),
              "joints": [asdict(j) for j in fab.joints.get(s.index, ())], "file": sheet_files.get(s.label)}
-            | (s.manifest_extra() if hasattr(s, "manifest_extra") else {})
+            | s.manifest_extra()
             for s in layup.sheets]
     write_manifest(out, content)
 

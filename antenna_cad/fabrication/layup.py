@@ -52,6 +52,10 @@ class SheetPlan:
     def thickness_mm(self) -> float:
         return self.z_max_mm - self.z_min_mm
 
+    def manifest_extra(self) -> dict:
+        """Kind-specific manifest fields of a sheet (the Luneburg ring sheet adds its rings)."""
+        return {}
+
 
 class Cradle:
     """Height range of the pedestal feet — a cradle from ``pedestal_height_mm`` below the lens up

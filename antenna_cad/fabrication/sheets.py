@@ -16,6 +16,7 @@ from antenna_cad.fabrication.nesting import Placement, nest
 from antenna_cad.fabrication.outline import Joint, Piece, sheet_pieces, split_for_board
 from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
 from antenna_cad.materials import Material
+from antenna_cad.synthesis.checks import Check
 
 
 @dataclass(frozen=True)
@@ -29,6 +30,11 @@ class FabPlan:
     boards: dict[str, int]                    # material -> boards used
     kerf_mm: float
     files: dict[str, str] = field(default_factory=dict)   # extra text files: name -> content
+
+    @property
+    def checks(self) -> tuple[Check, ...]:
+        """Checks of the plan itself (none here; the Luneburg ring plan reports its nesting)."""
+        return ()
 
 
 BOX_FIRST_STEPS = {"box-floor": 1, "box-wall-left": 2, "box-wall-right": 2}   # end walls go on last

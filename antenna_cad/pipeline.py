@@ -114,6 +114,7 @@ def _write_solids(spec, model, out: Path, stage) -> list[dict]:
         if spec.outputs.stl:
             mesh = write_stl(part.shape, out / "stl" / f"{part.label}.stl", spec.outputs.mesh_tolerance_mm)
             entry |= {"file": f"stl/{part.label}.stl", "triangles": len(mesh.faces),
+                      "mesher": mesh.metadata["mesher"],
                       "watertight": bool(mesh.is_watertight)}
         parts.append(entry)
     stage("stl")
@@ -128,9 +129,8 @@ def _write_templates(spec, fab, out: Path) -> dict[str, str]:
     folder.mkdir()
     files = {}
     for drawing in fab.drawings:
-        doc = dxf_document(drawing)
-        write_dxf(doc, folder / f"{drawing.label}.dxf")
-        write_svg(doc, folder / f"{drawing.label}.svg")
+        write_dxf(dxf_document(drawing), folder / f"{drawing.label}.dxf")
+        write_svg(drawing, folder / f"{drawing.label}.svg")
         files[drawing.label] = f"templates/{drawing.label}.dxf"
     write_tiled_pdf(list(fab.drawings), folder / f"{spec.name}-templates.pdf", spec.name)
     return files

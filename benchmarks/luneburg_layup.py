@@ -4,9 +4,10 @@ Stages without CAD export: synthesis, plan (sheets, rings, sector splits, dowels
 (pieces, nesting per grade, cut lists), templates (the drawings, not the files), verification
 (ray traces). Prints one row per size and a sheet-thickness sweep at D/λ = 100 (same rings,
 more or fewer sheets), with ms per ring and per piece: linear scaling shows as flat columns.
-``--full`` also runs the whole pipeline (STEP, STL, templates off) for the D/λ = 100 case.
+``--full`` also runs the whole pipeline (STEP, STL; templates only with ``--templates``) for the
+D/λ = 100 case.
 
-    PYTHONPATH=. python benchmarks/luneburg_layup.py [--full]
+    PYTHONPATH=. python benchmarks/luneburg_layup.py [--full [--templates]]
 """
 
 from __future__ import annotations
@@ -21,14 +22,14 @@ from antenna_cad.kinds import luneburg as kind
 from antenna_cad.spec import parse_spec
 
 
-def spec_for(d_over_lambda: float, sheet_mm: float = 10.0, frequency_ghz: float = 10.0):
+def spec_for(d_over_lambda: float, sheet_mm: float = 10.0, frequency_ghz: float = 10.0, templates: bool = False):
     lam = 299.792458 / frequency_ghz
     return parse_spec({
         "name": "bench", "kind": "luneburg", "frequency_ghz": frequency_ghz, "material": "polystyrene",
         "design": {"diameter_mm": d_over_lambda * lam, "law": "classic", "layers": {"count": 20}},
         "fabrication": {"method": "sheet_layup", "sheet_thickness_mm": sheet_mm, "kerf_mm": 0.5,
                         "board": {"width_mm": 1200, "length_mm": 2400}},
-        "outputs": {"templates": False}})
+        "outputs": {"templates": templates}})
 
 
 def run(d_over_lambda: float, sheet_mm: float) -> None:
@@ -59,15 +60,18 @@ def run(d_over_lambda: float, sheet_mm: float) -> None:
           flush=True)
 
 
-def full_build() -> None:
+def full_build(templates: bool) -> None:
     from antenna_cad.pipeline import build
     import build123d  # noqa: F401  (import cost kept out of the build time)
-    spec = spec_for(100)
+    spec = spec_for(100, templates=templates)
     with tempfile.TemporaryDirectory() as out:
         result = build(spec, Path(out))
+        files = [p for p in result.out_dir.rglob("*") if p.is_file()]
+        size_gb = sum(p.stat().st_size for p in files) / 1e9
     total = sum(result.seconds.values())
-    print("full build, D/λ 100, 10 mm sheets (templates off), seconds after imports: "
-          + ", ".join(f"{k} {v:.1f}" for k, v in result.seconds.items()) + f"; total {total:.1f}")
+    print(f"full build, D/λ 100, 10 mm sheets (templates {'on' if templates else 'off'}), seconds after imports: "
+          + ", ".join(f"{k} {v:.1f}" for k, v in result.seconds.items())
+          + f"; total {total:.1f}; {len(files)} files, {size_gb:.2f} GB")
 
 
 if __name__ == "__main__":
@@ -78,4 +82,4 @@ if __name__ == "__main__":
     for t in (20.0, 5.0):
         run(100, t)
     if "--full" in sys.argv:
-        full_build()
+        full_build(templates="--templates" in sys.argv)

@@ -120,26 +120,50 @@ def test_svg_is_true_scale(built):
     for s in manifest["sheets"]:
         svg = (result.out_dir / s["file"]).with_suffix(".svg").read_text()
         w, h = (float(v) for v in re.search(r'width="([\d.]+)mm" height="([\d.]+)mm"', svg).groups())
+        vx, vy, vw, vh = (float(v) for v in re.search(r'viewBox="([-\d. ]+)"', svg).group(1).split())
+        assert (vw, vh) == (w, h)                                                 # 1 user unit = 1 mm
         doc = ezdxf.readfile(result.out_dir / s["file"])
-        ext = ezdxf.bbox.extents(doc.modelspace())
-        assert w == pytest.approx(ext.size.x + 20, abs=0.5) and h == pytest.approx(ext.size.y + 20, abs=0.5)
+        cut = np.array([p[:2] for e in doc.modelspace().query("LWPOLYLINE[layer=='CUT']") for p in e.get_points()])
+        svg_pts = np.array([[float(c) for c in pair.split(",")]
+                            for pts in re.findall(r'<polygon points="([^"]+)"', svg) for pair in pts.split()])
+        np.testing.assert_allclose(svg_pts.min(axis=0), cut.min(axis=0), atol=1e-3)  # same tool paths as the DXF
+        np.testing.assert_allclose(svg_pts.max(axis=0), cut.max(axis=0), atol=1e-3)
+        # the page (y flipped) holds the cut with at least the 10 mm margin
+        assert vx <= cut[:, 0].min() - 10 + 1e-3 and vx + vw >= cut[:, 0].max() + 10 - 1e-3
+        assert vy <= -cut[:, 1].max() - 10 + 1e-3 and vy + vh >= -cut[:, 1].min() + 10 - 1e-3
 
 
 def test_pdf_a4_pages_at_true_scale(built):
     spec, result, manifest = built
-    reader = PdfReader(result.out_dir / "templates" / f"{spec.name}-templates.pdf")
+    path = result.out_dir / "templates" / f"{spec.name}-templates.pdf"
+    reader = PdfReader(path)
     assert len(reader.pages) >= len(manifest["sheets"])
-    hundred_mm_segments = 0
     for page in reader.pages:
         assert float(page.mediabox.width) == pytest.approx(210 * MM_PT, abs=0.01)
         assert float(page.mediabox.height) == pytest.approx(297 * MM_PT, abs=0.01)
         text = page.get_contents().get_data().decode("latin1")
-        for x1, y1, x2, y2 in re.findall(r"([-\d.]+) ([-\d.]+) m\s+([-\d.]+) ([-\d.]+) l\s", text):
-            if abs(float(y1) - float(y2)) < 1e-3 and abs(abs(float(x2) - float(x1)) - 100 * MM_PT) < 0.05:
-                hundred_mm_segments += 1
+        scale = [float(a) for a, d in re.findall(r"([\d.]+) 0 0 ([\d.]+) [-\d.]+ [-\d.]+ cm", text) if a == d]
+        assert scale and all(abs(k - MM_PT) < 1e-8 for k in scale)                   # drawing placed at 1:1
         assert "page" in page.extract_text()
-    # every page has its page-space check bar; the sheets' model-space bars prove the 1:1 mapping
-    assert hundred_mm_segments > len(reader.pages)
+    # an independent renderer (PDFium) draws the page-space bar (black) and the sheets' model-space
+    # bars (blue, inside the drawing) both 100 mm long at 1:1 (longest run of each pixel row)
+    import pypdfium2
+    dpi = 300
+    longest = {"black": [], "blue": []}
+    for page in pypdfium2.PdfDocument(path):
+        px = np.asarray(page.render(scale=dpi / 72).to_pil().convert("RGB")).astype(int)
+        for colour, mask in (("black", px.sum(axis=2) < 200),
+                             ("blue", (px[..., 2] > 150) & (px[..., 0] < 120) & (px[..., 1] < 120))):
+            longest[colour].append(np.array([_longest_run(row) for row in mask]) * 25.4 / dpi)
+    within = 0.25 + 2 * 25.4 / dpi                     # line widths of the end ticks + 2 pixels (0.3 %)
+    assert all(abs(runs.max() - 100.0) <= within for runs in longest["black"])      # every page's bar
+    # the sheets' bars (a bar may be split between two tiles)
+    assert sum((abs(runs - 100.0) <= within).any() for runs in longest["blue"]) >= len(manifest["sheets"]) / 2
+
+
+def _longest_run(row: np.ndarray) -> int:
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], row.astype(np.int8), [0]])))
+    return int((edges[1::2] - edges[::2]).max()) if len(edges) else 0
 
 
 def test_cutlist_nests_pieces_on_boards(built):

@@ -41,6 +41,7 @@ from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
+from shapely import affinity
 from shapely.geometry import Polygon
 
 from antenna_cad.fabrication.cutlist import CutRow, cutlist_csv
@@ -671,7 +672,6 @@ def _piece_drawing(plan: RingLayupPlan, sheet: RingSheet, piece, title: str) -> 
     ring = piece.ring
     path = piece.cut_path(plan.kerf_mm)
     if piece.is_sector:
-        from shapely import affinity
         rot = piece.nest_rotation_deg
         d.add_polygon(affinity.rotate(path, rot, origin=(0, 0)))
         y_in = max(ring.r_inner_mm - 15.0, 0.0)

@@ -1,13 +1,15 @@
 """1:1 cutting templates: DXF (layers CUT / MARK / TEXT, mm), SVG (mm) and a tiled A4 PDF.
 
 A :class:`Drawing` is the one description of a template; the DXF is written from it with ezdxf,
-the SVG is rendered from that DXF by ezdxf's drawing add-on at scale 1 (``fit_page=False``), and
-the PDF draws the same polylines with matplotlib on A4 pages at exactly 1 mm = 1 mm, tiled with
-overlap, registration crosses, page ids and a 100 mm check bar on every page (DESIGN.md pitfalls).
+the SVG and the PDF directly from it (ezdxf's SVG rendering and matplotlib's PDF pages cost
+80 ms per drawing and 90 ms per page; benchmarks/template_speed.py). The PDF holds each drawing
+once and tiles it onto A4 pages at exactly 1 mm = 1 mm, with overlap, registration crosses, page
+ids and a 100 mm check bar on every page (DESIGN.md pitfalls).
 """
 
 from __future__ import annotations
 
+import html
 import io
 import math
 import re
@@ -15,15 +17,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import ezdxf
-import ezdxf.bbox
-import matplotlib
-from ezdxf.addons.drawing import Frontend, RenderContext, layout, svg
+import numpy as np
 from shapely.geometry import Polygon, box
 
-matplotlib.use("Agg")
-from matplotlib.backends.backend_pdf import PdfPages  # noqa: E402
-from matplotlib.collections import LineCollection  # noqa: E402
-from matplotlib.figure import Figure  # noqa: E402
+from antenna_cad.fabrication.vector_pdf import PT_PER_MM, VectorPdf, num, polyline_ops, text_ops
 
 _EZDXF_MARKER = re.compile(r"(\d+\.\d+\.\d+) @ \d{4}-\d\d-\d\dT[\d:.]+\+00:00")
 MM_PER_INCH = 25.4
@@ -34,6 +31,10 @@ OVERLAP_MM = 10.0
 CHECK_BAR_MM = 100.0
 TEXT_HEIGHT_MM = 6.0
 LAYERS = {"CUT": 1, "MARK": 5, "TEXT": 7}      # DXF colour indices: red, blue, black/white
+SVG_COLOURS = {"CUT": "red", "MARK": "blue"}
+LINE_WIDTH_MM = {"CUT": 0.18, "MARK": 0.14}
+CAP_HEIGHT_EM = 0.72                             # Helvetica: DXF text height is the cap height
+CHAR_WIDTH_EM = 0.6                              # generous mean advance, for page extents only
 
 
 @dataclass
@@ -58,6 +59,14 @@ class Drawing:
         xs, ys = [p[0] for p in pts], [p[1] for p in pts]
         return min(xs), min(ys), max(xs), max(ys)
 
+    def extents(self) -> tuple[float, float, float, float]:
+        """``bounds`` grown by the texts' boxes (estimated advance widths)."""
+        x0, y0, x1, y1 = self.bounds()
+        for text, x, y, size in self.texts:
+            x1 = max(x1, x + len(text) * CHAR_WIDTH_EM * size / CAP_HEIGHT_EM)
+            y1 = max(y1, y + size)
+        return x0, y0, x1, y1
+
     def add_check_bar(self, x: float, y: float) -> None:
         """A 100 mm bar with 10 mm ticks: measure it on the print to confirm 1:1."""
         self.marks.append([(x, y), (x + CHECK_BAR_MM, y)])
@@ -68,7 +77,7 @@ class Drawing:
 
 
 def dxf_document(drawing: Drawing) -> ezdxf.document.Drawing:
-    doc = ezdxf.new("R2010", setup=True)
+    doc = ezdxf.new("R2010", setup=False)
     doc.units = ezdxf.units.MM
     doc.header["$INSUNITS"] = ezdxf.units.MM
     doc.header["$MEASUREMENT"] = 1
@@ -101,16 +110,26 @@ def write_dxf(doc: ezdxf.document.Drawing, path: Path) -> None:
     path.write_bytes(text.encode(doc.output_encoding))
 
 
-def write_svg(doc: ezdxf.document.Drawing, path: Path) -> None:
-    """True-scale SVG: page = DXF extents (text included) + 10 mm margins, scale 1, no fit-to-page."""
-    size = ezdxf.bbox.extents(doc.modelspace()).size
+def write_svg(drawing: Drawing, path: Path) -> None:
+    """True-scale SVG written from the drawing (1 user unit = 1 mm, y up as in the DXF): page =
+    extents with texts + 10 mm margins, width/height in mm, CUT red, MARK blue, TEXT black."""
+    x0, y0, x1, y1 = drawing.extents()
     m = PAGE_MARGIN_MM
-    page = layout.Page(size.x + 2 * m, size.y + 2 * m, layout.Units.mm,
-                       margins=layout.Margins.all(m))
-    backend = svg.SVGBackend()
-    Frontend(RenderContext(doc), backend).draw_layout(doc.modelspace())
-    settings = layout.Settings(fit_page=False, scale=1.0)
-    path.write_text(backend.get_string(page, settings=settings), encoding="utf-8")
+    w, h = x1 - x0 + 2 * m, y1 - y0 + 2 * m
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{num(w)}mm" height="{num(h)}mm" '
+           f'viewBox="{num(x0 - m)} {num(-y1 - m)} {num(w)} {num(h)}">',
+           f"<title>{html.escape(drawing.label)}</title>",
+           '<g fill="none" stroke-linejoin="round" transform="scale(1 -1)">']
+    for layer, closed, lines in (("CUT", True, drawing.cut), ("MARK", False, drawing.marks)):
+        tag = "polygon" if closed else "polyline"
+        out.append(f'<g id="{layer}" stroke="{SVG_COLOURS[layer]}" stroke-width="{LINE_WIDTH_MM[layer]}">')
+        out += [f'<{tag} points="{" ".join(f"{num(x)},{num(y)}" for x, y in line)}"/>' for line in lines]
+        out.append("</g>")
+    out.append('</g><g id="TEXT" fill="black" font-family="Helvetica, Arial, sans-serif">')
+    out += [f'<text x="{num(x)}" y="{num(-y)}" font-size="{num(size / CAP_HEIGHT_EM)}">{html.escape(text)}</text>'
+            for text, x, y, size in drawing.texts]
+    out.append("</g></svg>\n")
+    path.write_text("\n".join(out), encoding="utf-8")
 
 
 def tile_windows(drawing: Drawing) -> tuple[list[tuple[int, int, float, float]], float, float]:
@@ -133,53 +152,56 @@ def tile_windows(drawing: Drawing) -> tuple[list[tuple[int, int, float, float]],
 
 
 def write_tiled_pdf(drawings: list[Drawing], path: Path, title: str) -> int:
-    """All drawings at 1:1 on A4 portrait pages with overlap; returns the page count."""
-    pages = 0
-    metadata = {"Title": title, "Creator": "antenna_cad", "Producer": "antenna_cad",
-                "CreationDate": None}
-    with PdfPages(path, metadata=metadata) as pdf:
+    """All drawings at 1:1 on A4 portrait pages with overlap; returns the page count. Each
+    drawing is one Form XObject (with registration crosses at the centres of the overlap strips,
+    the same model points on neighbouring pages); a page clips it to its window and scales it by
+    exactly 72/25.4 pt per mm, then adds the header and a 100 mm check bar in page space."""
+    left, bottom = PAGE_MARGIN_MM, PAGE_MARGIN_MM + FOOTER_MM
+    with VectorPdf(path, A4_MM, title) as pdf:
         for drawing in drawings:
             tiles, win_w, win_h = tile_windows(drawing)
-            x0, _, _, y1 = drawing.bounds()
-            cut_lines = [ring + ring[:1] for ring in drawing.cut]
+            form = pdf.add_form(_form_content(drawing, win_w, win_h), _padded(drawing.extents(), 10.0))
             for k, (r, c, wx, wy) in enumerate(tiles, start=1):
-                fig = Figure(figsize=(A4_MM[0] / MM_PER_INCH, A4_MM[1] / MM_PER_INCH))
-                page = fig.add_axes((0, 0, 1, 1))
-                page.set_xlim(0, A4_MM[0])
-                page.set_ylim(0, A4_MM[1])
-                page.axis("off")
-                left, bottom = PAGE_MARGIN_MM, PAGE_MARGIN_MM + FOOTER_MM
-                ax = fig.add_axes((left / A4_MM[0], bottom / A4_MM[1], win_w / A4_MM[0], win_h / A4_MM[1]))
-                ax.set_xlim(wx, wx + win_w)
-                ax.set_ylim(wy, wy + win_h)
-                ax.set_aspect("equal", adjustable="box")
-                ax.axis("off")
-                ax.add_collection(LineCollection(cut_lines, colors="red", linewidths=0.5))
-                ax.add_collection(LineCollection(drawing.marks, colors="blue", linewidths=0.4))
-                for text, tx, ty, h in drawing.texts:
-                    ax.text(tx, ty, text, fontsize=h / 25.4 * 72 * 0.7, clip_on=True)
-                _registration_crosses(ax, x0, y1, wx, wy, win_w, win_h)
-                page.add_patch(matplotlib.patches.Rectangle((left, bottom), win_w, win_h, fill=False,
-                                                            linewidth=0.3, edgecolor="grey"))
-                page.text(left, A4_MM[1] - PAGE_MARGIN_MM - 5,
-                          f"{title} · {drawing.label} · tile row {r + 1} col {c + 1} · page {k}/{len(tiles)}"
-                          " · print at 100 % (actual size)", fontsize=7)
-                bar_y = PAGE_MARGIN_MM + 8
-                bar = [[(left, bar_y), (left + CHECK_BAR_MM, bar_y)]] + [
-                    [(left + 10 * t, bar_y), (left + 10 * t, bar_y + (4 if t % 5 == 0 else 2))] for t in range(11)]
-                page.add_collection(LineCollection(bar, colors="black", linewidths=0.6))
-                page.text(left + CHECK_BAR_MM + 4, bar_y, "100 mm check bar: measure it", fontsize=6,
-                          va="center")
-                pdf.savefig(fig)
-                pages += 1
-    return pages
+                header = (f"{title} · {drawing.label} · tile row {r + 1} col {c + 1} · page {k}/{len(tiles)}"
+                          " · print at 100 % (actual size)")
+                pdf.add_page(_page_content(form, wx, wy, win_w, win_h, left, bottom, header), (form,))
+        return pdf.page_count
 
 
-def _registration_crosses(ax, x0, y1, wx, wy, win_w, win_h) -> None:
-    """Crosses at the centres of the overlap strips: the same model points on neighbouring pages."""
+def _form_content(drawing: Drawing, win_w: float, win_h: float) -> bytes:
+    x0, y0, x1, y1 = drawing.bounds()
     step_w, step_h = win_w - OVERLAP_MM, win_h - OVERLAP_MM
     half = OVERLAP_MM / 2
-    xs = [x0 + half + k * step_w for k in range(-1, 400) if wx <= x0 + half + k * step_w <= wx + win_w]
-    ys = [y1 - half - k * step_h for k in range(-1, 400) if wy <= y1 - half - k * step_h <= wy + win_h]
+    xs = x0 + half + step_w * np.arange(-1, math.ceil((x1 - x0) / step_w) + 2)
+    ys = y1 - half - step_h * np.arange(-1, math.ceil((y1 - y0) / step_h) + 2)
     crosses = [seg for x in xs for y in ys for seg in ([(x - 4, y), (x + 4, y)], [(x, y - 4), (x, y + 4)])]
-    ax.add_collection(LineCollection(crosses, colors="black", linewidths=0.4))
+    ops = [f"1 J 1 j {num(LINE_WIDTH_MM['CUT'])} w 1 0 0 RG\n"]
+    ops += [polyline_ops(ring, closed=True) for ring in drawing.cut]
+    ops.append(f"{num(LINE_WIDTH_MM['MARK'])} w 0 0 1 RG\n")
+    ops += [polyline_ops(line, closed=False) for line in drawing.marks]
+    ops.append("0 0 0 RG\n")
+    ops += [polyline_ops(line, closed=False) for line in crosses]
+    body = "".join(ops).encode() + b"0 g\n"
+    return body + b"".join(text_ops(text, x, y, size / CAP_HEIGHT_EM) for text, x, y, size in drawing.texts)
+
+
+def _page_content(form: int, wx: float, wy: float, win_w: float, win_h: float, left: float, bottom: float,
+                  header: str) -> bytes:
+    """Page-space operators in points: clipped window holding the form at 1:1, frame, header, bar."""
+    k = PT_PER_MM
+    window = f"{num(left * k)} {num(bottom * k)} {num(win_w * k)} {num(win_h * k)} re"
+    ops = [f"q {window} W n {k:.9f} 0 0 {k:.9f} {num((left - wx) * k)} {num((bottom - wy) * k)} cm "
+           f"/X{form} Do Q\n",
+           f"0.3 w 0.5 G {window} S\n0 G 0 g 0.6 w\n"]
+    bar_y = (PAGE_MARGIN_MM + 8) * k
+    x_bar = [left * k + 10 * t * k for t in range(11)]
+    ops.append(f"{num(x_bar[0])} {num(bar_y)} m {num(x_bar[-1])} {num(bar_y)} l S\n")
+    ops += [f"{num(x)} {num(bar_y)} m {num(x)} {num(bar_y + (4 if t % 5 == 0 else 2) * k)} l S\n"
+            for t, x in enumerate(x_bar)]
+    content = "".join(ops).encode()
+    content += text_ops(header, left * k, (A4_MM[1] - PAGE_MARGIN_MM - 5) * k, 7)
+    return content + text_ops("100 mm check bar: measure it", (left + CHECK_BAR_MM + 4) * k, bar_y - 2, 6)
+
+
+def _padded(box: tuple[float, float, float, float], pad: float) -> tuple[float, float, float, float]:
+    return box[0] - pad, box[1] - pad, box[2] + pad, box[3] + pad

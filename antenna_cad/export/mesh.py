@@ -16,7 +16,7 @@ import tempfile
 from pathlib import Path
 
 import trimesh
-from build123d import Shape
+from build123d import Compound, Shape
 from OCP.BRep import BRep_Tool
 from OCP.BRepMesh import BRepMesh_IncrementalMesh
 from OCP.BRepTools import BRepTools
@@ -37,9 +37,7 @@ def mesh_shape(shape: Shape, tolerance_mm: float, meshers: tuple[str, ...] = tup
     turn until every face is triangulated and every body closed; each solid is merged on its own
     (bodies that touch along an edge stay separate, so every body is watertight)."""
     for name in meshers:
-        BRepTools.Clean_s(shape.wrapped)
-        BRepMesh_IncrementalMesh(shape.wrapped, _parameters(tolerance_mm, MESHERS[name]))
-        if not _fully_triangulated(shape.wrapped) and name != meshers[-1]:
+        if not _triangulate(shape, tolerance_mm, name) and name != meshers[-1]:
             continue
         with tempfile.TemporaryDirectory(prefix="antenna_cad-mesh-") as scratch:
             path = str(Path(scratch) / "solid.stl")
@@ -49,6 +47,25 @@ def mesh_shape(shape: Shape, tolerance_mm: float, meshers: tuple[str, ...] = tup
             mesh.metadata["mesher"] = name
             return mesh
     raise ValueError("mesh_shape: no mesher given")
+
+
+def picture_meshes(shapes: list[Shape], tolerance_mm: float) -> list[trimesh.Trimesh]:
+    """Unmerged triangle soups of many shapes, meshed together in one pass (for pictures: no
+    watertightness needed, no per-part meshing call)."""
+    compound = Compound(children=shapes)
+    for name in MESHERS:
+        if _triangulate(compound, tolerance_mm, name):
+            break
+    with tempfile.TemporaryDirectory(prefix="antenna_cad-mesh-") as scratch:
+        path = str(Path(scratch) / "part.stl")
+        return [_stl_read_back(shape.wrapped, path) for shape in shapes]
+
+
+def _triangulate(shape: Shape, tolerance_mm: float, mesher: str) -> bool:
+    """(Re-)mesh ``shape`` in place; True when every face got a triangulation."""
+    BRepTools.Clean_s(shape.wrapped)
+    BRepMesh_IncrementalMesh(shape.wrapped, _parameters(tolerance_mm, MESHERS[mesher]))
+    return _fully_triangulated(shape.wrapped)
 
 
 def _fully_triangulated(shape) -> bool:
@@ -71,16 +88,21 @@ def _parameters(tolerance_mm: float, algorithm) -> IMeshTools_Parameters:
 
 
 def _solid_mesh(solid, path: str) -> trimesh.Trimesh:
-    """One solid's triangulation via OCCT's binary STL writer, merged and cleaned by trimesh."""
-    writer = StlAPI_Writer()
-    writer.ASCIIMode = False
-    if not writer.Write(solid, path):
-        raise RuntimeError(f"OCCT could not write the triangulation to {path}")
-    mesh = trimesh.load(path, file_type="stl", process=False)
+    """One solid's triangulation, merged and cleaned by trimesh."""
+    mesh = _stl_read_back(solid, path)
     mesh.merge_vertices()
     mesh.update_faces(mesh.nondegenerate_faces())
     mesh.remove_unreferenced_vertices()
     return mesh
+
+
+def _stl_read_back(shape, path: str) -> trimesh.Trimesh:
+    """The triangulation of ``shape`` via OCCT's binary STL writer, read by trimesh as it is."""
+    writer = StlAPI_Writer()
+    writer.ASCIIMode = False
+    if not writer.Write(shape, path):
+        raise RuntimeError(f"OCCT could not write the triangulation to {path}")
+    return trimesh.load(path, file_type="stl", process=False)
 
 
 def write_stl(shape: Shape, path: Path, tolerance_mm: float) -> trimesh.Trimesh:

@@ -61,7 +61,7 @@ def plot_svg(plot: Plot) -> str:
 # ---- pictures of the assembly -------------------------------------------------------------
 
 VIEWS = (  # title, view direction (from the eye into the scene), up vector; frame of DESIGN.md
-    ("front (from the antenna side, −Z)", (0.0, 0.0, -1.0), (0.0, 1.0, 0.0)),
+    ("front (from +Z, looking along −Z)", (0.0, 0.0, -1.0), (0.0, 1.0, 0.0)),
     ("side (from +X)", (-1.0, 0.0, 0.0), (0.0, 1.0, 0.0)),
     ("top (from +Y)", (0.0, -1.0, 0.0), (0.0, 0.0, -1.0)),
     ("isometric", (-1.0, -1.0, -1.0), (0.0, 1.0, 0.0)),
@@ -72,9 +72,15 @@ LIGHT = np.array([-0.4, 0.8, -0.45])
 def assembly_png(meshes: list[tuple[trimesh.Trimesh, str]]) -> bytes:
     """Four shaded orthographic views (front, side, top, isometric) of coloured meshes, one PNG.
 
-    Painter's algorithm: parts drawn far to near by their centres, inside a part the back faces
-    culled and the rest sorted far to near; Lambert shading."""
+    Painter's algorithm in one collection per view: parts far to near by their centres, inside a
+    part the back faces culled and the rest sorted far to near; Lambert shading."""
     light = LIGHT / np.linalg.norm(LIGHT)
+    triangles = np.concatenate([m.triangles for m, _ in meshes])
+    normals = np.concatenate([m.face_normals for m, _ in meshes])
+    base = np.concatenate([np.tile(matplotlib.colors.to_rgb(c), (len(m.faces), 1)) for m, c in meshes])
+    part = np.repeat(np.arange(len(meshes)), [len(m.faces) for m, _ in meshes])
+    part_centres = np.array([m.bounds.mean(axis=0) for m, _ in meshes])
+    centres = triangles.mean(axis=1)
     with plt.rc_context(STYLE | {"axes.grid": False}):
         fig, axes = plt.subplots(2, 2, figsize=(10, 8))
         for ax, (title, view, up) in zip(axes.flat, VIEWS):
@@ -82,15 +88,17 @@ def assembly_png(meshes: list[tuple[trimesh.Trimesh, str]]) -> bytes:
             right = np.cross(d, up)
             right /= np.linalg.norm(right)
             screen = np.stack([right, np.cross(right, d)], axis=-1)
-            for mesh, colour in sorted(meshes, key=lambda mc: -float(mc[0].bounds.mean(axis=0) @ d)):
-                front = np.flatnonzero(mesh.face_normals @ d < 0)                  # facing the eye
-                tris = mesh.triangles[front]
-                order = np.argsort(-(tris.mean(axis=1) @ d), kind="stable")        # farthest first
-                shade = 0.45 + 0.55 * np.abs(mesh.face_normals[front][order] @ light)
-                rgb = np.clip(np.outer(shade, matplotlib.colors.to_rgb(colour)), 0, 1)
-                ax.add_collection(PolyCollection(tris[order] @ screen, facecolors=rgb, edgecolors="none",
-                                                 antialiased=False))
-            ax.autoscale_view()
+            front = np.flatnonzero(normals @ d < 0)                                 # facing the eye
+            front = front[np.lexsort((-(centres[front] @ d), -(part_centres[part[front]] @ d)))]  # far first
+            shade = 0.45 + 0.55 * np.abs(normals[front] @ light)
+            rgb = np.clip(shade[:, None] * base[front], 0, 1)
+            flat = triangles[front] @ screen
+            ax.add_collection(PolyCollection(flat, facecolors=rgb, edgecolors="none", antialiased=False),
+                              autolim=False)
+            low, high = flat.reshape(-1, 2).min(axis=0), flat.reshape(-1, 2).max(axis=0)
+            pad = 0.02 * (high - low).max()
+            ax.set_xlim(low[0] - pad, high[0] + pad)
+            ax.set_ylim(low[1] - pad, high[1] + pad)
             ax.set_aspect("equal")
             ax.set_title(title)
             ax.set_xticks([])

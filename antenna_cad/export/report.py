@@ -14,7 +14,7 @@ from pathlib import Path
 import yaml
 
 from antenna_cad import __version__
-from antenna_cad.export.mesh import mesh_shape
+from antenna_cad.export.mesh import picture_meshes
 from antenna_cad.export.plots import assembly_png, plot_svg
 from antenna_cad.fabrication.cutlist import FIELDS as CUT_FIELDS
 from antenna_cad.verification import Table, Verification
@@ -162,7 +162,7 @@ def _pictures(model) -> tuple[bytes, dict[str, str], int]:
     for p in parts[1:]:
         bb.add(p.shape.bounding_box())
     tol = max(bb.diagonal / PICTURE_FACETS, 0.05)
-    meshes = [(mesh_shape(p.shape, tol), colour[p.material.name]) for p in parts]
+    meshes = list(zip(picture_meshes([p.shape for p in parts], tol), [colour[p.material.name] for p in parts]))
     return assembly_png(meshes), colour, len(parts)
 
 

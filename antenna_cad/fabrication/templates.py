@@ -106,7 +106,9 @@ def write_dxf(doc: ezdxf.document.Drawing, path: Path) -> None:
         doc.write(stream)
     finally:
         ezdxf.options.write_fixed_meta_data_for_testing = previous
-    text = _EZDXF_MARKER.sub(r"\1 @ 2000-01-01T00:00:00+00:00", stream.getvalue())
+    text = stream.getvalue()
+    tail = text.rfind("CREATED_BY_EZDXF")                  # the markers sit in the last dictionary
+    text = text[:tail] + _EZDXF_MARKER.sub(r"\1 @ 2000-01-01T00:00:00+00:00", text[tail:])
     path.write_bytes(text.encode(doc.output_encoding))
 
 

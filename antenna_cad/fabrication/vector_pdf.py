@@ -19,10 +19,14 @@ _SPELLED = {"ε": "e", "λ": "lambda", "Δ": "d", "ρ": "rho", "↑": "^", "↓"
             "≈": "~", "√": "sqrt", "∅": "O", "−": "-", "’": "'"}
 
 
+def spelled(text: str) -> str:
+    """``text`` with the characters the standard fonts lack spelled out in ones they have."""
+    return "".join(_SPELLED.get(ch, ch) for ch in text)
+
+
 def pdf_string(text: str) -> bytes:
     """``text`` as a PDF literal string in WinAnsiEncoding (unsupported characters spelled out)."""
-    spelled = "".join(_SPELLED.get(ch, ch) for ch in text)
-    raw = spelled.encode("cp1252", errors="replace")
+    raw = spelled(text).encode("cp1252", errors="replace")
     return b"(" + raw.replace(b"\\", b"\\\\").replace(b"(", b"\\(").replace(b")", b"\\)") + b")"
 
 

@@ -297,3 +297,52 @@ def test_large_rings_split_into_sectors_that_fit_boards():
             assert p.polygon.is_valid and fits_board(w, h, 600.0, 1200.0)
             assert 0 <= w - (x1 - x0) < 0.01 and 0 <= h - (y1 - y0) < 0.01      # analytic size holds the path
             assert p.cut_path(0.5).contains(p.polygon)
+
+
+@pytest.mark.parametrize("shape, R", [("sphere", 700.0), ("cylinder", 300.0)])
+def test_dxf_cut_paths_are_true_arcs_matching_the_polylines(tmp_path, shape, R):
+    """Ring pieces go to the DXF as bulge arcs (CNC: exact circles, small files); read back and
+    flattened by ezdxf they must match the polylines of the SVG/PDF within their chord tolerance
+    (a wrong bulge sign or order would be off by a radius). R = 700 mm on 600 × 1200 boards:
+    ring and disc sectors (the Ø700 mm core); the cylinder: through dowel holes."""
+    import ezdxf
+    import shapely
+    from shapely.geometry import LinearRing
+
+    from antenna_cad.fabrication.templates import dxf_document, write_dxf
+    mats = [Material(f"g{k}", 2.0 - 0.2 * k, 1e-4, 100.0 - 10 * k) for k in range(2)]
+    plan = plan_rings([0, 0.5 * R], [0.5 * R, R], mats, shape=shape,
+                      height_mm=40.0 if shape == "cylinder" else None, sheet_thickness_mm=40.0 if shape == "cylinder"
+                      else 100.0, sizing="contain", kerf_mm=0.5, board_width_mm=600, board_length_mm=1200,
+                      registration_hole_mm=6.0)
+    fab = fabricate_rings(plan, "t", drawings=True)
+    kinds = set()
+    for d in fab.drawings:
+        write_dxf(dxf_document(d), tmp_path / "d.dxf")
+        cut = ezdxf.readfile(tmp_path / "d.dxf").modelspace().query("LWPOLYLINE[layer=='CUT']")
+        assert len(cut) == len(d.cut) and len(d.arcs) == len(d.cut)
+        for k, (entity, ring) in enumerate(zip(cut, d.cut)):
+            bulges = [p[4] for p in entity.get_points()]
+            assert any(bulges)                                                   # true arcs, not facets
+            exact = np.array(_exact_points(entity.get_points("xyb")))
+            off = max(shapely.distance(shapely.points(exact), LinearRing(ring)).max(),
+                      shapely.distance(shapely.points(np.array(ring)), LinearRing(exact)).max())
+            assert off < 0.012, (d.label, k)                                     # hole chord tol 0.01
+            kinds.add("circle" if len(bulges) == 2 else "sector" if len(bulges) == 4 else "disc sector")
+    assert {"circle", "sector"} <= kinds and (shape == "cylinder" or "disc sector" in kinds)
+
+
+def _exact_points(vertices, step_rad: float = 1e-3) -> list[tuple[float, float]]:
+    """A closed bulge path sampled on its true arcs (ezdxf's exact bulge → arc conversion; its
+    path flattening uses Bézier approximations 0.05 mm off on a 192 mm radius)."""
+    from ezdxf.math import bulge_to_arc
+    points = []
+    for (x0, y0, b), (x1, y1, _) in zip(vertices, list(vertices[1:]) + [vertices[0]]):
+        points.append((x0, y0))
+        if b:
+            centre, a_start, a_end, r = bulge_to_arc((x0, y0), (x1, y1), b)
+            sweep = (a_end - a_start) % (2 * math.pi)
+            angles = a_start + np.linspace(0.0, sweep, max(2, int(sweep / step_rad)))[1:-1]
+            arc = [(centre.x + r * math.cos(a), centre.y + r * math.sin(a)) for a in angles]
+            points += arc if b > 0 else arc[::-1]
+    return points

@@ -48,7 +48,7 @@ from antenna_cad.fabrication.cutlist import CutRow, cutlist_csv
 from antenna_cad.fabrication.layup import Cradle
 from antenna_cad.fabrication.nesting import Placement, nest
 from antenna_cad.fabrication.outline import CHORD_TOL_MM, NEST_SPACING_MM, circle_polygon, fits_board, foot_polygon
-from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
+from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, BulgePath, Drawing
 from antenna_cad.materials import Material
 from antenna_cad.synthesis.checks import Check
 
@@ -439,10 +439,44 @@ class RingPiece:
             inner = np.empty((0, 2))
         return Polygon(np.vstack([outer, inner]), holes)
 
+    def cut_arcs(self, kerf_mm: float) -> list[BulgePath]:
+        """``cut_path`` with true arcs (DXF bulges), its rings in the same order: the outline,
+        then the through holes, then the inner circle."""
+        r, c = self.ring, kerf_mm / 2
+        ro, ri = r.r_outer_mm + c, r.r_inner_mm - c
+        holes = [_circle(h.diameter_mm / 2 - c, h.x_mm, h.y_mm) for h in self.holes if h.face == "through"]
+        if not self.is_sector:
+            return [_circle(ro), *holes] + ([_circle(ri)] if r.r_inner_mm > 0 else [])
+        a0, a1 = self.a0_rad, self.a1_rad
+        g_o = math.asin(min(c / ro, 1.0))
+        path = [_polar(ro, a0 - g_o, math.tan((a1 - a0 + 2 * g_o) / 4)), _polar(ro, a1 + g_o, 0.0)]
+        if ri > c:
+            g_i = math.asin(c / ri)
+            path += [_polar(ri, a1 + g_i, -math.tan((a1 - a0 + 2 * g_i) / 4)), _polar(ri, a0 - g_i, 0.0)]
+        elif self.half_rad < math.pi / 2 - 1e-12:                                  # apex of a disc sector
+            bis = 0.5 * (a0 + a1)
+            path.append(_polar(-c / math.sin(self.half_rad), bis, 0.0))
+        return [path, *holes]
+
     @cached_property
     def polygon(self) -> Polygon:
         """Nominal part (the size it must come out), sheet frame."""
         return self.cut_path(0.0)
+
+
+def _circle(radius: float, x: float = 0.0, y: float = 0.0) -> BulgePath:
+    """A full circle as two half-circle bulges (counter-clockwise)."""
+    return [(x + radius, y, 1.0), (x - radius, y, 1.0)]
+
+
+def _polar(radius: float, angle: float, bulge: float) -> tuple[float, float, float]:
+    return radius * math.cos(angle), radius * math.sin(angle), bulge
+
+
+def _rotated(paths: list[BulgePath], degrees: float) -> list[BulgePath]:
+    """Paths turned about the origin (bulges are invariant under rotation)."""
+    c, s = math.cos(math.radians(degrees)), math.sin(math.radians(degrees))
+    return [[(c * x - s * y, s * x + c * y, b) for x, y, b in path] for path in paths]
 
 
 @dataclass(frozen=True)
@@ -635,7 +669,7 @@ def _nest_in_holes(items: list, kerf: float) -> tuple[dict[str, str], float]:
 def _sheet_drawing(plan: RingLayupPlan, sheet: RingSheet, pieces: list[RingPiece], title: str) -> Drawing:
     d = Drawing(sheet.label)
     for p in pieces:
-        d.add_polygon(p.cut_path(plan.kerf_mm))
+        d.add_polygon(p.cut_path(plan.kerf_mm), p.cut_arcs(plan.kerf_mm) if isinstance(p, RingPiece) else None)
     for ring in sheet.rings:
         a = math.radians(20 + 25 * (ring.shell_index % 7))
         rm = 0.5 * (ring.r_inner_mm + ring.r_outer_mm)
@@ -673,7 +707,7 @@ def _piece_drawing(plan: RingLayupPlan, sheet: RingSheet, piece, title: str) -> 
     path = piece.cut_path(plan.kerf_mm)
     if piece.is_sector:
         rot = piece.nest_rotation_deg
-        d.add_polygon(affinity.rotate(path, rot, origin=(0, 0)))
+        d.add_polygon(affinity.rotate(path, rot, origin=(0, 0)), _rotated(piece.cut_arcs(plan.kerf_mm), rot))
         y_in = max(ring.r_inner_mm - 15.0, 0.0)
         d.marks.append([(0.0, y_in), (0.0, ring.r_outer_mm + 15.0)])                # bisector
         d.texts.append((f"{piece.label}", 3.0, 0.5 * (ring.r_inner_mm + ring.r_outer_mm), TEXT_HEIGHT_MM))
@@ -682,7 +716,7 @@ def _piece_drawing(plan: RingLayupPlan, sheet: RingSheet, piece, title: str) -> 
                  f"of the sheet frame; the MARK line is its bisector, the arc centre lies on it "
                  f"{ring.r_outer_mm:.2f} mm below the outer arc"]
     else:
-        d.add_polygon(path)
+        d.add_polygon(path, piece.cut_arcs(plan.kerf_mm))
         _frame_marks(d, max(ring.r_outer_mm, 20.0))
         where = ["drawn in the sheet frame: align the +X tick with the sheet's +X mark"]
     holes = _holes_text(piece.holes) if piece.holes else "no dowel holes"

@@ -37,16 +37,29 @@ CAP_HEIGHT_EM = 0.72                             # Helvetica: DXF text height is
 CHAR_WIDTH_EM = 0.6                              # generous mean advance, for page extents only
 
 
+BulgePath = list[tuple[float, float, float]]     # closed path: vertex x, y and the DXF bulge to the next
+
+
 @dataclass
 class Drawing:
-    """A template in drawing coordinates (mm). ``cut`` rings are tool paths; ``marks`` open polylines."""
+    """A template in drawing coordinates (mm). ``cut`` rings are tool paths (polylines within the
+    template chord tolerance, drawn in SVG and PDF); ``arcs`` maps a ``cut`` index to the same
+    path with true circular arcs (DXF bulges), written to the DXF instead when present;
+    ``marks`` are open polylines."""
     label: str
     cut: list[list[tuple[float, float]]] = field(default_factory=list)
+    arcs: dict[int, BulgePath] = field(default_factory=dict)
     marks: list[list[tuple[float, float]]] = field(default_factory=list)
     texts: list[tuple[str, float, float, float]] = field(default_factory=list)   # text, x, y, height
 
-    def add_polygon(self, poly: Polygon) -> None:
-        for ring in [poly.exterior, *poly.interiors]:
+    def add_polygon(self, poly: Polygon, arcs: list[BulgePath] | None = None) -> None:
+        """The polygon's rings as cut paths; ``arcs``: their exact versions, in the same order."""
+        rings = [poly.exterior, *poly.interiors]
+        if arcs is not None and len(arcs) != len(rings):
+            raise ValueError(f"{self.label}: {len(arcs)} arc paths for {len(rings)} polygon rings")
+        for k, ring in enumerate(rings):
+            if arcs is not None:
+                self.arcs[len(self.cut)] = arcs[k]
             self.cut.append([(round(x, 4), round(y, 4)) for x, y in ring.coords[:-1]])
 
     def add_cross(self, x: float, y: float, size: float) -> None:
@@ -84,8 +97,11 @@ def dxf_document(drawing: Drawing) -> ezdxf.document.Drawing:
     for name, color in LAYERS.items():
         doc.layers.add(name, color=color)
     msp = doc.modelspace()
-    for ring in drawing.cut:
-        msp.add_lwpolyline(ring, close=True, dxfattribs={"layer": "CUT"})
+    for k, ring in enumerate(drawing.cut):
+        if k in drawing.arcs:
+            msp.add_lwpolyline(drawing.arcs[k], format="xyb", close=True, dxfattribs={"layer": "CUT"})
+        else:
+            msp.add_lwpolyline(ring, close=True, dxfattribs={"layer": "CUT"})
     for line in drawing.marks:
         msp.add_lwpolyline(line, close=False, dxfattribs={"layer": "MARK"})
     for text, x, y, h in drawing.texts:

@@ -23,7 +23,6 @@ from shapely.geometry import Polygon, box
 from antenna_cad.fabrication.vector_pdf import PT_PER_MM, VectorPdf, num, polyline_ops, text_ops
 
 _EZDXF_MARKER = re.compile(r"(\d+\.\d+\.\d+) @ \d{4}-\d\d-\d\dT[\d:.]+\+00:00")
-MM_PER_INCH = 25.4
 A4_MM = (210.0, 297.0)
 PAGE_MARGIN_MM = 10.0
 HEADER_MM, FOOTER_MM = 12.0, 18.0

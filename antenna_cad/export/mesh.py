@@ -52,7 +52,7 @@ def mesh_shape(shape: Shape, tolerance_mm: float, meshers: tuple[str, ...] = tup
 def picture_meshes(shapes: list[Shape], tolerance_mm: float) -> list[trimesh.Trimesh]:
     """Unmerged triangle soups of many shapes, meshed together in one pass (for pictures: no
     watertightness needed, no per-part meshing call)."""
-    compound = Compound(children=shapes)
+    compound = Compound(shapes)                    # a plain wrapper: the parts are not re-parented
     for name in MESHERS:
         if _triangulate(compound, tolerance_mm, name):
             break

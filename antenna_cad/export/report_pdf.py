@@ -72,8 +72,8 @@ def _files_by_folder(files) -> list[tuple]:
     for f, _ in files:
         if "/" in f:
             folder, name = f.split("/", 1)
-            kinds = folders.setdefault(folder, {})
-            kinds[name.rsplit(".", 1)[-1]] = kinds.get(name.rsplit(".", 1)[-1], 0) + 1
+            kinds, ext = folders.setdefault(folder, {}), name.rsplit(".", 1)[-1]
+            kinds[ext] = kinds.get(ext, 0) + 1
     return top + [(f"{folder}/ ({sum(k.values())} files: "
                    + ", ".join(f"{n} .{ext}" for ext, n in sorted(k.items())) + ")", "")
                   for folder, k in sorted(folders.items())]

@@ -26,6 +26,7 @@ _EZDXF_MARKER = re.compile(r"(\d+\.\d+\.\d+) @ \d{4}-\d\d-\d\dT[\d:.]+\+00:00")
 A4_MM = (210.0, 297.0)
 PAGE_MARGIN_MM = 10.0
 HEADER_MM, FOOTER_MM = 12.0, 18.0
+WINDOW_MM = (A4_MM[0] - 2 * PAGE_MARGIN_MM, A4_MM[1] - 2 * PAGE_MARGIN_MM - HEADER_MM - FOOTER_MM)  # per tile
 OVERLAP_MM = 10.0
 CHECK_BAR_MM = 100.0
 TEXT_HEIGHT_MM = 6.0
@@ -71,9 +72,10 @@ class Drawing:
         xs, ys = [p[0] for p in pts], [p[1] for p in pts]
         return min(xs), min(ys), max(xs), max(ys)
 
-    def extents(self) -> tuple[float, float, float, float]:
-        """``bounds`` grown by the texts' boxes (estimated advance widths)."""
-        x0, y0, x1, y1 = self.bounds()
+    def extents(self, bounds: tuple[float, float, float, float] | None = None) -> tuple[float, float, float, float]:
+        """``bounds`` (pass them when already computed) grown by the texts' boxes (estimated
+        advance widths)."""
+        x0, y0, x1, y1 = bounds or self.bounds()
         for text, x, y, size in self.texts:
             x1 = max(x1, x + len(text) * CHAR_WIDTH_EM * size / CAP_HEIGHT_EM)
             y1 = max(y1, y + size)
@@ -149,11 +151,11 @@ def write_svg(drawing: Drawing, path: Path) -> None:
     path.write_text("\n".join(out), encoding="utf-8")
 
 
-def tile_windows(drawing: Drawing) -> tuple[list[tuple[int, int, float, float]], float, float]:
-    """Tile origins (row, col, x, y) covering the drawing; only tiles that hold something."""
-    x0, y0, x1, y1 = drawing.bounds()
-    win_w = A4_MM[0] - 2 * PAGE_MARGIN_MM
-    win_h = A4_MM[1] - 2 * PAGE_MARGIN_MM - HEADER_MM - FOOTER_MM
+def tile_windows(drawing: Drawing, bounds: tuple[float, float, float, float]) -> list[tuple[int, int, float, float]]:
+    """Tile origins (row, col, x, y) covering the drawing (its ``bounds``); only tiles that hold
+    something."""
+    x0, y0, x1, y1 = bounds
+    win_w, win_h = WINDOW_MM
     step_w, step_h = win_w - OVERLAP_MM, win_h - OVERLAP_MM
     cols = max(1, math.ceil((x1 - x0 - OVERLAP_MM) / step_w))
     rows = max(1, math.ceil((y1 - y0 - OVERLAP_MM) / step_h))
@@ -165,7 +167,7 @@ def tile_windows(drawing: Drawing) -> tuple[list[tuple[int, int, float, float]],
             window = box(wx, wy, wx + win_w, wy + win_h)
             if any(window.intersects(g.exterior) or g.contains(window) for g in geometry) or not geometry:
                 tiles.append((r, c, wx, wy))
-    return tiles, win_w, win_h
+    return tiles
 
 
 def write_tiled_pdf(drawings: list[Drawing], path: Path, title: str) -> int:
@@ -173,21 +175,21 @@ def write_tiled_pdf(drawings: list[Drawing], path: Path, title: str) -> int:
     drawing is one Form XObject (with registration crosses at the centres of the overlap strips,
     the same model points on neighbouring pages); a page clips it to its window and scales it by
     exactly 72/25.4 pt per mm, then adds the header and a 100 mm check bar in page space."""
-    left, bottom = PAGE_MARGIN_MM, PAGE_MARGIN_MM + FOOTER_MM
     with VectorPdf(path, A4_MM, title) as pdf:
         for drawing in drawings:
-            tiles, win_w, win_h = tile_windows(drawing)
-            form = pdf.add_form(_form_content(drawing, win_w, win_h), _padded(drawing.extents(), 10.0))
+            bounds = drawing.bounds()
+            tiles = tile_windows(drawing, bounds)
+            form = pdf.add_form(_form_content(drawing, bounds), _padded(drawing.extents(bounds), 10.0))
             for k, (r, c, wx, wy) in enumerate(tiles, start=1):
                 header = (f"{title} · {drawing.label} · tile row {r + 1} col {c + 1} · page {k}/{len(tiles)}"
                           " · print at 100 % (actual size)")
-                pdf.add_page(_page_content(form, wx, wy, win_w, win_h, left, bottom, header), (form,))
+                pdf.add_page(_page_content(form, wx, wy, header), (form,))
         return pdf.page_count
 
 
-def _form_content(drawing: Drawing, win_w: float, win_h: float) -> bytes:
-    x0, y0, x1, y1 = drawing.bounds()
-    step_w, step_h = win_w - OVERLAP_MM, win_h - OVERLAP_MM
+def _form_content(drawing: Drawing, bounds: tuple[float, float, float, float]) -> bytes:
+    x0, y0, x1, y1 = bounds
+    step_w, step_h = WINDOW_MM[0] - OVERLAP_MM, WINDOW_MM[1] - OVERLAP_MM
     half = OVERLAP_MM / 2
     xs = x0 + half + step_w * np.arange(-1, math.ceil((x1 - x0) / step_w) + 2)
     ys = y1 - half - step_h * np.arange(-1, math.ceil((y1 - y0) / step_h) + 2)
@@ -202,11 +204,11 @@ def _form_content(drawing: Drawing, win_w: float, win_h: float) -> bytes:
     return body + b"".join(text_ops(text, x, y, size / CAP_HEIGHT_EM) for text, x, y, size in drawing.texts)
 
 
-def _page_content(form: int, wx: float, wy: float, win_w: float, win_h: float, left: float, bottom: float,
-                  header: str) -> bytes:
+def _page_content(form: int, wx: float, wy: float, header: str) -> bytes:
     """Page-space operators in points: clipped window holding the form at 1:1, frame, header, bar."""
     k = PT_PER_MM
-    window = f"{num(left * k)} {num(bottom * k)} {num(win_w * k)} {num(win_h * k)} re"
+    left, bottom = PAGE_MARGIN_MM, PAGE_MARGIN_MM + FOOTER_MM
+    window = f"{num(left * k)} {num(bottom * k)} {num(WINDOW_MM[0] * k)} {num(WINDOW_MM[1] * k)} re"
     ops = [f"q {window} W n {k:.9f} 0 0 {k:.9f} {num((left - wx) * k)} {num((bottom - wy) * k)} cm "
            f"/X{form} Do Q\n",
            f"0.3 w 0.5 G {window} S\n0 G 0 g 0.6 w\n"]

@@ -62,5 +62,47 @@ def test_all_problems_reported_at_once():
 def test_yaml_syntax_error(tmp_path):
     bad = tmp_path / "bad.yaml"
     bad.write_text("name: [unclosed\n")
-    with pytest.raises(SpecError, match="not valid YAML"):
+    with pytest.raises(SpecError, match=r"bad.yaml: line 2, column 1: YAML syntax: .*line 1, column 7"):
         load_spec(bad)
+
+
+BILLION_LAUGHS = "".join(f"{c}: &{c} [{', '.join([f'*{p}'] * 9) if p else '1, 1, 1, 1, 1, 1, 1, 1, 1'}]\n"
+                         for p, c in zip([""] + list("abcdefgh"), "abcdefghi"))
+
+
+@pytest.mark.parametrize("text,expected", [
+    (BILLION_LAUGHS, "line 5, column 4: expands to more than 20000 values"),
+    ("a: " + "[" * 500 + "]" * 500, "line 1, column 35: nested deeper than 32 levels"),
+    ("a: &a [*a]\n", "line 1, column 4: an alias refers to its own anchor"),
+    ("name: x\nkind: collimator\nname: y\n", "line 3, column 1: duplicate key 'name' (first at line 1)"),
+    ("? [a, b]\n: 1\n", "line 1, column 3: a key must be a plain value"),
+    (b"name: ok\nmaterial: \xe9\n", "line 2: not UTF-8 text (byte 0xe9)"),
+    ("kind: [a, b]\n", "kind: must be one of bifocal, collimator, luneburg, slot_array (got ['a', 'b'])"),
+    ("a: [" + "1, " * 2500 + "1]\n", "line 1, column 4: more than 2000 items"),
+    ("#" * 300_000, "larger than 256 KiB"),
+])
+def test_hostile_yaml_one_clean_line(tmp_path, text, expected):
+    bad = tmp_path / "bad.yaml"
+    (bad.write_bytes if isinstance(text, bytes) else bad.write_text)(text)
+    with pytest.raises(SpecError) as err:
+        load_spec(bad)
+    assert err.value.lines == [f"{bad}: {expected}" + err.value.lines[0].split(expected, 1)[1]]
+
+
+def test_merge_keys_may_override(tmp_path):
+    from antenna_cad.spec.reader import read_yaml
+    p = tmp_path / "m.yaml"
+    p.write_text("base: &b {x: 1, y: 2}\nuse: {<<: *b, y: 3}\n")
+    assert read_yaml(p)["use"] == {"x": 1, "y": 3}
+
+
+@pytest.mark.parametrize("path,value,expected", [
+    ("fabrication.method", "sheet-layup", "fabrication.method: must be one of 'sheet_layup', 'solid' (got 'sheet-layup')"),
+    ("design.antenna.aperture_mm", float("inf"), "design.antenna.aperture_mm: must be a finite number"),
+    ("design.diameter_mm", float("nan"), "design.diameter_mm: must be a finite number"),
+    ("design.antenna", {"aperture_mm": "x" * 500}, "(got 'xxxxxxxx"),
+])
+def test_enum_and_non_finite_errors_are_short(path, value, expected):
+    with pytest.raises(SpecError) as err:
+        parse_spec(_with(path, value), "s.yaml")
+    assert expected in err.value.lines[0] and len(err.value.lines[0]) < 200

@@ -9,13 +9,13 @@ import json
 from pathlib import Path
 from typing import Annotated, Union
 
-import yaml
 from pydantic import BaseModel, Field, TypeAdapter, ValidationError
 
 from antenna_cad.spec.bifocal import BifocalSpec
 from antenna_cad.spec.collimator import CollimatorSpec
 from antenna_cad.spec.common import UNION_TAGS
 from antenna_cad.spec.luneburg import LuneburgSpec
+from antenna_cad.spec.reader import ReadError, read_yaml
 from antenna_cad.spec.slot_array import SlotArraySpec
 
 SPEC_MODELS: dict[str, type[BaseModel]] = {
@@ -39,42 +39,60 @@ _WORDING = (("Input should be ", "must be "), ("greater than or equal to ", "≥
             ("Field required", "required field is missing"), ("String should match pattern", "must match the pattern"))
 
 
+MAX_GOT = 60          # characters of the offending value quoted in a message
+MAX_LINES = 20       # problems listed; the rest summed up
+
+
+def _got(value: object) -> str:
+    text = repr(value)
+    return text if len(text) <= MAX_GOT else text[:MAX_GOT - 1] + "…"
+
+
 def _format(source: str, err: dict) -> str:
     loc = ".".join(str(p) for p in err["loc"] if p not in UNION_TAGS)
     msg = err["msg"].removeprefix("Value error, ")
     for long, short in _WORDING:
         msg = msg.replace(long, short)
-    got = "" if err["type"] in ("missing", "model_type") else f" (got {err.get('input')!r})"
+    got = "" if err["type"] in ("missing", "model_type") else f" (got {_got(err.get('input'))})"
     if not loc and ": " in msg and msg.split(": ", 1)[0].replace("_", "").replace(".", "").isalnum():
         loc, msg = msg.split(": ", 1)           # model validators name their field and the number
         got = ""
     if err["type"] == "extra_forbidden":
         msg, got = "unknown key (not allowed here)", ""
+    if err["type"] in ("union_tag_invalid", "union_tag_not_found"):   # name the tag, not the whole block
+        ctx = err.get("ctx", {})
+        key = str(ctx.get("discriminator", "")).strip("'")
+        loc = f"{loc}.{key}" if loc and key else (key or loc)
+        if err["type"] == "union_tag_not_found":
+            msg, got = f"required field is missing (one of {ctx.get('expected_tags', '?')})", ""
+        else:
+            msg, got = f"must be one of {ctx.get('expected_tags', '?')}", f" (got {_got(ctx.get('tag'))})"
     return f"{source}: {loc or '<root>'}: {msg}{got}"
 
 
 def parse_spec(data: object, source: str = "<spec>") -> BaseModel:
     """Validate a parsed YAML document; raise SpecError naming every bad field."""
     if not isinstance(data, dict):
-        raise SpecError([f"{source}: <root>: must be a mapping of spec fields"])
+        raise SpecError([f"{source}: <root>: must be a mapping of spec fields (got {_got(data)})"])
     kind = data.get("kind")
-    if kind not in SPEC_MODELS:
-        raise SpecError([f"{source}: kind: must be one of {', '.join(sorted(SPEC_MODELS))} (got {kind!r})"])
+    if not isinstance(kind, str) or kind not in SPEC_MODELS:
+        raise SpecError([f"{source}: kind: must be one of {', '.join(sorted(SPEC_MODELS))} (got {_got(kind)})"])
     try:
         return SPEC_MODELS[kind].model_validate(data)
     except ValidationError as exc:
-        raise SpecError([_format(source, e) for e in exc.errors()]) from None
+        lines = [_format(source, e) for e in exc.errors()]
+        if len(lines) > MAX_LINES:
+            lines = lines[:MAX_LINES] + [f"{source}: <root>: … and {len(lines) - MAX_LINES} more problems"]
+        raise SpecError(lines) from None
 
 
 def load_spec(path: str | Path) -> BaseModel:
-    """Read and validate a spec file (YAML, ``safe_load``)."""
+    """Read and validate a spec file (bounded strict YAML, :mod:`antenna_cad.spec.reader`)."""
     path = Path(path)
     try:
-        data = yaml.safe_load(path.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise SpecError([f"{path}: cannot read: {exc.strerror}"]) from None
-    except yaml.YAMLError as exc:
-        raise SpecError([f"{path}: not valid YAML: {str(exc).splitlines()[0]}"]) from None
+        data = read_yaml(path)
+    except ReadError as exc:
+        raise SpecError([f"{path}: {exc}"]) from None
     return parse_spec(data, str(path))
 
 

@@ -13,7 +13,7 @@ from antenna_cad.materials import LIBRARY, Material
 
 
 class StrictModel(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)   # every number finite
 
 
 class InlineMaterial(StrictModel):

@@ -226,7 +226,7 @@ def test_tolerance_budget_names_the_dominant_tolerance(seed):
 # ------------------------------------------------------------------ spec errors
 
 @pytest.mark.parametrize("stocks, message", [
-    ([50, -5], "fabrication.stock_thicknesses_mm.1: must be > 0 (got -5)"),
+    ([50, -5], "fabrication.stock_thicknesses_mm.1: must be ≥ 0.5 (got -5)"),
     ([50, 50], "fabrication.stock_thicknesses_mm: thicknesses must be distinct"),
     ([], "fabrication.stock_thicknesses_mm:"),
 ])

@@ -37,7 +37,7 @@ def test_validate_good_recipe_writes_nothing(tmp_path, monkeypatch):
 
 
 @pytest.mark.parametrize("edit,expected", [
-    ({"design": {"diameter_mm": 500, "focal_length_mm": -4}}, "design.focal_length_mm: must be > 0 (got -4)"),
+    ({"design": {"diameter_mm": 500, "focal_length_mm": -4}}, "design.focal_length_mm: must be ≥ 1 (got -4)"),
     ({"design": {"diameter_mm": 1000, "focal_length_mm": 1500}},
      "design.focal_length_mm: rim ray is totally internally reflected"),
 ])

@@ -5,7 +5,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from antenna_cad.spec import SpecError, json_schema_text, load_spec, parse_spec
+from antenna_cad.spec import SPEC_MODELS, SpecError, json_schema_text, load_spec, parse_spec
 
 ROOT = Path(__file__).resolve().parents[1]
 RECIPES = sorted((ROOT / "recipes").glob("*.yaml"))
@@ -34,7 +34,7 @@ def _with(path: str, value):
 
 
 @pytest.mark.parametrize("path,value,expected", [
-    ("design.focal_length_mm", -4, "s.yaml: design.focal_length_mm: must be > 0 (got -4)"),
+    ("design.focal_length_mm", -4, "s.yaml: design.focal_length_mm: must be ≥ 1 (got -4)"),
     ("design.colour", "red", "s.yaml: design.colour: unknown key (not allowed here)"),
     ("design.diameter_mm", "big", "s.yaml: design.diameter_mm: must be a valid number"),
     ("fabrication.pedestal_height_mm", 30, "s.yaml: fabrication.pedestal_height_mm: must be ≥ 50 (got 30)"),
@@ -106,3 +106,16 @@ def test_enum_and_non_finite_errors_are_short(path, value, expected):
     with pytest.raises(SpecError) as err:
         parse_spec(_with(path, value), "s.yaml")
     assert expected in err.value.lines[0] and len(err.value.lines[0]) < 200
+
+
+@pytest.mark.parametrize("kind", sorted(SPEC_MODELS))
+def test_every_number_has_a_physical_range(kind):
+    """spec.bounds: every number and list of every kind is bounded (new kinds adopt it by declaring bounds)."""
+    from antenna_cad.spec.bounds import unbounded_fields
+    assert unbounded_fields(SPEC_MODELS[kind]) == []
+
+
+def test_denormal_is_refused_with_its_field():
+    with pytest.raises(SpecError) as err:
+        parse_spec(_with("fabrication.kerf_mm", 1e-300), "s.yaml")
+    assert err.value.lines == ["s.yaml: fabrication.kerf_mm: must be 0 or at least 1e-09 in magnitude (got 1e-300)"]

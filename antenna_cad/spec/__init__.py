@@ -54,7 +54,9 @@ def _format(source: str, err: dict) -> str:
     for long, short in _WORDING:
         msg = msg.replace(long, short)
     got = "" if err["type"] in ("missing", "model_type") else f" (got {_got(err.get('input'))})"
-    if not loc and ": " in msg and msg.split(": ", 1)[0].replace("_", "").replace(".", "").isalnum():
+    head = msg.split(": ", 1)[0]
+    if (": " in msg and head.replace("_", "").replace(".", "").isalnum()
+            and (not loc or head.split(".")[0] == loc.split(".")[0])):
         loc, msg = msg.split(": ", 1)           # model validators name their field and the number
         got = ""
     if err["type"] == "extra_forbidden":

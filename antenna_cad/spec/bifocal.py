@@ -8,36 +8,40 @@ from typing import Literal
 
 from pydantic import Field, model_validator
 
+from antenna_cad.spec.bounds import MIN_DEG, MIN_MM, MIN_RATIO
 from antenna_cad.spec.common import SheetLayupSpec, SpecBase, StrictModel
+
+
+COEF = 10.0      # |normalised coefficient| (D = 1): beyond it the lens is not a lens
 
 
 class KinberSpec(StrictModel):
     """Seed-001 §3.1 central-segment parameters of Kinber's construction, in units of the aperture
     D (the seed normalises D = 1; the lens is scaled to D = 2·edge_y_mm)."""
-    a0: float = Field(description="illuminated face vertex x")
-    a2: float = Field(description="illuminated central parabola coefficient")
-    h1: float = Field(gt=0, lt=0.5, description="half-height of the central segment")
-    b0: float = Field(description="shadow face vertex x")
-    b2: float = Field(description="shadow central parabola coefficient")
-    h2: float | None = Field(None, gt=0, lt=0.5, description="shadow segment half-height (None: A–O–B collinear)")
-    rho1: float = Field(gt=0, description="focal distance of F1 from the origin")
+    a0: float = Field(ge=-COEF, le=COEF, description="illuminated face vertex x")
+    a2: float = Field(ge=-COEF, le=COEF, description="illuminated central parabola coefficient")
+    h1: float = Field(ge=MIN_RATIO, lt=0.5, description="half-height of the central segment")
+    b0: float = Field(ge=-COEF, le=COEF, description="shadow face vertex x")
+    b2: float = Field(ge=-COEF, le=COEF, description="shadow central parabola coefficient")
+    h2: float | None = Field(None, ge=MIN_RATIO, lt=0.5, description="shadow segment half-height (None: A–O–B collinear)")
+    rho1: float = Field(ge=MIN_RATIO, le=COEF, description="focal distance of F1 from the origin")
 
 
 class BifocalDesignSpec(StrictModel):
-    edge_x_mm: float | None = Field(None, gt=0, le=200000,
+    edge_x_mm: float | None = Field(None, ge=0.1, le=200000,
                                     description="X_B: axial position of the zero-thickness rim (nikulina)")
-    edge_y_mm: float = Field(gt=0, le=10000, description="Y_B: aperture half-size (rim radius)")
-    focus_offset_mm: float | None = Field(None, gt=0, description="a: foci at (0, ±a); or give beam_tilt_deg")
-    beam_tilt_deg: float | None = Field(None, gt=0, lt=90, description="α: beam tilt of each focus; or give a")
-    antenna_x_mm: float | None = Field(None, gt=0, description="c: antenna-under-test plane "
+    edge_y_mm: float = Field(ge=0.1, le=10000, description="Y_B: aperture half-size (rim radius)")
+    focus_offset_mm: float | None = Field(None, ge=MIN_MM, le=200000, description="a: foci at (0, ±a); or give beam_tilt_deg")
+    beam_tilt_deg: float | None = Field(None, ge=MIN_DEG, lt=90, description="α: beam tilt of each focus; or give a")
+    antenna_x_mm: float | None = Field(None, ge=0.1, le=1e6, description="c: antenna-under-test plane "
                                        "(default: 100 mm beyond the (3.15) limit)")
     shape: Literal["revolved", "cylindrical"] = Field(
         "revolved", description="revolved: the section turned about the axis (a ring of foci); "
         "cylindrical: the section extruded by height_mm (exact in every section)")
-    height_mm: float | None = Field(None, gt=0, le=20000, description="extrusion height (cylindrical only)")
+    height_mm: float | None = Field(None, ge=0.1, le=20000, description="extrusion height (cylindrical only)")
     construction: Literal["nikulina", "kinber"] = "nikulina"
     kinber: KinberSpec | None = Field(None, description="construction: kinber only — its parameters")
-    phase_error_budget_deg: float = Field(22.5, gt=0, le=180, description="budget of the scan-range study")
+    phase_error_budget_deg: float = Field(22.5, ge=MIN_DEG, le=180, description="budget of the scan-range study")
 
     @model_validator(mode="after")
     def _consistent(self):

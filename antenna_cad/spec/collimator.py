@@ -6,19 +6,20 @@ from typing import Literal
 
 from pydantic import Field, model_validator
 
+from antenna_cad.spec.bounds import MIN_DEG
 from antenna_cad.spec.common import SheetLayupSpec, SpecBase, StrictModel
 
 
 class AntennaSpec(StrictModel):
     """Antenna under test behind the flat face (edge-margin check of seed-000 §4.6)."""
-    aperture_mm: float = Field(gt=0)
-    distance_mm: float = Field(100.0, ge=0, description="flat face to antenna aperture, l_ant")
+    aperture_mm: float = Field(ge=1, le=20000)
+    distance_mm: float = Field(100.0, ge=0, le=100000, description="flat face to antenna aperture, l_ant")
 
 
 class CollimatorDesign(StrictModel):
-    diameter_mm: float = Field(gt=0, le=20000)
-    focal_length_mm: float = Field(gt=0, le=200000, description="feed to lens vertex")
-    phase_error_budget_deg: float = Field(22.5, gt=0, le=180)
+    diameter_mm: float = Field(ge=1, le=20000)
+    focal_length_mm: float = Field(ge=1, le=200000, description="feed to lens vertex")
+    phase_error_budget_deg: float = Field(22.5, ge=MIN_DEG, le=180)
     antenna: AntennaSpec | None = None
 
 

@@ -10,10 +10,21 @@ from typing import Annotated, Literal, Union
 from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, field_validator
 
 from antenna_cad.materials import LIBRARY, Material
+from antenna_cad.spec.bounds import MAX_LIST, MIN_GHZ, MIN_SHEET_MM, TINY
 
 
 class StrictModel(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)   # every number finite
+    """Frozen, no unknown keys, every number finite and either 0 or of a magnitude ≥ TINY (a
+    denormal like 1e-308 is a typo, and breaks the solvers); ranges on fields (spec.bounds)."""
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
+
+    @field_validator("*", mode="after")
+    @classmethod
+    def _not_tiny(cls, value):
+        for x in value if isinstance(value, (tuple, list)) else (value,):
+            if isinstance(x, float) and 0 < abs(x) < TINY:
+                raise ValueError(f"must be 0 or at least {TINY:g} in magnitude")
+        return value
 
 
 class InlineMaterial(StrictModel):
@@ -21,7 +32,7 @@ class InlineMaterial(StrictModel):
     name: str = Field("custom", pattern=r"^[A-Za-z0-9_. -]+$")
     eps_r: float = Field(ge=1.0, le=100.0)
     tan_delta: float = Field(ge=0.0, lt=1.0)
-    density_kg_m3: float = Field(gt=0.0, le=25000.0)
+    density_kg_m3: float = Field(ge=1.0, le=25000.0)
 
 
 def _library_name(value: str) -> str:
@@ -45,16 +56,16 @@ def resolve_material(ref: str | InlineMaterial) -> Material:
 
 class BoardSpec(StrictModel):
     """Stock board size (seed-000 §3.1: XPS boards 600 × 1200 mm)."""
-    width_mm: float = Field(600.0, gt=0, le=5000)
-    length_mm: float = Field(1200.0, gt=0, le=10000)
+    width_mm: float = Field(600.0, ge=10, le=5000)
+    length_mm: float = Field(1200.0, ge=10, le=10000)
 
 
 class BoxSpec(StrictModel):
     """Clamping box around the pedestal (seed-000 §6.1 option 3); screws only in the box."""
     material: MaterialRef = "plywood"
-    wall_thickness_mm: float = Field(12.0, gt=0, le=100)
+    wall_thickness_mm: float = Field(12.0, ge=1, le=100)
     clearance_mm: float = Field(0.0, ge=0, le=20)
-    screw_diameter_mm: float = Field(4.0, gt=0, le=20)
+    screw_diameter_mm: float = Field(4.0, ge=1, le=20)
     screw_spacing_mm: float = Field(150.0, gt=10, le=1000)
     board: BoardSpec = BoardSpec(width_mm=1220.0, length_mm=2440.0)
 
@@ -64,7 +75,7 @@ class BoxSpec(StrictModel):
         return _library_name(v) if isinstance(v, str) else v
 
 
-SheetThickness = Annotated[float, Field(gt=0, le=200)]
+SheetThickness = Annotated[float, Field(ge=MIN_SHEET_MM, le=200)]
 XPS_STOCK_MM = (10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 80.0, 100.0)     # common XPS boards (seed-000 §3.1: 10–120 mm)
 
 
@@ -77,17 +88,17 @@ class SheetLayupSpec(StrictModel):
         Field(description="stock board thickness, or auto: the thickest of stock_thicknesses_mm whose "
               "unsanded stack meets the phase budget (the thinnest, with a sanding warning, when none does)")]
     stock_thicknesses_mm: tuple[SheetThickness, ...] = Field(
-        XPS_STOCK_MM, min_length=1, description="board thicknesses on offer, for sheet_thickness_mm: auto")
+        XPS_STOCK_MM, min_length=1, max_length=MAX_LIST, description="board thicknesses on offer, for sheet_thickness_mm: auto")
     board: BoardSpec = BoardSpec()
     pedestal_height_mm: float = Field(80.0, ge=50, le=1000)
-    pedestal_width_mm: float | None = Field(None, gt=0, description="default: 60 % of the lens diameter")
+    pedestal_width_mm: float | None = Field(None, ge=1, le=20000, description="default: 60 % of the lens diameter")
     kerf_mm: float = Field(0.0, ge=0, le=10)
     joining: Literal["dowels", "neck"] = Field(
         "dowels", description="dowels: foam dowels tie each lens disc to its neighbours, no material "
         "added in the aperture; neck: every sheet is one piece, small discs joined to the pedestal by "
         "a neck inside the aperture (reported)")
-    dowel_diameter_mm: float = Field(20.0, gt=0, le=200)
-    neck_width_mm: float = Field(40.0, gt=0, le=500)
+    dowel_diameter_mm: float = Field(20.0, ge=1, le=200)
+    neck_width_mm: float = Field(40.0, ge=1, le=500)
     box: BoxSpec = BoxSpec()
 
     @field_validator("stock_thicknesses_mm")
@@ -122,7 +133,7 @@ class OutputsSpec(StrictModel):
     stl: bool = True
     templates: bool = True
     report: bool = Field(True, description="report.html: figures, checks, plots, pictures, cut list")
-    mesh_tolerance_mm: float = Field(0.05, gt=0, le=5, description="absolute chord deviation of meshes")
+    mesh_tolerance_mm: float = Field(0.05, ge=0.001, le=5, description="absolute chord deviation of meshes")
 
 
 class TolerancesSpec(StrictModel):
@@ -136,7 +147,7 @@ class TolerancesSpec(StrictModel):
 
 class SpecBase(StrictModel):
     name: str = Field(pattern=r"^[a-z0-9][a-z0-9._-]*$", max_length=100)
-    frequency_ghz: float = Field(gt=0, le=1000)
+    frequency_ghz: float = Field(ge=MIN_GHZ, le=1000)
     material: MaterialRef
     fabrication: Fabrication
     outputs: OutputsSpec = OutputsSpec()

@@ -10,11 +10,15 @@ from typing import Annotated, Literal, Union
 
 from pydantic import Field, model_validator
 
+from antenna_cad.spec.bounds import MAX_LIST, MIN_RATIO, MIN_SHEET_MM
 from antenna_cad.spec.common import BoardSpec, SpecBase, StrictModel
 
 
+MAX_LAYERS = 100      # shells of a multilayer lens (seed-002 designs use 3–20)
+
+
 class OuterShellSpec(StrictModel):
-    a_over_r: float = Field(gt=0, lt=1)
+    a_over_r: float = Field(ge=MIN_RATIO, lt=1)
     eps_r: float = Field(ge=1.0, le=20.0)
 
 
@@ -24,7 +28,7 @@ class LadderSpec(StrictModel):
 
 
 class LayersSpec(StrictModel):
-    count: int | Literal["auto"] = "auto"
+    count: Annotated[int, Field(ge=1, le=MAX_LAYERS)] | Literal["auto"] = "auto"
     split: Literal["equal_eps", "equal_n", "equal_thickness", "ladder"] = "equal_eps"
     ladder: LadderSpec | None = None
 
@@ -32,30 +36,28 @@ class LayersSpec(StrictModel):
     def _ladder(self):
         if self.split == "ladder" and self.ladder is None:
             raise ValueError("design.layers.ladder: split 'ladder' needs {eps_outer, ratio}")
-        if isinstance(self.count, int) and self.count < 1:
-            raise ValueError(f"design.layers.count: must be ≥ 1 (got {self.count})")
         return self
 
 
 class FeedBossSpec(StrictModel):
     """Dielectric boss below the equator (−Y) to which the metal feed arm is fixed, outside the
     aperture cylinder; made of the outer layer's foam."""
-    diameter_mm: float = Field(40.0, gt=0, le=1000)
-    length_mm: float = Field(40.0, gt=0, le=2000)
+    diameter_mm: float = Field(40.0, ge=1, le=1000)
+    length_mm: float = Field(40.0, ge=1, le=2000)
 
 
 class LuneburgDesignSpec(StrictModel):
-    diameter_mm: float = Field(gt=0, le=20000)
+    diameter_mm: float = Field(ge=1, le=20000)
     focal_distance_ratio: float = Field(1.0, ge=1.0, le=10.0, description="b/R, feed distance from the centre")
     law: Literal["classic", "generalized", "outer_shell"] = "classic"
     outer_shell: OuterShellSpec | None = None
     layers: LayersSpec = LayersSpec()
     shape: Literal["sphere", "cylinder"] = "sphere"
-    height_mm: float | None = Field(None, gt=0, le=1000, description="cylinder: plate spacing")
+    height_mm: float | None = Field(None, ge=0.1, le=1000, description="cylinder: plate spacing")
     grades: list[Annotated[float, Field(ge=1.0, le=20.0)]] | None = Field(
-        None, description="available foam grades (εr); each layer takes the nearest")
+        None, max_length=MAX_LIST, description="available foam grades (εr); each layer takes the nearest")
     edge_taper_db: float = Field(-10.0, lt=0, ge=-40)
-    feed_q: float | None = Field(None, gt=0, le=50)
+    feed_q: float | None = Field(None, ge=MIN_RATIO, le=50)
 
     @model_validator(mode="after")
     def _rules(self):
@@ -73,7 +75,7 @@ class LuneburgShellsSpec(StrictModel):
     """Each shell as front/back hemispheres (moulded or machined), with foam alignment pins."""
     method: Literal["shells"]
     pins_per_shell: int = Field(3, ge=0, le=12)
-    pin_diameter_mm: float = Field(8.0, gt=0, le=100)
+    pin_diameter_mm: float = Field(8.0, ge=0.5, le=100)
     machining_allowance_mm: float = Field(3.0, ge=0, le=100, description="blank oversize on every side")
     feed_boss: FeedBossSpec | None = FeedBossSpec()
 
@@ -81,7 +83,7 @@ class LuneburgShellsSpec(StrictModel):
 class LuneburgLayupSpec(StrictModel):
     """Sphere sliced into sheets of stock thickness; each sheet a set of concentric rings."""
     method: Literal["sheet_layup"]
-    sheet_thickness_mm: float = Field(gt=0, le=200)
+    sheet_thickness_mm: float = Field(ge=MIN_SHEET_MM, le=200)
     board: BoardSpec = BoardSpec()
     kerf_mm: float = Field(0.0, ge=0, le=10)
     ring_sizing: Literal["contain", "mid_plane"] = Field(
@@ -95,7 +97,7 @@ class LuneburgLayupSpec(StrictModel):
         None, ge=20, le=1000, description="sphere: a stand — under every sheet a foot of the outer grade from "
         "the aperture circle down this far below the lens (a cradle, outside the aperture cylinder, feet "
         "dowelled to each other); none: no stand")
-    pedestal_width_mm: float | None = Field(None, gt=0, description="stand width; default 60 % of the diameter")
+    pedestal_width_mm: float | None = Field(None, ge=1, le=20000, description="stand width; default 60 % of the diameter")
 
 
 class LuneburgSpec(SpecBase):

@@ -9,32 +9,38 @@ is named in ``fabrication`` (method ``machined_plates``). The absorber of the ma
 
 from __future__ import annotations
 
-from typing import Literal
+from typing import Annotated, Literal
 
 from pydantic import Field, field_validator, model_validator
 
+from antenna_cad.spec.bounds import MAX_LIST, MIN_GHZ, MIN_MM, MIN_RATIO
 from antenna_cad.spec.common import (InlineMaterial, MaterialRef, SpecBase, StrictModel, _library_name,
                                      resolve_material)
 
 ABSORBER = InlineMaterial(name="absorber", eps_r=4.0, tan_delta=0.3, density_kg_m3=1600.0)
 
 
+COEF = 100.0     # |normalised beam-former coefficient| (D = 1)
+Coefficient = Annotated[float | None, Field(ge=-COEF, le=COEF)]
+FeedSize = Annotated[float, Field(ge=MIN_MM, le=10000)]
+
+
 class BandSpec(StrictModel):
-    min_ghz: float = Field(gt=0, le=1000)
-    max_ghz: float = Field(gt=0, le=1000)
-    design_ghz: float = Field(gt=0, le=1000, description="frequency of the synthesised slot line")
+    min_ghz: float = Field(ge=MIN_GHZ, le=1000)
+    max_ghz: float = Field(ge=MIN_GHZ, le=1000)
+    design_ghz: float = Field(ge=MIN_GHZ, le=1000, description="frequency of the synthesised slot line")
 
 
 class WaveguideSpec(StrictModel):
-    width_mm: float = Field(gt=0, le=500, description="broad-wall inner width a")
-    height_mm: float = Field(gt=0, le=500, description="narrow-wall inner height b")
+    width_mm: float = Field(ge=0.1, le=500, description="broad-wall inner width a")
+    height_mm: float = Field(ge=0.1, le=500, description="narrow-wall inner height b")
     fill_eps_r: float | None = Field(None, ge=1.0, le=100, description="default: εr of `material`")
     wall_mm: float = Field(0.0, ge=0, le=50, description="narrow (side) wall thickness; pitch ≥ a + 2·wall")
     termination: Literal["matched_load", "short"] = Field(
         "matched_load", description="far end of every guide: matched_load = absorber wedge in front of "
         "an end wall (takes the 1 − η left in the guide); short = end wall right after the last cell "
         "(the residual power reflects and radiates a mirrored beam)")
-    load_length_mm: float | None = Field(None, gt=0, le=2000,
+    load_length_mm: float | None = Field(None, ge=0.1, le=2000,
                                          description="absorber wedge length; default one guide wavelength "
                                          "at band.min_ghz")
     load_material: MaterialRef = Field(ABSORBER, description="lossy material of the load wedge")
@@ -47,32 +53,32 @@ class WaveguideSpec(StrictModel):
 
 class ArraySpec(StrictModel):
     count: int = Field(ge=1, le=500)
-    pitch_mm: float = Field(gt=0, le=1000)
-    length_mm: float = Field(gt=0, le=10000)
+    pitch_mm: float = Field(ge=0.1, le=1000)
+    length_mm: float = Field(ge=1, le=10000)
 
 
 class TaperSpec(StrictModel):
     law: Literal["sin", "exp", "cos_pedestal", "uniform"] = "sin"
-    eta: float = Field(0.9, gt=0, lt=1)
-    a0: float | None = Field(None, gt=0, description="α(L1) cell fit, default the Ka 4-slot cell")
-    b0: float | None = Field(None, gt=0)
+    eta: float = Field(0.9, ge=MIN_RATIO, lt=1)
+    a0: float | None = Field(None, ge=1e-6, le=COEF, description="α(L1) cell fit, default the Ka 4-slot cell")
+    b0: float | None = Field(None, ge=1e-6, le=COEF)
     pedestal: float = Field(0.3, ge=0, le=1)
 
 
 class SlotsSpec(StrictModel):
     layout: Literal["longitudinal_4", "longitudinal_pair", "transverse_3"]
-    width_mm: float = Field(gt=0, le=100)
-    period_mm: float | Literal["auto"] = "auto"
+    width_mm: float = Field(ge=MIN_MM, le=100)
+    period_mm: Annotated[float, Field(ge=0.1, le=1000)] | Literal["auto"] = "auto"
     design_angle_deg: float | None = Field(
         None, ge=-80, le=80, description="−1st-harmonic beam angle from broadside at band.design_ghz "
         "(+ toward the guides' far end); sets period_mm: auto (default 0: broadside, p = λg)")
     taper: TaperSpec = TaperSpec()
-    lengths_mm: list[float] | None = Field(None, description="per cell (or s1..s3 for transverse_3)")
-    l2_ratio: float = Field(0.68, gt=0, le=2)
-    offset_mm: float | None = Field(None, ge=0)
-    min_web_mm: float = Field(0.3, ge=0)
-    wall_clearance_mm: float = Field(0.2, ge=0)
-    min_coupling_gap_mm: float = Field(0.0, ge=0, description="first slot at least this far from the "
+    lengths_mm: list[Annotated[float, Field(ge=0, le=1000)]] | None = Field(None, max_length=MAX_LIST, description="per cell (or s1..s3 for transverse_3)")
+    l2_ratio: float = Field(0.68, ge=MIN_RATIO, le=2)
+    offset_mm: float | None = Field(None, ge=0, le=500)
+    min_web_mm: float = Field(0.3, ge=0, le=100)
+    wall_clearance_mm: float = Field(0.2, ge=0, le=100)
+    min_coupling_gap_mm: float = Field(0.0, ge=0, le=1000, description="first slot at least this far from the "
                                        "coupling slot's far edge (d2 = 7.8 mm in seed-003 §2.4)")
 
     @model_validator(mode="after")
@@ -92,28 +98,28 @@ BEAMFORMER_PARAMS = {"single_mirror": ("minor_semi_axis_mm", "focal_separation_m
 class BeamFormerSpec(StrictModel):
     type: Literal["single_mirror", "bifocal_two_mirror", "bifocal_mirror_lens"]
     # single_mirror (ellipse, seed-003 §3.5)
-    minor_semi_axis_mm: float | None = Field(None, gt=0)
-    focal_separation_mm: float | None = Field(None, ge=0)
+    minor_semi_axis_mm: float | None = Field(None, ge=0.1, le=100000)
+    focal_separation_mm: float | None = Field(None, ge=0, le=100000)
     # bifocal_two_mirror (normalised, §3.3)
-    a0: float | None = None
-    a2: float | None = None
-    h1: float | None = None
-    b0: float | None = None
-    b2: float | None = None
-    h2: float | None = None
-    rho1: float | None = None
+    a0: Coefficient = None
+    a2: Coefficient = None
+    h1: Coefficient = None
+    b0: Coefficient = None
+    b2: Coefficient = None
+    h2: Coefficient = None
+    rho1: Coefficient = None
     # bifocal_mirror_lens (normalised, §3.4)
-    lens_a2: float | None = None
-    lens_vertex: float | None = None
-    x0: float | None = None
-    p1: float | None = None
-    p2: float | None = None
-    f0: float | None = None
-    n: float | None = Field(None, ge=1.0)
-    scale_mm: float | None = Field(None, gt=0, description="physical size of the normalised D = 1")
-    slot_line_offset_mm: float = Field(10.0, ge=0, description="t0: last mirror → first slot line")
-    layer_height_mm: float = Field(1.6, gt=0, le=500)
-    coupling_slot_mm: float = Field(1.1, gt=0, le=500)
+    lens_a2: Coefficient = None
+    lens_vertex: Coefficient = None
+    x0: Coefficient = None
+    p1: Coefficient = None
+    p2: Coefficient = None
+    f0: Coefficient = None
+    n: float | None = Field(None, ge=1.0, le=10.0)
+    scale_mm: float | None = Field(None, ge=1, le=100000, description="physical size of the normalised D = 1")
+    slot_line_offset_mm: float = Field(10.0, ge=0, le=10000, description="t0: last mirror → first slot line")
+    layer_height_mm: float = Field(1.6, ge=MIN_MM, le=500)
+    coupling_slot_mm: float = Field(1.1, ge=MIN_MM, le=500)
 
     @model_validator(mode="after")
     def _complete(self):
@@ -129,24 +135,24 @@ class BeamFormerSpec(StrictModel):
 
 class FeedsSpec(StrictModel):
     type: Literal["h_sectoral"] = "h_sectoral"
-    throat_mm: tuple[float, float] = Field(description="(H-plane, E-plane)")
-    aperture_mm: tuple[float, float] = Field(description="(H-plane, E-plane)")
-    length_mm: float = Field(gt=0)
+    throat_mm: tuple[FeedSize, FeedSize] = Field(description="(H-plane, E-plane)")
+    aperture_mm: tuple[FeedSize, FeedSize] = Field(description="(H-plane, E-plane)")
+    length_mm: float = Field(ge=0.1, le=10000)
     count: int = Field(1, ge=1, le=99)
     placement: Literal["optimal", "circle"] = "optimal"
-    wall_mm: float = Field(1.0, gt=0, le=50, description="H-plane side-wall thickness (the E-plane walls "
+    wall_mm: float = Field(1.0, ge=MIN_MM, le=50, description="H-plane side-wall thickness (the E-plane walls "
                            "are fabrication.broad_wall_mm thick, flush with the beam-former plates)")
     flange_mm: float = Field(3.0, ge=0, le=200, description="flange collar beyond the side walls at the throat")
-    flange_thickness_mm: float = Field(3.0, gt=0, le=200, description="flange (throat section) length along the axis")
+    flange_thickness_mm: float = Field(3.0, ge=MIN_MM, le=200, description="flange (throat section) length along the axis")
 
 
 class MachinedPlatesSpec(StrictModel):
     """Metal parts milled from plate: one body per guide, beam-former plates, mirror walls."""
     method: Literal["machined_plates"]
     metal: str = Field("aluminium", pattern=r"^[A-Za-z0-9_. -]+$")
-    metal_density_kg_m3: float = Field(2700.0, gt=0, le=25000)
-    broad_wall_mm: float = Field(0.5, gt=0, le=50, description="slotted top wall and bottom wall")
-    mirror_wall_mm: float = Field(2.0, gt=0, le=100)
+    metal_density_kg_m3: float = Field(2700.0, ge=1, le=25000)
+    broad_wall_mm: float = Field(0.5, ge=MIN_MM, le=50, description="slotted top wall and bottom wall")
+    mirror_wall_mm: float = Field(2.0, ge=MIN_MM, le=100)
     plate_margin_mm: float = Field(10.0, ge=0, le=500, description="beam-former plate beyond mirrors")
     stock_allowance_mm: float = Field(2.0, ge=0, le=100)
 

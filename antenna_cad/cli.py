@@ -1,14 +1,16 @@
-"""``make-lens``: thin Typer front end over ``pipeline.build`` (no logic here).
+"""``make-lens``: thin Typer front end over :mod:`antenna_cad.pipeline` (no logic here).
 
-    make-lens SPEC [-o OUT]      build everything into OUT/<name>/ (default exports/)
-    make-lens validate SPEC      check the spec and its physics, write nothing
-    make-lens schema [-o FILE]   write the JSON Schema of specs
+    make-lens SPEC [-o OUT]          build everything into OUT/<name>/ (default exports/)
+    make-lens build SPEC [-o OUT]    the same; options may come before or after SPEC
+    make-lens validate SPEC          every rule a build applies, before any CAD work; writes nothing
+    make-lens schema [-o FILE]       the JSON Schema of specs (stdout unless -o)
     make-lens --version
 """
 
 from __future__ import annotations
 
 import sys
+import warnings
 from pathlib import Path
 
 import typer
@@ -17,11 +19,15 @@ from rich.table import Table
 
 from antenna_cad import __version__
 
-app = typer.Typer(add_completion=False, no_args_is_help=True,
-                  help="Physics spec of a microwave antenna → STEP/STL, 1:1 templates, cut list.")
+EXIT_CODES = ("Exit codes: 0 built/valid (checks pass or warn); 1 built, but a check failed; "
+              "2 bad spec, design or output folder (one line per problem: file: field: rule) — nothing written; "
+              "130 interrupted (Ctrl-C; the previous build is kept).")
+app = typer.Typer(add_completion=False, no_args_is_help=True, rich_markup_mode=None,
+                  help="Physics spec of a microwave antenna → STEP/STL, 1:1 templates, cut list.\n\n" + EXIT_CODES)
 out_console = Console()
 err_console = Console(stderr=True, soft_wrap=True)
 COMMANDS = {"build", "validate", "schema"}
+VALUE_OPTIONS = {"-o", "--out"}
 STATUS_STYLE = {"pass": "green", "warn": "yellow", "fail": "red"}
 
 
@@ -37,59 +43,68 @@ def _root(version: bool = typer.Option(False, "--version", callback=_version, is
     """make-lens SPEC builds a spec; see the commands below."""
 
 
-def _load(spec_path: Path):
-    """Spec + synthesis, or a clean exit 2 naming the field and the rule."""
-    from antenna_cad.registry import synthesize
+def _fail(lines: list[str]) -> None:
+    for line in lines:
+        err_console.print(line, markup=False, highlight=False)
+    raise typer.Exit(2)
+
+
+def _load(spec_path: Path, out: Path | None = None):
+    """Spec, output folder check (when building), then everything before CAD (pipeline.prepare);
+    or a clean exit 2 naming the field and the rule."""
+    from antenna_cad.pipeline import OutputError, check_output, prepare
     from antenna_cad.spec import SpecError, load_spec
     from antenna_cad.synthesis.checks import DesignError
     try:
         spec = load_spec(spec_path)
-        _, checks = synthesize(spec)
+        if out is not None:
+            check_output(out, spec.name)
+        return spec, prepare(spec)
     except SpecError as exc:
-        for line in exc.lines:
-            err_console.print(line, markup=False, highlight=False)
-        raise typer.Exit(2)
+        _fail(exc.lines)
     except DesignError as exc:
-        err_console.print(f"{spec_path}: {exc}", markup=False, highlight=False)
-        raise typer.Exit(2)
-    return spec, checks
+        _fail([f"{spec_path}: {exc}"])
+    except OutputError as exc:
+        _fail([str(exc)])
 
 
 def _checks_table(checks) -> Table:
     table = Table(title="checks", show_lines=False)
-    for col in ("check", "status", "value", "limit"):
-        table.add_column(col)
+    for col in ("check", "status", "value", "limit", "message"):
+        table.add_column(col, overflow="fold")
     for c in checks:
         table.add_row(c.name, f"[{STATUS_STYLE[c.status]}]{c.status}[/]", f"{c.value:.4g} {c.unit}",
-                      f"{c.limit:.4g} {c.unit}")
+                      f"{c.limit:.4g} {c.unit}", c.message)
     return table
 
 
-@app.command()
+@app.command(epilog=EXIT_CODES)
 def validate(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML")) -> None:
-    """Validate a spec and run its synthesis checks; writes nothing."""
-    spec, checks = _load(spec_path)
-    out_console.print(_checks_table(checks))
+    """Check the spec and run every rule a build applies (synthesis, layup, limits, fabrication
+    plan) before any CAD work; writes nothing."""
+    spec, plan = _load(spec_path)
+    out_console.print(_checks_table(plan.checks))
     out_console.print(f"{spec_path}: valid {spec.kind} spec '{spec.name}'")
 
 
-@app.command()
+@app.command(epilog=EXIT_CODES)
 def build(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML"),
           out: Path = typer.Option(Path("exports"), "-o", "--out", help="output root folder")) -> None:
-    """Build STEP/STL, templates, cut list, report.html and manifest into OUT/<name>/."""
+    """Build STEP/STL, templates, cut list, report and manifest into OUT/<name>/."""
     from rich.progress import Progress
 
-    from antenna_cad.pipeline import build as run_build
+    from antenna_cad.pipeline import OutputError, build as run_build
     from antenna_cad.synthesis.checks import DesignError
-    spec, _ = _load(spec_path)
+    spec, plan = _load(spec_path, out)
     try:
         with Progress(console=err_console, transient=True) as bar:
             task = bar.add_task(f"building {spec.name}", total=1.0)
             result = run_build(spec, out, lambda stage, f: bar.update(task, completed=f,
-                                                                      description=f"{spec.name}: {stage}"))
+                                                                      description=f"{spec.name}: {stage}"), plan)
     except DesignError as exc:
-        err_console.print(f"{spec_path}: {exc}", markup=False, highlight=False)
-        raise typer.Exit(2)
+        _fail([f"{spec_path}: {exc}"])
+    except OutputError as exc:
+        _fail([str(exc)])
     out_console.print(_summary_table(result))
     out_console.print(_checks_table(result.checks))
     out_console.print(f"{len(result.files)} files in {result.out_dir} "
@@ -116,18 +131,37 @@ def _summary_table(result) -> Table:
     return table
 
 
-@app.command()
-def schema(out: Path = typer.Option(Path("schemas/lens-spec.schema.json"), "-o", "--out")) -> None:
-    """Write the JSON Schema of lens specs."""
+@app.command(epilog=EXIT_CODES)
+def schema(out: Path | None = typer.Option(None, "-o", "--out", help="write to FILE instead of stdout")) -> None:
+    """Print the JSON Schema of lens specs (or write it to -o FILE)."""
     from antenna_cad.spec import json_schema_text
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json_schema_text(), encoding="utf-8")
-    out_console.print(f"wrote {out}")
+    text = json_schema_text()
+    if out is None:
+        sys.stdout.write(text)
+        return
+    try:
+        out.write_text(text, encoding="utf-8")
+    except OSError as exc:
+        _fail([f"{out}: cannot write ({exc.strerror})"])
+    err_console.print(f"wrote {out}")
+
+
+def _with_command(args: list[str]) -> list[str]:
+    """``make-lens [options] SPEC [options]`` means ``make-lens build …``."""
+    i = 0
+    while i < len(args):
+        if args[i] in VALUE_OPTIONS:
+            i += 2
+        elif args[i].startswith("-"):
+            i += 1
+        else:
+            return args if args[i] in COMMANDS else ["build", *args]
+    return args
 
 
 def main() -> None:
-    """Console entry: ``make-lens SPEC`` means ``make-lens build SPEC``."""
-    args = sys.argv[1:]
-    if args and not args[0].startswith("-") and args[0] not in COMMANDS:
-        sys.argv.insert(1, "build")
+    """Console entry: ``make-lens SPEC`` means ``make-lens build SPEC``; no numpy/Python warning is
+    printed (library stages report through checks)."""
+    warnings.simplefilter("ignore")
+    sys.argv[1:] = _with_command(sys.argv[1:])
     app()

@@ -1,15 +1,27 @@
-"""The one orchestration: spec → design → plan → model → fabrication plan → files.
+"""The one orchestration: spec → design → plan → fabrication plan → model → files.
 
-``build`` writes into a temporary folder beside the target and renames it into place at the end,
-so a failed or interrupted run leaves the previous build untouched (DESIGN.md "Outputs").
+:func:`prepare` is everything before CAD (``validate`` runs exactly it, so it rejects what ``build``
+would). :func:`build` keeps these promises (DESIGN.md "Outputs", issue 11):
+
+- the output folder is checked (:func:`check_output`) before any synthesis;
+- one build at a time per output folder: the folder is locked (``flock``, released by the kernel
+  even on SIGKILL) and a second build waits for the first;
+- files are written into ``.<name>.tmp-<pid>`` beside the target and swapped into place atomically
+  (``renameat2(RENAME_EXCHANGE)`` on Linux), so a build killed at any moment leaves the previous build
+  under its own name; leftovers of killed runs (``.<name>.tmp-*``/``.old-*``) are removed by the next.
 """
 
 from __future__ import annotations
 
+import ctypes
+import errno
+import fcntl
 import os
 import shutil
+import tempfile
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
@@ -20,12 +32,28 @@ from antenna_cad.export.step import write_step
 from antenna_cad.fabrication.cutlist import cutlist_csv
 from antenna_cad.fabrication.outline import CHORD_TOL_MM
 from antenna_cad.fabrication.templates import dxf_document, write_dxf, write_svg, write_tiled_pdf
-from antenna_cad.registry import adapter, synthesize
+from antenna_cad.limits import counts, limit_checks
+from antenna_cad.registry import adapter
 from antenna_cad.spec.common import SpecBase, resolve_material
-from antenna_cad.synthesis.checks import Check
+from antenna_cad.synthesis.checks import Check, solving
 
 Progress = Callable[[str, float], None]
-STAGES = ("synthesize", "model", "fabricate", "verify", "step", "stl", "templates", "report", "manifest")
+STAGES = ("synthesize", "fabricate", "model", "verify", "step", "stl", "templates", "report", "manifest")
+IN_PROGRESS: set[Path] = set()      # temporary folders being written (removed on Ctrl-C by the CLI)
+
+
+class OutputError(ValueError):
+    """The output folder cannot take the build (one line: path and reason)."""
+
+
+@dataclass
+class Plan:
+    """Everything a build decides before CAD: design, layup plan, box panels, fabrication plan."""
+    design: object
+    layup: object
+    panels: tuple
+    fab: object
+    checks: list[Check]
 
 
 @dataclass
@@ -47,8 +75,55 @@ class BuildResult:
         return "fail" if "fail" in statuses else ("warn" if "warn" in statuses else "pass")
 
 
-def build(spec: SpecBase, out_root: Path, progress: Progress | None = None) -> BuildResult:
-    """Build every artifact of ``spec`` into ``out_root/<name>/`` atomically."""
+def prepare(spec: SpecBase) -> Plan:
+    """Synthesis, layup plan, resource limits, fabrication plan and its checks — no CAD. Numerical
+    failures become DesignError naming the spec block (:func:`solving`), limits raise above hard."""
+    kind = adapter(spec.kind)
+    with solving(_design_field(spec), "synthesis"):
+        design = kind.synthesize(spec)
+    checks = list(design.checks)
+    with solving("fabrication", "fabrication plan"):
+        layup, panels = kind.plan(spec, design)
+        checks += limit_checks(counts(design, layup))
+        fab = kind.fabricate(spec, design, layup, panels)
+        checks += limit_checks({k: v for k, v in counts(design, layup, fab).items() if k in ("pieces", "drawings")})
+        checks += list(kind.fabrication_checks(spec, design, layup)) + list(fab.checks)
+    return Plan(design, layup, panels, fab, checks)
+
+
+def _design_field(spec: SpecBase) -> str:
+    """The spec block(s) holding a kind's design numbers: ``design``, or the kind's own blocks."""
+    if hasattr(spec, "design"):
+        return "design"
+    return ", ".join(k for k in type(spec).model_fields if k not in SpecBase.model_fields and k != "kind")
+
+
+def check_output(out_root: Path, name: str) -> None:
+    """OutputError unless ``out_root/name`` can be written, checked without writing anything: the root
+    a folder (or absent in an existing folder), writable (probed with a file created and removed), and
+    ``name`` absent or an earlier build's folder."""
+    if out_root.exists() and not out_root.is_dir():
+        raise OutputError(f"{out_root}: exists and is not a folder (-o names the folder that gets <name>/)")
+    home = out_root if out_root.is_dir() else out_root.parent
+    if not home.is_dir():
+        raise OutputError(f"{out_root}: its parent folder {home} does not exist")
+    try:
+        fd, probe = tempfile.mkstemp(prefix=".make-lens-probe-", dir=home)
+        os.close(fd)
+        os.unlink(probe)
+    except OSError as exc:
+        raise OutputError(f"{home}: cannot write into the folder ({exc.strerror})") from None
+    final = out_root / name
+    if final.is_symlink() or final.exists() and not final.is_dir():
+        raise OutputError(f"{final}: exists and is not a build folder; move it or choose another -o")
+    if final.is_dir() and any(final.iterdir()) and not (final / "manifest.json").is_file():
+        raise OutputError(f"{final}: a folder that is not a make-lens build (no manifest.json) — it would be "
+                          "replaced; move it or choose another -o")
+
+
+def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan: Plan | None = None) -> BuildResult:
+    """Build every artifact of ``spec`` into ``out_root/<name>/`` atomically (``plan``: from
+    :func:`prepare`, when the caller has it already)."""
     report = progress or (lambda stage, fraction: None)
     seconds: dict[str, float] = {}
     clock = time.perf_counter()
@@ -60,45 +135,78 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None) -> B
         clock = now
         report(name, (STAGES.index(name) + 1) / len(STAGES))
 
+    check_output(out_root, spec.name)
     kind = adapter(spec.kind)
-    design, checks = synthesize(spec)
-    layup, panels = kind.plan(spec, design)
+    p = plan or prepare(spec)
     stage("synthesize")
-    model = kind.model(spec, design, layup, panels)
-    checks += list(model.checks)
-    stage("model")
-    fab = kind.fabricate(spec, design, layup, panels)
-    checks += list(kind.fabrication_checks(spec, design, layup)) + list(fab.checks)
     stage("fabricate")
-    verification = kind.verify(spec, design, layup, fab)
+    with solving(_design_field(spec), "solid model"):
+        model = kind.model(spec, p.design, p.layup, p.panels)
+    checks = p.checks + list(model.checks)
+    stage("model")
+    with solving(_design_field(spec), "as-built verification"):
+        verification = kind.verify(spec, p.design, p.layup, p.fab)
     checks += list(verification.checks)
     stage("verify")
-
-    out_root.mkdir(parents=True, exist_ok=True)
-    final = out_root / spec.name
-    tmp = out_root / f".{spec.name}.tmp-{os.getpid()}"
-    shutil.rmtree(tmp, ignore_errors=True)
-    tmp.mkdir()
-    try:
-        parts = _write_solids(spec, model, tmp, stage)
-        sheet_files = _write_templates(spec, fab, tmp)
-        stage("templates")
-        (tmp / "cutlist.csv").write_text(cutlist_csv(list(fab.rows), fab.totals_kg), encoding="utf-8")
-        for file_name, text in fab.files.items():
-            (tmp / file_name).write_text(text, encoding="utf-8")
-        figures = kind.summary(spec, design, layup)
-        if spec.outputs.report:
-            write_report(tmp, spec, figures, checks, verification, model, fab, parts)
-        stage("report")
-        _write_manifest(spec, tmp, figures, checks, parts, layup, fab, sheet_files, verification)
-        stage("manifest")
-        _swap_into_place(tmp, final)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
-    files = sorted(p.relative_to(final).as_posix() for p in final.rglob("*") if p.is_file())
-    return BuildResult(spec.name, spec.kind, final, figures, checks, dict(fab.totals_kg), dict(fab.boards),
+    figures = kind.summary(spec, p.design, p.layup)
+    out_root.mkdir(exist_ok=True)
+    with _locked(out_root, report):
+        _remove_leftovers(out_root, spec.name)
+        final = out_root / spec.name
+        tmp = out_root / f".{spec.name}.tmp-{os.getpid()}"
+        IN_PROGRESS.add(tmp)
+        try:
+            tmp.mkdir()
+            parts = _write_solids(spec, model, tmp, stage)
+            sheet_files = _write_templates(spec, p.fab, tmp)
+            stage("templates")
+            (tmp / "cutlist.csv").write_text(cutlist_csv(list(p.fab.rows), p.fab.totals_kg), encoding="utf-8")
+            for file_name, text in p.fab.files.items():
+                (tmp / file_name).write_text(text, encoding="utf-8")
+            if spec.outputs.report:
+                write_report(tmp, spec, figures, checks, verification, model, p.fab, parts)
+            stage("report")
+            _write_manifest(spec, tmp, figures, checks, parts, p.layup, p.fab, sheet_files, verification)
+            stage("manifest")
+            _swap_into_place(tmp, final)
+        except OSError as exc:
+            raise OutputError(f"{out_root}: writing the build failed ({exc.strerror or exc}); "
+                              "the previous build is untouched") from None
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
+            IN_PROGRESS.discard(tmp)
+    files = sorted(q.relative_to(final).as_posix() for q in final.rglob("*") if q.is_file())
+    return BuildResult(spec.name, spec.kind, final, figures, checks, dict(p.fab.totals_kg), dict(p.fab.boards),
                        files, seconds, dict(verification.figures))
+
+
+@contextmanager
+def _locked(out_root: Path, report: Progress) -> Iterator[None]:
+    """Hold an exclusive lock on the output folder; wait (reporting it) while another build has it."""
+    fd = os.open(out_root, os.O_RDONLY | os.O_DIRECTORY)
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            report(f"waiting for another build writing into {out_root}", 0.0)
+            fcntl.flock(fd, fcntl.LOCK_EX)
+        yield
+    finally:
+        os.close(fd)
+
+
+def _remove_leftovers(out_root: Path, name: str) -> None:
+    """Temporary and displaced folders of killed runs of ``name`` (safe: the folder lock is held). A
+    displaced old build whose replacement never arrived is put back first."""
+    final = out_root / name
+    for old in sorted(out_root.glob(f".{name}.old-*")):
+        if not final.exists() and old.is_dir():
+            old.rename(final)
+    for entry in list(out_root.glob(f".{name}.tmp-*")) + list(out_root.glob(f".{name}.old-*")):
+        try:
+            shutil.rmtree(entry) if entry.is_dir() and not entry.is_symlink() else entry.unlink()
+        except OSError as exc:
+            raise OutputError(f"{entry}: cannot remove this leftover of an earlier run ({exc.strerror})") from None
 
 
 def _write_solids(spec, model, out: Path, stage) -> list[dict]:
@@ -167,8 +275,31 @@ def _write_manifest(spec, out: Path, figures, checks, parts, layup, fab, sheet_f
 
 
 def _swap_into_place(tmp: Path, final: Path) -> None:
+    """``tmp`` becomes ``final``; an earlier ``final`` ends in ``tmp`` (removed by the caller). Atomic
+    exchange where the kernel has it; otherwise two renames, the displaced build named ``.old-<pid>``
+    so that the next run restores it should this one die in between."""
+    if not final.exists():
+        tmp.rename(final)
+        return
+    if _exchange(tmp, final):
+        return
     old = final.with_name(f".{final.name}.old-{os.getpid()}")
-    if final.exists():
-        final.rename(old)
+    final.rename(old)
     tmp.rename(final)
     shutil.rmtree(old, ignore_errors=True)
+
+
+_RENAME_EXCHANGE, _AT_FDCWD = 2, -100
+
+
+def _exchange(a: Path, b: Path) -> bool:
+    """Swap two paths atomically (Linux renameat2); False where unsupported."""
+    fn = getattr(ctypes.CDLL(None, use_errno=True), "renameat2", None)
+    if fn is None:
+        return False
+    if fn(_AT_FDCWD, os.fsencode(a), _AT_FDCWD, os.fsencode(b), _RENAME_EXCHANGE) == 0:
+        return True
+    err = ctypes.get_errno()
+    if err in (errno.ENOSYS, errno.EINVAL, errno.ENOTSUP):
+        return False
+    raise OSError(err, os.strerror(err), str(b))

@@ -6,8 +6,14 @@ limit and a status. Impossible physics raises :class:`DesignError` naming the nu
 
 from __future__ import annotations
 
+import traceback
+import warnings
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Literal
+
+import numpy as np
 
 Status = Literal["pass", "warn", "fail"]
 
@@ -19,6 +25,24 @@ class DesignError(ValueError):
         super().__init__(f"{field}: {message}")
         self.field = field
         self.message = message
+
+
+@contextmanager
+def solving(field: str, stage: str) -> Iterator[None]:
+    """Run a numerical stage quietly: numpy/scipy warnings are not printed, and a numerical failure
+    (division by zero, singular matrix, math domain, spline or geometry error) becomes a
+    DesignError naming ``field``, the spec block whose numbers the stage could not solve."""
+    with np.errstate(all="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        try:
+            yield
+        except (DesignError, OSError):     # I/O errors are the caller's to report
+            raise
+        except Exception as exc:    # noqa: BLE001 — any failure of the numerics is reported, never a traceback
+            where = traceback.extract_tb(exc.__traceback__)[-1].name
+            detail = " ".join(str(exc).split())[:80] or "no detail"
+            raise DesignError(field, f"the {stage} cannot be solved for these values "
+                                     f"({type(exc).__name__} in {where}: {detail}); change {field}") from None
 
 
 @dataclass(frozen=True)

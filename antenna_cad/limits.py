@@ -1,0 +1,58 @@
+"""Resource limits of a build (issue 11): how many sheets, shells, slots, pieces and drawings a
+design may make. Above ``soft`` the build goes on with a warning check (a workshop job of that size
+is unusual — often a unit slip); above ``hard`` it stops with a DesignError naming the spec field to
+change, before any CAD work. New kinds need nothing: :func:`counts` reads the plans generically."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from antenna_cad.synthesis.checks import Check, DesignError
+
+
+@dataclass(frozen=True)
+class Limit:
+    what: str          # "sheets"
+    field: str         # the spec field that sets the count
+    soft: int
+    hard: int
+
+    def check(self, count: int) -> list[Check]:
+        """[] within ``soft``; a warning check up to ``hard``; DesignError above it."""
+        if count > self.hard:
+            raise DesignError(self.field, f"{count} {self.what} exceed the limit of {self.hard} "
+                                          f"(a unit slip? change {self.field})")
+        if count > self.soft:
+            return [Check(f"{self.what}_count", "warn", float(count), float(self.soft), "",
+                          f"{count} {self.what} (more than the usual {self.soft}; check {self.field})")]
+        return []
+
+
+LIMITS = {
+    "sheets": Limit("sheets", "fabrication.sheet_thickness_mm", soft=60, hard=400),
+    "shells": Limit("shells", "design.layers.count", soft=30, hard=100),
+    "slots": Limit("slots", "array.count", soft=20_000, hard=100_000),
+    "pieces": Limit("pieces", "fabrication.board", soft=400, hard=4000),
+    "drawings": Limit("drawings", "fabrication.board", soft=300, hard=3000),
+}
+
+
+def counts(design, layup, fab=None) -> dict[str, int]:
+    """The counts a plan holds (sheets of a layup, shells of a graded lens, slots of an array;
+    pieces and drawings of a fabrication plan), whatever the kind."""
+    found = {}
+    if layup is not None and hasattr(layup, "sheets"):
+        found["sheets"] = len(layup.sheets)
+    if isinstance(getattr(design, "layers", None), (list, tuple)):
+        found["shells"] = len(design.layers)
+    slots = getattr(design, "slots", None)
+    if slots is not None and hasattr(slots, "x_mm"):
+        found["slots"] = len(slots.x_mm)
+    if fab is not None:
+        found["pieces"] = len(fab.rows)
+        found["drawings"] = len(fab.drawings)
+    return found
+
+
+def limit_checks(found: dict[str, int]) -> list[Check]:
+    return [c for what, n in found.items() for c in LIMITS[what].check(n)]

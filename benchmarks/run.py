@@ -1,0 +1,338 @@
+"""Every recipe end to end, split by stage, with import time and peak memory; scaling series with
+fitted exponents; the naive baseline; the budgets (issue 16). Not a unit test: run it on a quiet
+machine and read the load average it records.
+
+    PYTHONPATH=. python benchmarks/run.py [--runs 3] [--recipe NAME ...] [--series] [--naive [--naive-guides N]]
+                                          [--large]
+                                          [--compare OLD.json] [--no-fail]
+
+Each recipe runs in a fresh interpreter, so its import time and peak RSS are its own; the stage
+times are the median of ``--runs`` builds in that process after imports. Writes
+``benchmarks/results.md`` (table, machine, date, commit, budgets) and ``benchmarks/results.json``
+(to compare commits: ``--compare`` prints the ratios against an older JSON). Exits 1 when a
+scaling exponent exceeds 1.1 or a budget is missed, naming the stage (``--no-fail``: report only).
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime as dt
+import json
+import os
+import platform
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+CAD_MODULES = ("build123d", "OCP", "trimesh", "manifold3d")
+EXPONENT_LIMIT = 1.1
+BUDGET = {"recipe_s": 10.0, "peak_mb": 500.0, "cli_s": 1.0, "naive_speedup": 20.0, "large_luneburg_s": 60.0}
+NOT_BUDGETED = ("fullwave",)        # the full-wave stage has its own budget (its issue): reported apart
+CLI_PROBE = """
+import atexit, sys
+atexit.register(lambda: sys.stderr.write("\\nCAD-MODULES:" + ",".join(
+    m for m in %r if m in sys.modules) + "\\n"))
+sys.argv = ["make-lens", *sys.argv[1:]]
+from antenna_cad.cli import main
+main()
+""" % (CAD_MODULES,)
+
+
+# ---------------------------------------------------------------- children (one interpreter each)
+
+def _imports() -> float:
+    start = time.perf_counter()
+    import build123d  # noqa: F401  (import cost measured apart from the build)
+
+    import antenna_cad.pipeline  # noqa: F401
+    return time.perf_counter() - start
+
+
+def _peak_mb() -> float:
+    import resource
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+
+
+def _build(spec) -> tuple[dict[str, float], dict]:
+    from antenna_cad.pipeline import build
+    with tempfile.TemporaryDirectory(prefix="antenna_cad-bench-") as out:
+        result = build(spec, Path(out))
+        manifest = json.loads((result.out_dir / "manifest.json").read_text(encoding="utf-8"))
+    items = {"parts": len(manifest.get("parts", [])), "sheets": len(manifest.get("sheets", [])),
+             "pieces": len(manifest.get("pieces", [])), "slots": result.figures.get("slot_count", 0)}
+    return dict(result.seconds), items
+
+
+def child_recipe(recipe: str, runs: int) -> dict:
+    import_s = _imports()
+    from antenna_cad.spec import load_spec
+    per_run: list[dict[str, float]] = []
+    for _ in range(runs):
+        start = time.perf_counter()
+        spec = load_spec(recipe)
+        load_s = time.perf_counter() - start
+        seconds, items = _build(spec)
+        per_run.append({"load": load_s} | seconds)
+    stages = {k: statistics.median(run[k] for run in per_run) for k in per_run[0]}
+    return {"import_s": import_s, "stages": stages, "items": items, "peak_mb": _peak_mb(), "runs": runs}
+
+
+def _variant(recipe: str, changes: dict, outputs: dict):
+    """The recipe with dotted-path changes applied to its YAML data, parsed like a spec file."""
+    import yaml
+
+    from antenna_cad.spec import parse_spec
+    data = yaml.safe_load((ROOT / "recipes" / recipe).read_text(encoding="utf-8"))
+    for path, value in (changes | {f"outputs.{k}": v for k, v in outputs.items()}).items():
+        node = data
+        *parents, leaf = path.split(".")
+        for key in parents:
+            node = node.setdefault(key, {})
+        node[leaf] = value
+    return parse_spec(data, recipe)
+
+
+SERIES = {   # name: (recipe, dotted field, values, item counted, outputs)
+    "slots": ("ka-slot-array-two-mirror.yaml", "array.count", [10, 20, 40, 80], "slots",
+              {"stl": True, "templates": True, "report": False}),
+    "sheets": ("xps-collimator-0.5m.yaml", "fabrication.sheet_thickness_mm", [100.0, 50.0, 20.0, 10.0, 5.0],
+               "sheets", {"stl": True, "templates": True, "report": False}),
+}
+LUNEBURG_SERIES = [(5, 400.0), (10, 1000.0), (20, 2000.0), (20, 3000.0)]   # layers, D mm (10 mm sheets)
+
+
+def _luneburg_spec(layers: int, diameter_mm: float, templates: bool):
+    from antenna_cad.spec import parse_spec
+    return parse_spec({
+        "name": "bench", "kind": "luneburg", "frequency_ghz": 10.0, "material": "polystyrene",
+        "design": {"diameter_mm": diameter_mm, "law": "classic", "layers": {"count": layers}},
+        "fabrication": {"method": "sheet_layup", "sheet_thickness_mm": 10.0, "kerf_mm": 0.5,
+                        "board": {"width_mm": 1200, "length_mm": 2400}},
+        "outputs": {"templates": templates, "report": False}}, "luneburg-series")
+
+
+def child_series(name: str) -> dict:
+    _imports()
+    rows = []
+    if name == "shells_x_sheets":
+        for layers, diameter in LUNEBURG_SERIES:
+            seconds, items = _build(_luneburg_spec(layers, diameter, templates=False))
+            rows.append({"value": f"{layers} layers, D {diameter:.0f} mm", "items": items["pieces"],
+                         "seconds": sum(seconds.values()), "stages": seconds})
+        return {"item": "pieces", "rows": rows}
+    recipe, field, values, item, outputs = SERIES[name]
+    for value in values:
+        seconds, items = _build(_variant(recipe, {field: value}, outputs))
+        rows.append({"value": value, "items": items[item], "seconds": sum(seconds.values()), "stages": seconds})
+    return {"item": item, "rows": rows}
+
+
+def child_naive(guides: int) -> dict:
+    _imports()
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    import naive
+
+    from antenna_cad.registry import adapter
+    spec = _variant("ka-slot-array-two-mirror.yaml", {}, {})
+    design = adapter(spec.kind).synthesize(spec)
+    lids = naive.slotted_lids(design, spec.fabrication.broad_wall_mm, guides or None)
+    col = _variant("xps-collimator-0.5m.yaml", {"fabrication.sheet_thickness_mm": 10.0}, {})
+    kind = adapter(col.kind)
+    col_design = kind.synthesize(col)
+    layup, panels = kind.plan(col, col_design)
+    model = kind.model(col, col_design, layup, panels)
+    sheets = naive.layup_sheets(layup, model.part("lens").shape)
+    mesh = naive.node_loop_mesh([p.shape for p in model.parts], col.outputs.mesh_tolerance_mm)
+    row = lambda what, r: {"what": what, "naive_s": r[0], "ours_s": r[1], "items": r[2], "speedup": r[0] / r[1]}
+    return {"rows": [row("slotted lids, Ka two-mirror (slots)", lids),
+                     row("collimator sheets, 10 mm boards (sheets)", sheets),
+                     row("meshing the collimator's parts (triangles)", mesh)]}
+
+
+def child_large() -> dict:
+    _imports()
+    seconds, items = _build(_luneburg_spec(20, 100 * 299.792458 / 10.0, templates=True))
+    return {"stages": seconds, "items": items, "peak_mb": _peak_mb()}
+
+
+# ---------------------------------------------------------------- parent
+
+def _run_child(*args: str) -> dict:
+    env = os.environ | {"PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
+    done = subprocess.run([sys.executable, __file__, "--child", *args], capture_output=True, text=True, env=env)
+    if done.returncode:
+        raise SystemExit(f"benchmark child {args} failed:\n{done.stderr[-3000:]}")
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+def _cli_timing(args: list[str]) -> dict:
+    start = time.perf_counter()
+    done = subprocess.run([sys.executable, "-c", CLI_PROBE, *args], capture_output=True, text=True, cwd=ROOT,
+                          env=os.environ | {"PYTHONPATH": str(ROOT)})
+    wall = time.perf_counter() - start
+    cad = [line.split(":", 1)[1] for line in done.stderr.splitlines() if line.startswith("CAD-MODULES:")]
+    return {"args": " ".join(args), "seconds": wall, "exit": done.returncode,
+            "cad_modules": [m for m in (cad[-1].split(",") if cad else []) if m]}
+
+
+def fitted_exponent(items: list[float], seconds: list[float]) -> tuple[float, float]:
+    """(slope of log cost over log items by least squares, slope of the last step)."""
+    x, y = np.log(np.asarray(items, float)), np.log(np.asarray(seconds, float))
+    return float(np.polyfit(x, y, 1)[0]), float((y[-1] - y[-2]) / (x[-1] - x[-2]))
+
+
+def _machine() -> dict:
+    cpu = next((line.split(":", 1)[1].strip() for line in Path("/proc/cpuinfo").read_text().splitlines()
+                if line.startswith("model name")), platform.processor())
+    mem_kb = next(int(line.split()[1]) for line in Path("/proc/meminfo").read_text().splitlines()
+                  if line.startswith("MemTotal"))
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
+                            cwd=ROOT).stdout.strip()
+    dirty = subprocess.run(["git", "status", "--porcelain", "--", "antenna_cad"], capture_output=True,
+                           text=True, cwd=ROOT).stdout.strip()
+    return {"cpu": cpu, "cores": os.cpu_count(), "memory_gb": round(mem_kb / 2**20, 1),
+            "python": platform.python_version(), "platform": platform.platform(),
+            "date": dt.datetime.now(dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
+            "commit": commit + ("-dirty" if dirty else ""), "load_average_start": os.getloadavg()[0]}
+
+
+def _budget_rows(results: dict) -> list[dict]:
+    rows = []
+    for name, r in results["recipes"].items():
+        budgeted = {k: v for k, v in r["stages"].items() if not k.startswith(NOT_BUDGETED)}
+        total = sum(budgeted.values())
+        slowest = max(budgeted, key=budgeted.get)
+        rows.append({"what": f"{name}: after imports", "value": total, "limit": BUDGET["recipe_s"], "unit": "s",
+                     "why": f"slowest stage {slowest} {budgeted[slowest]:.2f} s"})
+        rows.append({"what": f"{name}: peak RSS", "value": r["peak_mb"], "limit": BUDGET["peak_mb"], "unit": "MB",
+                     "why": ""})
+    for c in results["cli"]:
+        rows.append({"what": f"make-lens {c['args']}", "value": c["seconds"], "limit": BUDGET["cli_s"], "unit": "s",
+                     "why": f"CAD modules imported: {', '.join(c['cad_modules']) or 'none'}"})
+        if c["cad_modules"]:
+            rows.append({"what": f"make-lens {c['args']}: CAD imports", "value": len(c["cad_modules"]),
+                         "limit": 0, "unit": "modules", "why": ", ".join(c["cad_modules"])})
+    if "naive" in results:
+        lids = results["naive"]["rows"][0]
+        rows.append({"what": "speed-up over per-slot booleans", "value": lids["speedup"],
+                     "limit": BUDGET["naive_speedup"], "unit": "×", "why": "", "at_least": True})
+    if "large" in results:
+        stages = results["large"]["stages"]
+        slowest = max(stages, key=stages.get)
+        rows.append({"what": "Luneburg D/λ 100, 20 layers, 10 mm sheets", "value": sum(stages.values()),
+                     "limit": BUDGET["large_luneburg_s"], "unit": "s",
+                     "why": f"slowest stage {slowest} {stages[slowest]:.1f} s"})
+    for row in rows:
+        row["ok"] = row["value"] >= row["limit"] if row.get("at_least") else row["value"] <= row["limit"]
+    return rows
+
+
+def _markdown(results: dict) -> str:
+    m = results["machine"]
+    stages = sorted({s for r in results["recipes"].values() for s in r["stages"]},
+                    key=lambda s: (s != "load", list(STAGE_ORDER).index(s) if s in STAGE_ORDER else 99, s))
+    lines = ["# Benchmark results", "",
+             f"Machine: {m['cpu']}, {m['cores']} cores, {m['memory_gb']} GB, Python {m['python']}; "
+             f"{m['date']}; commit {m['commit']}; load average at start {m['load_average_start']:.2f}.",
+             f"Command: `PYTHONPATH=. python benchmarks/run.py {' '.join(results['argv'])}`. "
+             "Seconds after imports, median of the runs in one process; import and peak RSS per fresh interpreter.",
+             "", "| recipe | " + " | ".join(stages) + " | total | import | peak MB | slowest |",
+             "|---|" + "---:|" * (len(stages) + 3) + "---|"]
+    for name, r in results["recipes"].items():
+        st = r["stages"]
+        slowest = max(st, key=st.get)
+        lines.append(f"| {name} | " + " | ".join(f"{st.get(s, 0):.2f}" for s in stages)
+                     + f" | {sum(st.values()):.2f} | {r['import_s']:.2f} | {r['peak_mb']:.0f} | {slowest} |")
+    lines += ["", "| command | seconds | exit | CAD modules imported |", "|---|---:|---:|---|"]
+    lines += [f"| make-lens {c['args']} | {c['seconds']:.2f} | {c['exit']} | {', '.join(c['cad_modules']) or 'none'} |"
+              for c in results["cli"]]
+    for name, s in results.get("series", {}).items():
+        lines += ["", f"Scaling series `{name}` (cost per {s['item'][:-1]}); fitted exponent {s['exponent']:.2f}, "
+                  f"last step {s['last_exponent']:.2f} (limit {EXPONENT_LIMIT})", "",
+                  f"| value | {s['item']} | seconds | ms per item |", "|---|---:|---:|---:|"]
+        lines += [f"| {r['value']} | {r['items']} | {r['seconds']:.2f} | {1e3 * r['seconds'] / r['items']:.2f} |"
+                  for r in s["rows"]]
+    if "naive" in results:
+        lines += ["", "Naive baseline, same run (benchmarks/naive.py)", "",
+                  "| what | items | naive s | ours s | speed-up |", "|---|---:|---:|---:|---:|"]
+        lines += [f"| {r['what']} | {r['items']} | {r['naive_s']:.2f} | {r['ours_s']:.3f} | {r['speedup']:.0f}× |"
+                  for r in results["naive"]["rows"]]
+    lines += ["", "Budgets", "", "| budget | value | limit | ok | note |", "|---|---:|---:|---|---|"]
+    lines += [f"| {b['what']} | {b['value']:.2f} {b['unit']} | {b['limit']:g} {b['unit']} | "
+              f"{'yes' if b['ok'] else '**no**'} | {b['why']} |" for b in results["budgets"]]
+    return "\n".join(lines) + "\n"
+
+
+STAGE_ORDER = ("load", "synthesize", "model", "fabricate", "verify", "step", "stl", "templates", "report",
+               "manifest")
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--child", nargs="+", help=argparse.SUPPRESS)
+    parser.add_argument("--runs", type=int, default=3)
+    parser.add_argument("--recipe", action="append", default=[], help="recipe file name (default: every recipe)")
+    parser.add_argument("--series", action="store_true", help="scaling series with fitted exponents")
+    parser.add_argument("--naive", action="store_true", help="naive baseline beside ours")
+    parser.add_argument("--naive-guides", type=int, default=0,
+                        help="per-slot booleans on the first N guides only (default: all 40; ~15 s a guide)")
+    parser.add_argument("--large", action="store_true", help="the D/λ = 100 Luneburg layup with templates")
+    parser.add_argument("--compare", type=Path, help="an older results.json to compare totals with")
+    parser.add_argument("--no-fail", action="store_true", help="report missed budgets without exit 1")
+    args = parser.parse_args()
+    if args.child:
+        kind, *rest = args.child
+        value = {"recipe": lambda: child_recipe(rest[0], int(rest[1])), "series": lambda: child_series(rest[0]),
+                 "naive": lambda: child_naive(int(rest[0])), "large": child_large}[kind]()
+        print(json.dumps(value))
+        return 0
+
+    recipes = args.recipe or sorted(p.name for p in (ROOT / "recipes").glob("*.yaml"))
+    results: dict = {"machine": _machine(), "argv": sys.argv[1:], "recipes": {}, "cli": []}
+    for name in recipes:
+        print(f"recipe {name} …", file=sys.stderr, flush=True)
+        results["recipes"][Path(name).stem] = _run_child("recipe", str(ROOT / "recipes" / name), str(args.runs))
+    results["cli"] = [_cli_timing(["--help"]), _cli_timing(["validate", f"recipes/{recipes[0]}"])]
+    failures = []
+    if args.series:
+        results["series"] = {}
+        for name in (*SERIES, "shells_x_sheets"):
+            print(f"series {name} …", file=sys.stderr, flush=True)
+            s = _run_child("series", name)
+            s["exponent"], s["last_exponent"] = fitted_exponent([r["items"] for r in s["rows"]],
+                                                                [r["seconds"] for r in s["rows"]])
+            results["series"][name] = s
+            if s["exponent"] > EXPONENT_LIMIT:
+                failures.append(f"SCALING: {name} grows with exponent {s['exponent']:.2f} > {EXPONENT_LIMIT}")
+    if args.naive:
+        print("naive baseline …", file=sys.stderr, flush=True)
+        results["naive"] = _run_child("naive", str(args.naive_guides))
+    if args.large:
+        print("large Luneburg layup …", file=sys.stderr, flush=True)
+        results["large"] = _run_child("large")
+    results["machine"]["load_average_end"] = os.getloadavg()[0]
+    results["budgets"] = _budget_rows(results)
+    failures += [f"BUDGET: {b['what']} {b['value']:.2f} {b['unit']} vs {b['limit']:g} ({b['why']})"
+                 for b in results["budgets"] if not b["ok"]]
+    (ROOT / "benchmarks" / "results.json").write_text(json.dumps(results, indent=1) + "\n", encoding="utf-8")
+    (ROOT / "benchmarks" / "results.md").write_text(_markdown(results), encoding="utf-8")
+    print(_markdown(results))
+    if args.compare:
+        old = json.loads(args.compare.read_text(encoding="utf-8"))["recipes"]
+        for name, r in results["recipes"].items():
+            if name in old:
+                before, now = sum(old[name]["stages"].values()), sum(r["stages"].values())
+                print(f"{name:36s} {before:8.2f} → {now:8.2f} s  ({before / now:.2f}×)")
+    for line in failures:
+        print(line, file=sys.stderr)
+    return 1 if failures and not args.no_fail else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

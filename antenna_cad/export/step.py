@@ -18,15 +18,23 @@ def write_step(model: Model, name: str, path: Path) -> None:
     for role in ("fabricated", "reference"):
         children = []
         for part in sorted((p for p in model.parts if p.role == role), key=lambda p: p.label):
-            shape = Compound(part.shape.solids())    # a fresh wrapper, so labels never leak
-            shape.label = part.label
-            children.append(shape)
+            children.append(_labelled(part.label, part.shape.solids()))
         if children:
             groups.append(Compound(children=children, label=role))
     if not export_step(Compound(children=groups, label=name), str(path), unit=Unit.MM,
                        timestamp=STEP_TIMESTAMP, write_pcurves=model.step_pcurves):
         raise RuntimeError(f"STEP export failed: {path}")
     _renumber_occurrences(path)
+
+
+def _labelled(label: str, solids) -> Compound:
+    """A fresh wrapper (labels never leak onto the model's shapes). A part of several solids gets
+    one child per solid, ``label.1``, ``label.2``, …: OCCT-7 readers (gmsh) name a solid only when
+    its own label holds it, and otherwise guess by bounding box (a sheet took its sanding ring's name)."""
+    if len(solids) == 1:
+        return Compound(solids, label=label)
+    return Compound(children=[Compound([s], label=f"{label}.{i}") for i, s in enumerate(solids, 1)],
+                    label=label)
 
 
 _NAUO = re.compile(r"NEXT_ASSEMBLY_USAGE_OCCURRENCE\('\d+',(.*?)\);", re.DOTALL)

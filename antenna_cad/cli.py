@@ -3,6 +3,7 @@
     make-lens SPEC [-o OUT]      build everything into OUT/<name>/ (default exports/)
     make-lens validate SPEC      check the spec and its physics, write nothing
     make-lens schema [-o FILE]   write the JSON Schema of specs
+    make-lens check OUT          re-read every file of a build folder with independent readers
     make-lens --version
 """
 
@@ -21,7 +22,7 @@ app = typer.Typer(add_completion=False, no_args_is_help=True,
                   help="Physics spec of a microwave antenna → STEP/STL, 1:1 templates, cut list.")
 out_console = Console()
 err_console = Console(stderr=True, soft_wrap=True)
-COMMANDS = {"build", "validate", "schema"}
+COMMANDS = {"build", "validate", "schema", "check"}
 STATUS_STYLE = {"pass": "green", "warn": "yellow", "fail": "red"}
 
 
@@ -123,6 +124,32 @@ def schema(out: Path = typer.Option(Path("schemas/lens-spec.schema.json"), "-o",
     out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(json_schema_text(), encoding="utf-8")
     out_console.print(f"wrote {out}")
+
+
+@app.command()
+def check(folder: Path = typer.Argument(..., metavar="OUT", help="a build folder (holding manifest.json)")) -> None:
+    """Re-read every file of a build with independent readers; exit 1 naming what failed."""
+    from antenna_cad.export.check import CheckError, check_build
+    try:
+        findings = check_build(folder)
+    except CheckError as exc:
+        err_console.print(str(exc), markup=False, highlight=False)
+        raise typer.Exit(2)
+    table = Table(title=f"check {folder}")
+    for col in ("check", "files", "status", "result (first failure, else last file)"):
+        table.add_column(col)
+    for name in dict.fromkeys(f.check for f in findings):
+        group = [f for f in findings if f.check == name]
+        bad = [f for f in group if not f.ok]
+        shown = (bad or group)[-1] if not bad else bad[0]
+        table.add_row(name, str(len(group)), f"[red]FAIL {len(bad)}[/]" if bad else "[green]pass[/]",
+                      f"{shown.file}: {shown.message}")
+    out_console.print(table)
+    failed = [f for f in findings if not f.ok]
+    out_console.print(f"{len(findings) - len(failed)} of {len(findings)} checks passed"
+                      + (": failed " + "; ".join(f"{f.file} {f.check}" for f in failed[:10]) if failed else ""))
+    if failed:
+        raise typer.Exit(1)
 
 
 def main() -> None:

@@ -24,7 +24,7 @@ def write_step(model: Model, name: str, path: Path) -> None:
     if not export_step(Compound(children=groups, label=name), str(path), unit=Unit.MM,
                        timestamp=STEP_TIMESTAMP, write_pcurves=model.step_pcurves):
         raise RuntimeError(f"STEP export failed: {path}")
-    _renumber_occurrences(path)
+    path.write_text(snap_near_zero(_renumber_occurrences(path.read_text())))
 
 
 def _labelled(label: str, solids) -> Compound:
@@ -37,13 +37,23 @@ def _labelled(label: str, solids) -> Compound:
                     label=label)
 
 
+_TINY = re.compile(r"(?<![\w.])-?\d\.\d*E-(?:[1-9]\d\d|[1-9]\d)\b")    # |x| < 1e-9 (exponent ≤ −10)
+_NEGATIVE_ZERO = re.compile(r"(?<![\w.])-0\.(?![\dE])")
+
+
+def snap_near_zero(text: str) -> str:
+    """Reals below 1e-9 (mm, or direction components) written as 0. and −0. as 0.: OCCT's
+    parallel booleans leave ±3e-30 or exactly 0 on the same point from run to run, which made
+    the STEP (and the STLs) of the same spec differ between builds."""
+    return _NEGATIVE_ZERO.sub("0.", _TINY.sub("0.", text))
+
+
 _NAUO = re.compile(r"NEXT_ASSEMBLY_USAGE_OCCURRENCE\('\d+',(.*?)\);", re.DOTALL)
 
 
-def _renumber_occurrences(path: Path) -> None:
+def _renumber_occurrences(text: str) -> str:
     """OCC numbers assembly occurrences with a process-wide counter, so a second export in the
     same process differs; renumber them 1, 2, … in file order (entity kept on one line)."""
     counter = iter(range(1, 1_000_000))
-    text = _NAUO.sub(lambda m: "NEXT_ASSEMBLY_USAGE_OCCURRENCE('%d',%s);"
-                     % (next(counter), re.sub(r"\s*\n\s*", "", m.group(1))), path.read_text())
-    path.write_text(text)
+    return _NAUO.sub(lambda m: "NEXT_ASSEMBLY_USAGE_OCCURRENCE('%d',%s);"
+                     % (next(counter), re.sub(r"\s*\n\s*", "", m.group(1))), text)

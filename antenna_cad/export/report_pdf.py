@@ -19,6 +19,7 @@ matplotlib.use("Agg")
 import matplotlib.image  # noqa: E402
 from matplotlib.backends.backend_pdf import PdfPages  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
+from matplotlib.patches import Patch  # noqa: E402
 
 from antenna_cad import __version__  # noqa: E402
 from antenna_cad.export.plots import STYLE, draw_plot  # noqa: E402
@@ -64,8 +65,9 @@ def write_report_pdf(path: Path, r) -> None:
         ax = fig.add_axes((0.03, 0.2, 0.94, 0.7))
         ax.imshow(matplotlib.image.imread(io.BytesIO(r.views_png), format="png"))
         ax.axis("off")
-        fig.text(MARGIN, 0.95, f"{r.name}: assembly ({r.view_parts} parts; "
-                 + ", ".join(f"{m}" for m in r.view_legend) + ")", fontsize=10)
+        fig.text(MARGIN, 0.95, spelled(f"{r.name}: assembly ({r.view_parts} parts)"), fontsize=10)
+        fig.legend(handles=[Patch(facecolor=c, edgecolor="#444", label=spelled(m)) for m, c in r.view_legend.items()],
+                   loc="lower left", bbox_to_anchor=(MARGIN, 0.03), ncols=2, fontsize=7, frameon=False)
         pdf.savefig(fig)
         _text_pages(pdf, "Cut list", cutlist)
         _text_pages(pdf, "Files", format_table(("file", "solid volume mm3"), _files_by_folder(r.files)))

@@ -4,6 +4,7 @@
     make-lens build SPEC [-o OUT]    the same; options may come before or after SPEC
     make-lens validate SPEC          every rule a build applies, before any CAD work; writes nothing
     make-lens schema [-o FILE]       the JSON Schema of specs (stdout unless -o)
+    make-lens check OUT              re-read every file of a build folder with independent readers
     make-lens --version
 """
 
@@ -26,7 +27,7 @@ app = typer.Typer(add_completion=False, no_args_is_help=True, rich_markup_mode=N
                   help="Physics spec of a microwave antenna → STEP/STL, 1:1 templates, cut list.\n\n" + EXIT_CODES)
 out_console = Console()
 err_console = Console(stderr=True, soft_wrap=True)
-COMMANDS = {"build", "validate", "schema"}
+COMMANDS = {"build", "validate", "schema", "check"}
 VALUE_OPTIONS = {"-o", "--out"}
 STATUS_STYLE = {"pass": "green", "warn": "yellow", "fail": "red"}
 
@@ -157,6 +158,32 @@ def _with_command(args: list[str]) -> list[str]:
         else:
             return args if args[i] in COMMANDS else ["build", *args]
     return args
+
+
+@app.command()
+def check(folder: Path = typer.Argument(..., metavar="OUT", help="a build folder (holding manifest.json)")) -> None:
+    """Re-read every file of a build with independent readers; exit 1 naming what failed."""
+    from antenna_cad.export.check import CheckError, check_build
+    try:
+        findings = check_build(folder)
+    except CheckError as exc:
+        err_console.print(str(exc), markup=False, highlight=False)
+        raise typer.Exit(2)
+    table = Table(title=f"check {folder}")
+    for col in ("check", "files", "status", "result (first failure, else last file)"):
+        table.add_column(col)
+    for name in dict.fromkeys(f.check for f in findings):
+        group = [f for f in findings if f.check == name]
+        bad = [f for f in group if not f.ok]
+        shown = (bad or group)[-1] if not bad else bad[0]
+        table.add_row(name, str(len(group)), f"[red]FAIL {len(bad)}[/]" if bad else "[green]pass[/]",
+                      f"{shown.file}: {shown.message}")
+    out_console.print(table)
+    failed = [f for f in findings if not f.ok]
+    out_console.print(f"{len(findings) - len(failed)} of {len(findings)} checks passed"
+                      + (": failed " + "; ".join(f"{f.file} {f.check}" for f in failed[:10]) if failed else ""))
+    if failed:
+        raise typer.Exit(1)
 
 
 def main() -> None:

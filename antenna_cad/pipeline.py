@@ -158,7 +158,7 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
         try:
             tmp.mkdir()
             parts = _write_solids(spec, model, tmp, stage)
-            sheet_files = _write_templates(spec, p.fab, tmp)
+            templates = _write_templates(spec, p.fab, tmp)
             stage("templates")
             (tmp / "cutlist.csv").write_text(cutlist_csv(list(p.fab.rows), p.fab.totals_kg), encoding="utf-8")
             for file_name, text in p.fab.files.items():
@@ -166,7 +166,7 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
             if spec.outputs.report:
                 write_report(tmp, spec, figures, checks, verification, model, p.fab, parts)
             stage("report")
-            _write_manifest(spec, tmp, figures, checks, parts, p.layup, p.fab, sheet_files, verification)
+            _write_manifest(spec, tmp, figures, checks, parts, p.layup, p.fab, templates, verification)
             stage("manifest")
             _swap_into_place(tmp, final)
         except OSError as exc:
@@ -218,33 +218,38 @@ def _write_solids(spec, model, out: Path, stage) -> list[dict]:
         (out / "stl").mkdir()
     for part in sorted(model.parts, key=lambda p: p.label):
         entry = {"label": part.label, "material": part.material.name, "role": part.role,
-                 "volume_mm3": part.volume_mm3, "valid": bool(part.shape.is_valid)}
+                 "volume_mm3": part.volume_mm3, "solids": len(part.shape.solids()),
+                 "valid": bool(part.shape.is_valid)}
         if spec.outputs.stl:
             mesh = write_stl(part.shape, out / "stl" / f"{part.label}.stl", spec.outputs.mesh_tolerance_mm)
             entry |= {"file": f"stl/{part.label}.stl", "triangles": len(mesh.faces),
-                      "mesher": mesh.metadata["mesher"],
-                      "watertight": bool(mesh.is_watertight)}
+                      "mesher": mesh.metadata["mesher"], "watertight": mesh.metadata["watertight"],
+                      "bodies": mesh.metadata["bodies"], "bodies_watertight": mesh.metadata["bodies_watertight"]}
         parts.append(entry)
     stage("stl")
     return parts
 
 
-def _write_templates(spec, fab, out: Path) -> dict[str, str]:
-    """DXF + SVG per drawing and one tiled PDF; returns drawing label → DXF path."""
+def _write_templates(spec, fab, out: Path) -> list[dict]:
+    """DXF + SVG per drawing and one tiled PDF; returns their manifest entries (files, the CUT
+    outline's bounding box, the SVG's size) that ``make-lens check`` measures again."""
     if not spec.outputs.templates or not fab.drawings:
-        return {}
+        return []
     folder = out / "templates"
     folder.mkdir()
-    files = {}
+    entries = []
     for drawing in fab.drawings:
         write_dxf(dxf_document(drawing), folder / f"{drawing.label}.dxf")
-        write_svg(drawing, folder / f"{drawing.label}.svg")
-        files[drawing.label] = f"templates/{drawing.label}.dxf"
-    write_tiled_pdf(list(fab.drawings), folder / f"{spec.name}-templates.pdf", spec.name)
-    return files
+        svg_mm = write_svg(drawing, folder / f"{drawing.label}.svg")
+        entries.append({"label": drawing.label, "dxf": f"templates/{drawing.label}.dxf",
+                        "svg": f"templates/{drawing.label}.svg", "cut_bbox_mm": list(drawing.cut_bounds()),
+                        "svg_size_mm": list(svg_mm)})
+    pages = write_tiled_pdf(list(fab.drawings), folder / f"{spec.name}-templates.pdf", spec.name)
+    entries.append({"label": "all", "pdf": f"templates/{spec.name}-templates.pdf", "pages": pages})
+    return entries
 
 
-def _write_manifest(spec, out: Path, figures, checks, parts, layup, fab, sheet_files, verification) -> None:
+def _write_manifest(spec, out: Path, figures, checks, parts, layup, fab, templates, verification) -> None:
     material = resolve_material(spec.material)
     content = {
         "name": spec.name, "kind": spec.kind, "spec": spec.model_dump(mode="json"),
@@ -259,7 +264,9 @@ def _write_manifest(spec, out: Path, figures, checks, parts, layup, fab, sheet_f
         "mass_kg": fab.totals_kg, "boards": fab.boards,
         "pieces": [{"label": r.part, "board": r.board, "assembly_order": r.assembly_order}
                    for r in fab.rows],
+        "templates": templates,
     }
+    sheet_files = {t["label"]: t["dxf"] for t in templates if "dxf" in t}
     if layup is not None:
         pieces: dict[int, list[str]] = {}
         for piece in fab.pieces:                      # one pass: linear in pieces, not sheets × pieces

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 from pathlib import Path
 
 from antenna_cad import __version__
@@ -14,9 +15,10 @@ def sha256(path: Path) -> str:
 
 
 def _clean(value):
-    """Floats rounded to 12 significant digits so the JSON is stable and readable."""
+    """Floats rounded to 12 significant digits so the JSON is stable and readable; non-finite
+    ones become null (strict JSON has no Infinity or NaN)."""
     if isinstance(value, float):
-        return float(f"{value:.12g}")
+        return float(f"{value:.12g}") if math.isfinite(value) else None
     if isinstance(value, dict):
         return {k: _clean(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
@@ -31,4 +33,4 @@ def write_manifest(out_dir: Path, content: dict) -> None:
                 files=[{"path": p.relative_to(out_dir).as_posix(), "bytes": p.stat().st_size,
                         "sha256": sha256(p)} for p in files])
     (out_dir / "manifest.json").write_text(
-        json.dumps(_clean(body), indent=2, sort_keys=True, ensure_ascii=False) + "\n", encoding="utf-8")
+        json.dumps(_clean(body), indent=2, sort_keys=True, ensure_ascii=False, allow_nan=False) + "\n", encoding="utf-8")

@@ -15,6 +15,7 @@ from __future__ import annotations
 import tempfile
 from pathlib import Path
 
+import numpy as np
 import trimesh
 from build123d import Compound, Shape
 from OCP.BRep import BRep_Tool
@@ -44,7 +45,8 @@ def mesh_shape(shape: Shape, tolerance_mm: float, meshers: tuple[str, ...] = tup
             bodies = [_solid_mesh(solid.wrapped, path) for solid in shape.solids()]
         if all(b.is_watertight for b in bodies) or name == meshers[-1]:
             mesh = trimesh.util.concatenate(bodies)
-            mesh.metadata["mesher"] = name
+            mesh.metadata |= {"mesher": name, "bodies": len(bodies),
+                              "bodies_watertight": all(b.is_watertight for b in bodies)}
             return mesh
     raise ValueError("mesh_shape: no mesher given")
 
@@ -105,7 +107,16 @@ def _stl_read_back(shape, path: str) -> trimesh.Trimesh:
     return trimesh.load(path, file_type="stl", process=False)
 
 
+SNAP_MM = 1e-9       # coordinates below this are written as 0 (run-to-run noise of OCCT booleans)
+
+
 def write_stl(shape: Shape, path: Path, tolerance_mm: float) -> trimesh.Trimesh:
+    """Binary STL of ``shape``; near-zero coordinates snapped to 0 so the bytes are reproducible.
+    ``metadata["watertight"]``: the file as any STL reader sees it (vertices merged by position)
+    is a closed 2-manifold, False when bodies touch along edges (4 faces on an edge) even though
+    each body (``bodies_watertight``) is closed."""
     mesh = mesh_shape(shape, tolerance_mm)
+    mesh.vertices = np.where(np.abs(mesh.vertices) < SNAP_MM, 0.0, mesh.vertices)
+    mesh.metadata["watertight"] = bool(trimesh.Trimesh(mesh.vertices, mesh.faces).is_watertight)
     path.write_bytes(trimesh.exchange.stl.export_stl(mesh))
     return mesh

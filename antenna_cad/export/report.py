@@ -12,6 +12,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import yaml
+from matplotlib import colormaps
+from matplotlib.colors import to_hex
 
 from antenna_cad import __version__
 from antenna_cad.export.mesh import picture_meshes
@@ -22,6 +24,7 @@ from antenna_cad.verification import Table, Verification
 PALETTE = ("#9ecae1", "#fdae6b", "#a1d99b", "#bcbddc", "#fdd0a2", "#c7e9c0", "#dadaeb", "#c6dbef",
            "#fcbba1", "#d9d9d9")
 METAL = "#9a9a9a"
+GRADE_MAP = colormaps["viridis_r"]             # low εr light, high εr dark
 REPORT_HTML, REPORT_PDF = "report.html", "report.pdf"
 PICTURE_FACETS = 200.0         # chord tolerance of the pictures = model size / this
 
@@ -153,11 +156,19 @@ def _named_table(t: Table) -> str:
 
 
 def _pictures(model) -> tuple[bytes, dict[str, str], int]:
-    """Orthographic and isometric views of the parts to make (all parts when none is marked so):
-    the PNG, the material colours and the part count."""
+    """Orthographic and isometric views of the parts to make (all parts when none is marked so),
+    less the model's cutaway (a sphere's front hemispheres, so its shells show as rings): the
+    PNG, the material colours and the part count. Graded materials (three or more dielectrics)
+    are coloured along a sequential map by εr, so the grades read in order."""
     parts = [p for p in model.parts if p.role == "fabricated"] or list(model.parts)
-    materials = sorted({p.material.name: p.material for p in parts}.items())
-    colour = {name: METAL if _is_metal(m) else PALETTE[i % len(PALETTE)] for i, (name, m) in enumerate(materials)}
+    parts = [p for p in parts if p.label not in model.cutaway] or parts
+    materials = sorted({p.material.name: p.material for p in parts}.items(), key=lambda nm: (nm[1].eps_r, nm[0]))
+    dielectrics = [name for name, m in materials if not _is_metal(m)]
+    graded = len(dielectrics) >= 3
+    colour = {name: METAL if _is_metal(m) else
+              (to_hex(GRADE_MAP(0.15 + 0.7 * dielectrics.index(name) / (len(dielectrics) - 1))) if graded
+               else PALETTE[dielectrics.index(name) % len(PALETTE)])
+              for name, m in materials}
     bb = parts[0].shape.bounding_box()
     for p in parts[1:]:
         bb.add(p.shape.bounding_box())

@@ -9,6 +9,8 @@ thousands of templates stays printable.
 from __future__ import annotations
 
 import io
+import math
+import textwrap
 from pathlib import Path
 
 import matplotlib
@@ -17,6 +19,7 @@ matplotlib.use("Agg")
 import matplotlib.image  # noqa: E402
 from matplotlib.backends.backend_pdf import PdfPages  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
+from matplotlib.patches import Patch  # noqa: E402
 
 from antenna_cad import __version__  # noqa: E402
 from antenna_cad.export.plots import STYLE, draw_plot  # noqa: E402
@@ -24,7 +27,11 @@ from antenna_cad.fabrication.cutlist import FIELDS as CUT_FIELDS  # noqa: E402
 from antenna_cad.fabrication.vector_pdf import spelled  # noqa: E402
 
 A4_INCH = (8.27, 11.69)
-LINES_PER_PAGE = 86
+MARGIN = 0.05                        # of the page width / height, each side
+TEXT_TOP = 0.945                     # first text line, fraction of the page height
+COURIER_ADVANCE_EM = 0.6             # every Courier glyph (PDF standard font metrics)
+TEXT_SIZES_PT = (6.5, 5.0)           # preferred size; smallest before lines wrap
+LINE_SPACING = 1.25
 CUT_COLUMNS = ("part", "material", "board", "board_x_mm", "board_y_mm", "rotated", "width_mm", "height_mm",
                "thickness_mm", "mass_kg", "assembly_order")
 
@@ -58,8 +65,9 @@ def write_report_pdf(path: Path, r) -> None:
         ax = fig.add_axes((0.03, 0.2, 0.94, 0.7))
         ax.imshow(matplotlib.image.imread(io.BytesIO(r.views_png), format="png"))
         ax.axis("off")
-        fig.text(0.05, 0.95, f"{r.name}: assembly ({r.view_parts} parts; "
-                 + ", ".join(f"{m}" for m in r.view_legend) + ")", fontsize=10)
+        fig.text(MARGIN, 0.95, spelled(f"{r.name}: assembly ({r.view_parts} parts)"), fontsize=10)
+        fig.legend(handles=[Patch(facecolor=c, edgecolor="#444", label=spelled(m)) for m, c in r.view_legend.items()],
+                   loc="lower left", bbox_to_anchor=(MARGIN, 0.03), ncols=2, fontsize=7, frameon=False)
         pdf.savefig(fig)
         _text_pages(pdf, "Cut list", cutlist)
         _text_pages(pdf, "Files", format_table(("file", "solid volume mm3"), _files_by_folder(r.files)))
@@ -99,11 +107,26 @@ def _text(value) -> str:
 
 def _text_pages(pdf: PdfPages, heading: str, lines: list[str]) -> None:
     """Pages of monospaced text in the PDF standard fonts (Courier, Helvetica): no glyph
-    embedding, 40× faster than embedded DejaVu; characters they lack are spelled out."""
+    embedding, 40× faster than embedded DejaVu; characters they lack are spelled out. Courier's
+    fixed advance sizes the text so the longest line fits the page width (down to 5 pt); lines
+    still longer wrap with an indent, so nothing runs past the page edge."""
+    size, width = text_layout([spelled(line) for line in lines])
+    rows = [row for line in lines for row in (textwrap.wrap(spelled(line), width, subsequent_indent="    ",
+                                                            drop_whitespace=False) or [""])]
+    per_page = math.floor((TEXT_TOP - MARGIN) * A4_INCH[1] * 72 / (LINE_SPACING * size))
     with matplotlib.rc_context({"pdf.use14corefonts": True}):
-        for start in range(0, max(len(lines), 1), LINES_PER_PAGE):
+        for start in range(0, max(len(rows), 1), per_page):
             fig = Figure(figsize=A4_INCH)
-            fig.text(0.05, 0.965, spelled(heading), fontsize=12, weight="bold")
-            fig.text(0.05, 0.945, spelled("\n".join(lines[start:start + LINES_PER_PAGE])), family="monospace",
-                     weight="medium", fontsize=6.5, va="top", linespacing=1.25)
+            fig.text(MARGIN, 0.965, spelled(heading), fontsize=12, weight="bold")
+            fig.text(MARGIN, TEXT_TOP, "\n".join(rows[start:start + per_page]), family="monospace",
+                     weight="medium", fontsize=size, va="top", linespacing=LINE_SPACING)
             pdf.savefig(fig)
+
+
+def text_layout(lines: list[str]) -> tuple[float, int]:
+    """(font size pt, characters per line) for monospaced ``lines`` within the page margins."""
+    usable_pt = (1 - 2 * MARGIN) * A4_INCH[0] * 72
+    longest = max((len(line) for line in lines), default=1) or 1
+    size = max(TEXT_SIZES_PT[1], min(TEXT_SIZES_PT[0], usable_pt / (COURIER_ADVANCE_EM * longest)))
+    size = math.floor(size * 10) / 10
+    return size, math.floor(usable_pt / (COURIER_ADVANCE_EM * size))

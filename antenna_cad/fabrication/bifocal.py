@@ -11,7 +11,7 @@ from shapely.geometry import Polygon
 from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.outline import CHORD_TOL_MM
 from antenna_cad.fabrication.sheets import FabPlan
-from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
+from antenna_cad.fabrication.templates import Drawing
 from antenna_cad.materials import Material
 from antenna_cad.synthesis.bifocal import BifocalDesign, lens_volume_mm3
 
@@ -55,9 +55,9 @@ def fabricate_machined_bifocal(design: BifocalDesign, height_mm: float | None, m
         for y in np.linspace(0, yb, PROFILE_TABLE_ROWS)]
     for k, text in enumerate(rows):
         drawing.texts.append((text, x0, d - k * 7.0, 4.0))
-    drawing.texts.append((f"{title}: bifocal section gauge 1:1 ({shape}), {material.name}, 2Y_B "
-                          f"{2 * yb:g} mm, thickness {d:.3f} mm; z from the illuminated vertex "
-                          f"(feed plane {design.rho1_mm:.3f} mm below)", -yb, d + 25.0, TEXT_HEIGHT_MM))
+    drawing.add_title([f"{title}: bifocal section gauge 1:1 ({shape}), {material.name}, 2Y_B "
+                       f"{2 * yb:g} mm, thickness {d:.3f} mm; z from the illuminated vertex "
+                       f"(feed plane {design.rho1_mm:.3f} mm below)"], -yb, d + 25.0)
     drawing.add_check_bar(-yb, -30.0)
     return FabPlan((), {}, {}, (drawing,), (row,), {material.name: float(mass), "all": float(mass)},
                    {material.name: 1}, 0.0)

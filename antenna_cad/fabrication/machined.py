@@ -8,7 +8,7 @@ from shapely.geometry import Polygon
 from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.outline import CHORD_TOL_MM
 from antenna_cad.fabrication.sheets import FabPlan
-from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
+from antenna_cad.fabrication.templates import Drawing
 from antenna_cad.materials import Material
 from antenna_cad.synthesis.collimator import CollimatorDesign, profile_z_mm
 
@@ -40,9 +40,8 @@ def fabricate_machined(design: CollimatorDesign, material: Material, allowance_m
                                   for r in np.linspace(0, R, PROFILE_TABLE_ROWS)]
     for k, text in enumerate(rows):
         drawing.texts.append((text, x0, d - k * 7.0, 4.0))
-    drawing.texts.append((f"{title}: profile gauge 1:1, {material.name}, D {design.diameter_mm:g} mm, "
-                          f"thickness {d:.3f} mm; feed side at the bottom (z = 0 vertex)",
-                          -R, d + 25.0, TEXT_HEIGHT_MM))
+    drawing.add_title([f"{title}: profile gauge 1:1, {material.name}, D {design.diameter_mm:g} mm, "
+                       f"thickness {d:.3f} mm; feed side at the bottom (z = 0 vertex)"], -R, d + 25.0)
     drawing.add_check_bar(-R, -30.0)
     return FabPlan((), {}, {}, (drawing,), (row,), {material.name: float(mass), "all": float(mass)},
                    {material.name: 1}, 0.0)

@@ -21,16 +21,102 @@ CHORD_TOL_MM = 0.002
 NEST_SPACING_MM = 10.0       # gap between pieces and to the board edge
 
 
+def circle_vertex_count(radius: float, tol: float) -> int:
+    return max(24, 4 * math.ceil(math.pi * math.sqrt(radius / (2 * tol)) / 4))
+
+
 def circle_polygon(x: float, y: float, radius: float, tol: float = CHORD_TOL_MM) -> Polygon:
     """Polygon whose edges are tangent to the circle (vertices at most ``tol`` outside it)."""
-    count = max(24, 4 * math.ceil(math.pi * math.sqrt(radius / (2 * tol)) / 4))
+    count = circle_vertex_count(radius, tol)
     rv = radius / math.cos(math.pi / count)
     angles = [2 * math.pi * k / count for k in range(count)]
     return Polygon([(x + rv * math.cos(a), y + rv * math.sin(a)) for a in angles])
 
 
+HOLE_TOL_MM = 0.01
+
+
 def hole_polygons(holes: tuple[Hole, ...]) -> list[Polygon]:
-    return [circle_polygon(h.x_mm, h.y_mm, h.diameter_mm / 2, tol=0.01) for h in holes]
+    return [circle_polygon(h.x_mm, h.y_mm, h.diameter_mm / 2, tol=HOLE_TOL_MM) for h in holes]
+
+
+@dataclass(frozen=True)
+class Circle:
+    """A true circle an outline follows: centre, radius (of the tool path), and the chord
+    tolerance and radius of the polygon that approximated it."""
+    x: float
+    y: float
+    r: float
+    tol: float
+    polygon_r: float
+
+    def max_step_rad(self) -> float:
+        return 2 * math.pi / circle_vertex_count(self.polygon_r, self.tol) * 1.01
+
+
+def sheet_circles(plan: LayupPlan, sheet: SheetPlan, kerf_mm: float) -> list[Circle]:
+    """The circles of a sheet's tool paths: its disc and the aperture (material inside, or the
+    foot's notch outside), and its dowel holes; radii offset by half the kerf."""
+    c = kerf_mm / 2
+    out = [Circle(0.0, 0.0, r + s * c, CHORD_TOL_MM, r) for r in {sheet.radius_mm, plan.lens_radius_mm}
+           for s in (1, -1)]
+    return out + [Circle(h.x_mm, h.y_mm, h.diameter_mm / 2 - c, HOLE_TOL_MM, h.diameter_mm / 2)
+                  for h in sheet.lens_dowels + sheet.foot_dowels]
+
+
+def arc_paths(poly: Polygon, circles: list[Circle]) -> list[list[tuple[float, float, float]]]:
+    """The polygon's rings (exterior, then holes) as DXF bulge paths: each run of vertices lying
+    on one of ``circles`` (within its chord tolerance) joined by steps no longer than that
+    circle's polygon step becomes true arcs (≤ 90° each, ends projected onto the circle); other
+    edges stay straight. A straight chord is never taken for an arc: a chord that short sags less
+    than the chord tolerance."""
+    return [_ring_arcs(list(ring.coords)[:-1], circles) for ring in (poly.exterior, *poly.interiors)]
+
+
+def _ring_arcs(pts, circles: list[Circle]) -> list[tuple[float, float, float]]:
+    n = len(pts)
+
+    def on(i: int) -> int:
+        x, y = pts[i % n]
+        return next((k for k, c in enumerate(circles) if abs(math.hypot(x - c.x, y - c.y) - c.r) <= 2 * c.tol), -1)
+
+    def step(i: int, k: int) -> float:
+        c = circles[k]
+        (x0, y0), (x1, y1) = pts[i % n], pts[(i + 1) % n]
+        return math.atan2((x0 - c.x) * (y1 - c.y) - (y0 - c.y) * (x1 - c.x),
+                          (x0 - c.x) * (x1 - c.x) + (y0 - c.y) * (y1 - c.y))
+
+    circle_of = [on(i) for i in range(n)]
+    arc = [circle_of[i] >= 0 and circle_of[i] == circle_of[(i + 1) % n]
+           and abs(step(i, circle_of[i])) <= circles[circle_of[i]].max_step_rad() for i in range(n)]
+    if all(arc):                                   # a full circle: start anywhere
+        start = 0
+    elif not any(arc):
+        return [(x, y, 0.0) for x, y in pts]
+    else:
+        start = next(i for i in range(n) if arc[i] and not arc[i - 1])
+    out: list[tuple[float, float, float]] = []
+    i = start
+    while i < start + n:
+        if not arc[i % n]:
+            out.append((*pts[i % n], 0.0))
+            i += 1
+            continue
+        k, sweep, j = circle_of[i % n], 0.0, i
+        while j < start + n and arc[j % n] and circle_of[j % n] == k:
+            sweep += step(j, k)
+            j += 1
+        c = circles[k]
+        a0 = math.atan2(pts[i % n][1] - c.y, pts[i % n][0] - c.x)
+        pieces = max(1, math.ceil(abs(sweep) / (math.pi / 2) - 1e-9))
+        for p in range(pieces):
+            a = a0 + sweep * p / pieces
+            out.append((c.x + c.r * math.cos(a), c.y + c.r * math.sin(a), math.tan(sweep / pieces / 4)))
+        i = j
+        if j < start + n:                          # the run's end vertex, projected on the circle
+            a = a0 + sweep
+            pts[j % n] = (c.x + c.r * math.cos(a), c.y + c.r * math.sin(a))
+    return out
 
 
 @dataclass(frozen=True)

@@ -765,6 +765,5 @@ def _frame_marks(drawing: Drawing, r: float) -> None:
 
 def _title(d: Drawing, lines: list[str]) -> None:
     x0, y0, _, y1 = d.bounds()
-    for k, text in enumerate(lines):
-        d.texts.append((text, x0, y1 + 12 + 9 * (len(lines) - 1 - k), TEXT_HEIGHT_MM))
+    d.add_title(lines, x0, y1 + 12)
     d.add_check_bar(x0, y0 - 20)

@@ -13,7 +13,7 @@ from antenna_cad.fabrication.box import Panel
 from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.layup import LayupPlan
 from antenna_cad.fabrication.nesting import Placement, nest
-from antenna_cad.fabrication.outline import Joint, Piece, sheet_pieces, split_for_board
+from antenna_cad.fabrication.outline import Joint, Piece, arc_paths, sheet_circles, sheet_pieces, split_for_board
 from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
 from antenna_cad.materials import Material
 from antenna_cad.synthesis.checks import Check
@@ -102,8 +102,10 @@ def _sheet_drawing(plan: LayupPlan, index: int, pieces: list[Piece], joints: tup
                    foam: Material, title: str) -> Drawing:
     sheet = plan.sheets[index - 1]
     drawing = Drawing(sheet.label)
+    circles = sheet_circles(plan, sheet, plan.kerf_mm)
     for p in pieces:
-        drawing.add_polygon(p.cut_path(plan.kerf_mm))
+        path = p.cut_path(plan.kerf_mm)
+        drawing.add_polygon(path, arc_paths(path, circles))
         pt = p.polygon.representative_point()
         drawing.texts.append((p.label, pt.x - 20, pt.y, TEXT_HEIGHT_MM))
     r = sheet.radius_mm
@@ -124,7 +126,6 @@ def _sheet_drawing(plan: LayupPlan, index: int, pieces: list[Piece], joints: tup
              "Drawn as seen from the antenna side: the face on the table looks toward the FEED"]
     if joints:
         lines.append("MARK lines: board joints (butt joints, staggered against the next sheet)")
-    for k, text in enumerate(lines):
-        drawing.texts.append((text, x0, y1 + 12 + 9 * (len(lines) - 1 - k), TEXT_HEIGHT_MM))
+    drawing.add_title(lines, x0, y1 + 12)
     drawing.add_check_bar(x0, y0 - 20)
     return drawing

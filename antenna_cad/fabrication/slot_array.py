@@ -12,7 +12,7 @@ from shapely.geometry import Polygon
 
 from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.sheets import FabPlan
-from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
+from antenna_cad.fabrication.templates import Drawing
 from antenna_cad.geometry.slot_layout import (GuideExtent, PartSizes, band_ring, core_and_load_rings, coupling_edge,
                                               guide_extent, horn_outlines, layer_indices, mirror_back_sign,
                                               plate_polygon, slot_outline)
@@ -72,9 +72,9 @@ def _guide_pieces(design: SlotArrayDesign, g: int, ext: GuideExtent, t: float, m
     d.marks.append([(0.0, -3.0), (0.0, L + 3.0)])                      # guide axis
     d.marks.append([(-half, float(ext.y_slots_end[g]) - y0), (half, float(ext.y_slots_end[g]) - y0)])
     load = design.termination == "matched_load"
-    d.texts.append((f"{title} slotted lid of guide {g:02d}: {metal.name} {t:g} mm, {len(sel)} slots "
-                    f"(ids cell.slot; slots.csv); y = 0 at the coupling-slot end; MARK across: end of the slots"
-                    + (", load beyond" if load else ""), -half, L + 8.0, 3.0))
+    d.add_title([f"{title} slotted lid of guide {g:02d}: {metal.name} {t:g} mm, {len(sel)} slots "
+                 f"(ids cell.slot; slots.csv); y = 0 at the coupling-slot end; MARK across: end of the slots"
+                 + (", load beyond" if load else "")], -half, L + 8.0, 3.0)
     d.add_check_bar(-half, -20.0)
     slot_area = float(np.sum(s.length_mm[sel] * s.width_mm[sel] - (4 - np.pi) * (s.width_mm[sel] / 2) ** 2))
     core, wedge = core_and_load_rings(a, y0, float(ext.y_slots_end[g]), float(ext.y_load_end[g]))
@@ -122,10 +122,10 @@ def fabricate_slot_array(design: SlotArrayDesign, dielectric: Material, metal: M
         for c in design.feeds.aperture_centres_mm:
             d.add_cross(float(c[0]), float(c[1]), 3.0)
         x0, y0, x1, y1 = outline.bounds
-        d.texts.append((f"{title} plate-{k}: {metal.name} {t:g} mm, "
-                        + (f"{len(holes)} coupling slot(s) {design.coupling_slot_mm:g} mm" if holes else "base plate")
-                        + ("; notched for the horns" if k <= 1 else "")
-                        + "; MARK: mirror faces, + feed aperture centres", x0, y1 + 8.0, TEXT_HEIGHT_MM))
+        d.add_title([f"{title} plate-{k}: {metal.name} {t:g} mm, "
+                     + (f"{len(holes)} coupling slot(s) {design.coupling_slot_mm:g} mm" if holes else "base plate")
+                     + ("; notched for the horns" if k <= 1 else "")
+                     + "; MARK: mirror faces, + feed aperture centres"], x0, y1 + 8.0)
         d.add_check_bar(x0, y0 - 20.0)
         drawings.append(d)
         rows.append(_row(f"plate-{k}", "beamformer-plate", metal, x1 - x0, y1 - y0, t, area, area * t, 1,
@@ -136,9 +136,8 @@ def fabricate_slot_array(design: SlotArrayDesign, dielectric: Material, metal: M
         hgt = design.layer_height_mm * len(layer_indices(m)) + t * (len(layer_indices(m)) - 1)
         d = Drawing(f"mirror-{j}")
         d.cut.append(ring)
-        d.texts.append((f"{title} mirror-{j} ({m.layer}): {metal.name} wall {sizes.mirror_wall_mm:g} mm, "
-                        f"height {hgt:g} mm", float(m.points_mm[0, 0]), float(m.points_mm[:, 1].max()) + 12.0,
-                        TEXT_HEIGHT_MM))
+        d.add_title([f"{title} mirror-{j} ({m.layer}): {metal.name} wall {sizes.mirror_wall_mm:g} mm, "
+                     f"height {hgt:g} mm"], float(m.points_mm[0, 0]), float(m.points_mm[:, 1].max()) + 12.0)
         d.add_check_bar(float(m.points_mm[0, 0]), float(m.points_mm[:, 1].min()) - 20.0)
         drawings.append(d)
         length = float(np.sum(np.linalg.norm(np.diff(m.points_mm, axis=0), axis=1)))
@@ -150,8 +149,8 @@ def fabricate_slot_array(design: SlotArrayDesign, dielectric: Material, metal: M
         d = Drawing(label)
         d.cut.append(ring)
         area = Polygon(ring).area
-        d.texts.append((f"{title} {label}: {dielectric.name} εr {design.fill_eps_r:g}, thickness "
-                        f"{design.layer_height_mm:g} mm", ring[0][0], max(p[1] for p in ring) + 12.0, TEXT_HEIGHT_MM))
+        d.add_title([f"{title} {label}: {dielectric.name} εr {design.fill_eps_r:g}, thickness "
+                     f"{design.layer_height_mm:g} mm"], ring[0][0], max(p[1] for p in ring) + 12.0)
         d.add_check_bar(ring[0][0], min(p[1] for p in ring) - 20.0)
         drawings.append(d)
         rows.append(_row(label, "lens-region", dielectric, float(np.ptp([p[0] for p in ring])),
@@ -163,9 +162,8 @@ def fabricate_slot_array(design: SlotArrayDesign, dielectric: Material, metal: M
         d.add_polygon(horn.footprint)
         d.marks.append(_ring(horn.channel.exterior.coords[:-1]))
         x0, y0, _, y1 = horn.footprint.bounds
-        d.texts.append((f"{title} horn-{k}: split block, {metal.name}. CUT: outline of body ({t + h1:g} mm) and "
-                        f"lid ({t:g} mm); MARK: channel, pocket {h1:g} mm deep through both ends",
-                        x0, y1 + 8.0, TEXT_HEIGHT_MM))
+        d.add_title([f"{title} horn-{k}: split block, {metal.name}. CUT: outline of body ({t + h1:g} mm) and "
+                     f"lid ({t:g} mm); MARK: channel, pocket {h1:g} mm deep through both ends"], x0, y1 + 8.0)
         d.add_check_bar(x0, y0 - 20.0)
         drawings.append(d)
         area = horn.footprint.area

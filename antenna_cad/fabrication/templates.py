@@ -20,12 +20,13 @@ import ezdxf
 import numpy as np
 from shapely.geometry import Polygon, box
 
-from antenna_cad.fabrication.vector_pdf import PT_PER_MM, VectorPdf, num, polyline_ops, text_ops
+from antenna_cad.fabrication.vector_pdf import (PT_PER_MM, VectorPdf, num, polyline_ops, text_ops, text_width,
+                                                wrap_text)
 
 _EZDXF_MARKER = re.compile(r"(\d+\.\d+\.\d+) @ \d{4}-\d\d-\d\dT[\d:.]+\+00:00")
 A4_MM = (210.0, 297.0)
 PAGE_MARGIN_MM = 10.0
-HEADER_MM, FOOTER_MM = 12.0, 18.0
+HEADER_MM, FOOTER_MM = 26.0, 18.0              # header: page line + the drawing's title block
 WINDOW_MM = (A4_MM[0] - 2 * PAGE_MARGIN_MM, A4_MM[1] - 2 * PAGE_MARGIN_MM - HEADER_MM - FOOTER_MM)  # per tile
 OVERLAP_MM = 10.0
 CHECK_BAR_MM = 100.0
@@ -34,7 +35,8 @@ LAYERS = {"CUT": 1, "MARK": 5, "TEXT": 7}      # DXF colour indices: red, blue, 
 SVG_COLOURS = {"CUT": "red", "MARK": "blue"}
 LINE_WIDTH_MM = {"CUT": 0.18, "MARK": 0.14}
 CAP_HEIGHT_EM = 0.72                             # Helvetica: DXF text height is the cap height
-CHAR_WIDTH_EM = 0.6                              # generous mean advance, for page extents only
+HEADER_PT = (7.0, 6.0, 4.0)                      # page line; title block preferred and smallest size
+TITLE_LEADING = 1.5                              # title lines: baseline step / cap height
 
 
 BulgePath = list[tuple[float, float, float]]     # closed path: vertex x, y and the DXF bulge to the next
@@ -45,12 +47,26 @@ class Drawing:
     """A template in drawing coordinates (mm). ``cut`` rings are tool paths (polylines within the
     template chord tolerance, drawn in SVG and PDF); ``arcs`` maps a ``cut`` index to the same
     path with true circular arcs (DXF bulges), written to the DXF instead when present;
-    ``marks`` are open polylines."""
+    ``marks`` are open polylines; ``title`` the title block (also among ``texts``, wrapped; the
+    PDF repeats it in the header of every tile instead)."""
     label: str
     cut: list[list[tuple[float, float]]] = field(default_factory=list)
     arcs: dict[int, BulgePath] = field(default_factory=dict)
     marks: list[list[tuple[float, float]]] = field(default_factory=list)
-    texts: list[tuple[str, float, float, float]] = field(default_factory=list)   # text, x, y, height
+    texts: list[tuple[str, float, float, float]] = field(default_factory=list)   # text, x, y, cap height
+    title: list[str] = field(default_factory=list)
+    title_texts: set[int] = field(default_factory=set)                         # their indices in texts
+
+    def add_title(self, lines: list[str], x: float, y: float, height: float = TEXT_HEIGHT_MM) -> None:
+        """Title block above (x, y), the baseline of its last row; each line wrapped to the
+        drawing's width (at least one tile's) so it stays on the drawing."""
+        x0, _, x1, _ = self.bounds()
+        width = max(x1 - x, WINDOW_MM[0])
+        rows = [row for line in lines for row in wrap_text(line, width, height / CAP_HEIGHT_EM)]
+        self.title += lines
+        for k, row in enumerate(rows):
+            self.title_texts.add(len(self.texts))
+            self.texts.append((row, x, y + (len(rows) - 1 - k) * TITLE_LEADING * height, height))
 
     def add_polygon(self, poly: Polygon, arcs: list[BulgePath] | None = None) -> None:
         """The polygon's rings as cut paths; ``arcs``: their exact versions, in the same order."""
@@ -72,12 +88,20 @@ class Drawing:
         xs, ys = [p[0] for p in pts], [p[1] for p in pts]
         return min(xs), min(ys), max(xs), max(ys)
 
+    def cut_bounds(self) -> tuple[float, float, float, float]:
+        """Bounding box of the CUT paths: of their true arcs where the DXF has them (bulge arcs
+        reach past their chords), else of the polylines."""
+        boxes = [bulge_bounds(self.arcs[k]) if k in self.arcs else _points_box(ring)
+                 for k, ring in enumerate(self.cut)]
+        return (min(b[0] for b in boxes), min(b[1] for b in boxes), max(b[2] for b in boxes),
+                max(b[3] for b in boxes))
+
     def extents(self, bounds: tuple[float, float, float, float] | None = None) -> tuple[float, float, float, float]:
-        """``bounds`` (pass them when already computed) grown by the texts' boxes (estimated
+        """``bounds`` (pass them when already computed) grown by the texts' boxes (Helvetica
         advance widths)."""
         x0, y0, x1, y1 = bounds or self.bounds()
         for text, x, y, size in self.texts:
-            x1 = max(x1, x + len(text) * CHAR_WIDTH_EM * size / CAP_HEIGHT_EM)
+            x1 = max(x1, x + text_box(text, size)[0])
             y1 = max(y1, y + size)
         return x0, y0, x1, y1
 
@@ -88,6 +112,38 @@ class Drawing:
             tick = 6.0 if k in (0, 5, 10) else 3.0
             self.marks.append([(x + 10 * k, y), (x + 10 * k, y + tick)])
         self.texts.append(("100 mm check bar", x, y - 8.0, 4.0))
+
+
+def _points_box(points) -> tuple[float, float, float, float]:
+    xs, ys = [p[0] for p in points], [p[1] for p in points]
+    return min(xs), min(ys), max(xs), max(ys)
+
+
+def bulge_bounds(path: BulgePath) -> tuple[float, float, float, float]:
+    """Exact bounding box of a closed path of lines and bulge arcs (DXF LWPOLYLINE semantics:
+    bulge = tan(sweep / 4), positive counter-clockwise)."""
+    pts = [(x, y) for x, y, _ in path]
+    for (x0, y0, b), (x1, y1, _) in zip(path, path[1:] + path[:1]):
+        if abs(b) < 1e-12:
+            continue
+        sweep = 4 * math.atan(b)
+        chord = math.hypot(x1 - x0, y1 - y0)
+        r = chord / (2 * abs(math.sin(sweep / 2)))
+        mx, my = (x0 + x1) / 2, (y0 + y1) / 2
+        d = r * math.cos(sweep / 2) * (1 if b > 0 else -1)      # centre offset, left of the chord if ccw
+        cx, cy = mx - d * (y1 - y0) / chord, my + d * (x1 - x0) / chord
+        a0 = math.atan2(y0 - cy, x0 - cx)
+        for q in range(4):                                        # axis extremes the arc sweeps over
+            t = q * math.pi / 2
+            rel = (t - a0) % (2 * math.pi) if b > 0 else (a0 - t) % (2 * math.pi)
+            if rel <= abs(sweep):
+                pts.append((cx + r * math.cos(t), cy + r * math.sin(t)))
+    return _points_box(pts)
+
+
+def text_box(text: str, cap_height: float) -> tuple[float, float]:
+    """(width, height) mm of a drawing text: Helvetica advance and cap height."""
+    return text_width(text, cap_height / CAP_HEIGHT_EM), cap_height
 
 
 def dxf_document(drawing: Drawing) -> ezdxf.document.Drawing:
@@ -129,9 +185,10 @@ def write_dxf(doc: ezdxf.document.Drawing, path: Path) -> None:
     path.write_bytes(text.encode(doc.output_encoding))
 
 
-def write_svg(drawing: Drawing, path: Path) -> None:
+def write_svg(drawing: Drawing, path: Path) -> tuple[float, float]:
     """True-scale SVG written from the drawing (1 user unit = 1 mm, y up as in the DXF): page =
-    extents with texts + 10 mm margins, width/height in mm, CUT red, MARK blue, TEXT black."""
+    extents with texts + 10 mm margins, width/height in mm, CUT red, MARK blue, TEXT black.
+    Returns the page (width, height) mm as written."""
     x0, y0, x1, y1 = drawing.extents()
     m = PAGE_MARGIN_MM
     w, h = x1 - x0 + 2 * m, y1 - y0 + 2 * m
@@ -149,6 +206,7 @@ def write_svg(drawing: Drawing, path: Path) -> None:
             for text, x, y, size in drawing.texts]
     out.append("</g></svg>\n")
     path.write_text("\n".join(out), encoding="utf-8")
+    return float(num(w)), float(num(h))
 
 
 def tile_windows(drawing: Drawing, bounds: tuple[float, float, float, float]) -> list[tuple[int, int, float, float]]:
@@ -172,19 +230,44 @@ def tile_windows(drawing: Drawing, bounds: tuple[float, float, float, float]) ->
 
 def write_tiled_pdf(drawings: list[Drawing], path: Path, title: str) -> int:
     """All drawings at 1:1 on A4 portrait pages with overlap; returns the page count. Each
-    drawing is one Form XObject (with registration crosses at the centres of the overlap strips,
-    the same model points on neighbouring pages); a page clips it to its window and scales it by
-    exactly 72/25.4 pt per mm, then adds the header and a 100 mm check bar in page space."""
+    drawing's lines are one Form XObject (with registration crosses at the centres of the overlap
+    strips, the same model points on neighbouring pages); a page clips it to its window and scales
+    it by exactly 72/25.4 pt per mm. Texts are set in page space, never clipped: the header and
+    the drawing's title block on every tile, each other text whole on the tile that holds its
+    start (or the nearest), moved inside the window where it would cross its edge."""
     with VectorPdf(path, A4_MM, title) as pdf:
         for drawing in drawings:
             bounds = drawing.bounds()
             tiles = tile_windows(drawing, bounds)
             form = pdf.add_form(_form_content(drawing, bounds), _padded(drawing.extents(bounds), 10.0))
+            placed = _texts_by_tile(drawing, tiles)
             for k, (r, c, wx, wy) in enumerate(tiles, start=1):
                 header = (f"{title} · {drawing.label} · tile row {r + 1} col {c + 1} · page {k}/{len(tiles)}"
                           " · print at 100 % (actual size)")
-                pdf.add_page(_page_content(form, wx, wy, header), (form,))
+                pdf.add_page(_page_content(form, wx, wy, [header] + drawing.title, placed[k - 1]), (form,))
         return pdf.page_count
+
+
+def _texts_by_tile(drawing: Drawing, tiles) -> list[list[tuple[str, float, float, float]]]:
+    """Per tile, the drawing's non-title texts at window positions (mm from the window's lower
+    left): each on the tiles whose window holds its start point, else on the nearest tile,
+    shifted so its whole box lies inside the window."""
+    win_w, win_h = WINDOW_MM
+    placed: list[list[tuple[str, float, float, float]]] = [[] for _ in tiles]
+    for i, (text, x, y, size) in enumerate(drawing.texts):
+        if i in drawing.title_texts:
+            continue
+        holders = [k for k, (_, _, wx, wy) in enumerate(tiles) if wx <= x <= wx + win_w and wy <= y <= wy + win_h]
+        if not holders:
+            holders = [min(range(len(tiles)), key=lambda k: math.hypot(tiles[k][2] + win_w / 2 - x,
+                                                                       tiles[k][3] + win_h / 2 - y))]
+        w, h = text_box(text, size)
+        for k in holders:
+            wx, wy = tiles[k][2], tiles[k][3]
+            px = min(max(x - wx, 0.5), win_w - w - 0.5)
+            py = min(max(y - wy, 0.5), win_h - h - 0.5)
+            placed[k].append((text, px, py, size))
+    return placed
 
 
 def _form_content(drawing: Drawing, bounds: tuple[float, float, float, float]) -> bytes:
@@ -200,12 +283,12 @@ def _form_content(drawing: Drawing, bounds: tuple[float, float, float, float]) -
     ops += [polyline_ops(line, closed=False) for line in drawing.marks]
     ops.append("0 0 0 RG\n")
     ops += [polyline_ops(line, closed=False) for line in crosses]
-    body = "".join(ops).encode() + b"0 g\n"
-    return body + b"".join(text_ops(text, x, y, size / CAP_HEIGHT_EM) for text, x, y, size in drawing.texts)
+    return "".join(ops).encode()
 
 
-def _page_content(form: int, wx: float, wy: float, header: str) -> bytes:
-    """Page-space operators in points: clipped window holding the form at 1:1, frame, header, bar."""
+def _page_content(form: int, wx: float, wy: float, header: list[str], texts) -> bytes:
+    """Page-space operators in points: clipped window holding the form at 1:1, frame, header
+    lines (wrapped to the window width), the tile's texts, check bar."""
     k = PT_PER_MM
     left, bottom = PAGE_MARGIN_MM, PAGE_MARGIN_MM + FOOTER_MM
     window = f"{num(left * k)} {num(bottom * k)} {num(WINDOW_MM[0] * k)} {num(WINDOW_MM[1] * k)} re"
@@ -218,8 +301,29 @@ def _page_content(form: int, wx: float, wy: float, header: str) -> bytes:
     ops += [f"{num(x)} {num(bar_y)} m {num(x)} {num(bar_y + (4 if t % 5 == 0 else 2) * k)} l S\n"
             for t, x in enumerate(x_bar)]
     content = "".join(ops).encode()
-    content += text_ops(header, left * k, (A4_MM[1] - PAGE_MARGIN_MM - 5) * k, 7)
+    top = (A4_MM[1] - PAGE_MARGIN_MM) * k
+    for text, y, size in header_lines(header):
+        content += text_ops(text, left * k, top - y, size)
+    for text, x, y, size in texts:
+        content += text_ops(text, (left + x) * k, (bottom + y) * k, size / CAP_HEIGHT_EM * k)
     return content + text_ops("100 mm check bar: measure it", (left + CHECK_BAR_MM + 4) * k, bar_y - 2, 6)
+
+
+def header_lines(lines: list[str]) -> list[tuple[str, float, float]]:
+    """(text, baseline depth below the page's top margin pt, size pt) of the page line and the
+    title block, wrapped to the window width; the title shrinks (to 4 pt) to fit the header."""
+    width = WINDOW_MM[0] * PT_PER_MM
+    room = (HEADER_MM - 1.0) * PT_PER_MM - 1.25 * HEADER_PT[0]
+    first = wrap_text(lines[0], width, HEADER_PT[0])
+    size = HEADER_PT[1]
+    while True:
+        rows = [row for line in lines[1:] for row in wrap_text(line, width, size)]
+        if len(rows) * 1.2 * size <= room - 1.25 * HEADER_PT[0] * (len(first) - 1) or size <= HEADER_PT[2]:
+            break
+        size -= 0.5
+    out = [(row, HEADER_PT[0] * (1 + 1.25 * i), HEADER_PT[0]) for i, row in enumerate(first)]
+    depth = out[-1][1] + 0.25 * HEADER_PT[0]
+    return out + [(row, depth + 1.2 * size * (i + 1), size) for i, row in enumerate(rows)]
 
 
 def _padded(box: tuple[float, float, float, float], pad: float) -> tuple[float, float, float, float]:

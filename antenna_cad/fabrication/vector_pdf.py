@@ -11,6 +11,7 @@ Output is byte-reproducible: no dates, no IDs, objects numbered in writing order
 from __future__ import annotations
 
 import zlib
+from functools import cache
 from pathlib import Path
 from typing import BinaryIO
 
@@ -41,6 +42,47 @@ def polyline_ops(points, closed: bool) -> str:
     (x, y), rest = points[0], points[1:]
     ops = [f"{num(x)} {num(y)} m"] + [f"{num(px)} {num(py)} l" for px, py in rest]
     return "\n".join(ops) + ("\ns\n" if closed else "\nS\n")
+
+
+@cache
+def _helvetica():
+    """Helvetica's Adobe font metrics (the AFM file matplotlib ships for the PDF standard fonts)."""
+    from matplotlib import _afm, cbook
+    from matplotlib._mathtext_data import uni2type1
+    with open(cbook._get_data_path("fonts/pdfcorefonts/Helvetica.afm"), "rb") as fh:
+        return _afm.AFM(fh), uni2type1
+
+
+def text_width(text: str, size: float) -> float:
+    """Advance width of ``text`` (as written: spelled out) in Helvetica at font size ``size``."""
+    afm, names = _helvetica()
+    units = 0.0
+    for ch in spelled(text):
+        if ord(ch) < 128:
+            units += afm.get_width_char(ord(ch))
+        else:
+            try:
+                units += afm.get_width_from_char_name(names.get(ord(ch), "bullet"))
+            except KeyError:
+                units += 1000.0                         # unknown glyph: a full em, never too short
+    return units * size / 1000.0
+
+
+def wrap_text(text: str, width: float, size: float) -> list[str]:
+    """``text`` broken at spaces into lines no wider than ``width`` in Helvetica at ``size`` (a
+    single word wider than that stands alone, broken by characters)."""
+    lines: list[str] = []
+    for word in text.split(" "):
+        trial = f"{lines[-1]} {word}" if lines else word
+        if lines and text_width(trial, size) <= width:
+            lines[-1] = trial
+            continue
+        while text_width(word, size) > width and len(word) > 1:
+            cut = max(k for k in range(1, len(word) + 1) if k == 1 or text_width(word[:k], size) <= width)
+            lines.append(word[:cut])
+            word = word[cut:]
+        lines.append(word)
+    return lines or [""]
 
 
 def text_ops(text: str, x: float, y: float, size: float) -> bytes:

@@ -110,7 +110,8 @@ def build_model(design, grades: list[Material], fab, base: Material) -> Model:
         checks.append(Check("feed_arm_outside_aperture", "pass", -R - length, -R, "mm",
                             f"metal feed arm fixed at y = {-R - length:g} mm, below the aperture "
                             f"(|y| > R = {R:g} mm); the boss is foam of the outer grade"))
-    return Model(tuple(parts), tuple(checks))
+    front = tuple(p.label for p in parts if p.label.endswith("-front"))   # pictures: the grades as rings
+    return Model(tuple(parts), tuple(checks), cutaway=front)
 
 
 def build_layup_model(plan, base: Material) -> Model:

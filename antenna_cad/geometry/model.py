@@ -31,6 +31,7 @@ class Model:
     checks: tuple[Check, ...]
     step_pcurves: bool = True   # False: STEP without p-curves (optional data; ~2x faster, 3x smaller
                                 # for thousands of slot faces)
+    cutaway: tuple[str, ...] = ()   # labels left out of the report's pictures so nested parts show
 
     def part(self, label: str) -> ModelPart:
         return next(p for p in self.parts if p.label == label)

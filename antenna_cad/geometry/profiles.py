@@ -10,7 +10,8 @@ import math
 
 from build123d import Axis, Edge, Face, Solid, Wire, revolve
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
-from OCP.Geom import Geom_Hyperbola
+from OCP.Geom import Geom_Hyperbola, Geom_TrimmedCurve
+from OCP.GeomConvert import GeomConvert
 from OCP.gp import gp_Ax2, gp_Dir, gp_Hypr, gp_Pnt
 
 from antenna_cad.synthesis.collimator import hyperbola_axes_mm
@@ -19,11 +20,16 @@ from antenna_cad.synthesis.collimator import hyperbola_axes_mm
 def hyperbola_edge(focal_length_mm: float, n: float, r_from_mm: float, r_to_mm: float) -> Edge:
     """Exact arc of the collimator profile (seed-000 (1.9) corrected) between two radii.
 
-    The conic (z − z_c)²/A² − r²/B² = 1 is parametrized as z = z_c + A·cosh u, r = B·sinh u.
+    The conic (z − z_c)²/A² − r²/B² = 1 is parametrized as z = z_c + A·cosh u, r = B·sinh u, and
+    written as its exact rational quadratic B-spline (3 poles; equal to the conic to ~1e-13 mm).
+    Portability: OCCT 7.x STEP readers (gmsh, FreeCAD, OCP 7.9) drop every face whose
+    SURFACE_OF_REVOLUTION sweeps a HYPERBOLA ("Entity was not translated") and with it the solid;
+    a B_SPLINE_CURVE generatrix reads everywhere. Pinned by tests/test_step_portable.py.
     """
     zc, a, b = hyperbola_axes_mm(focal_length_mm, n)
     conic = Geom_Hyperbola(gp_Hypr(gp_Ax2(gp_Pnt(0, 0, zc), gp_Dir(0, 1, 0), gp_Dir(0, 0, 1)), a, b))
-    return Edge(BRepBuilderAPI_MakeEdge(conic, math.asinh(r_from_mm / b), math.asinh(r_to_mm / b)).Edge())
+    arc = Geom_TrimmedCurve(conic, math.asinh(r_from_mm / b), math.asinh(r_to_mm / b))
+    return Edge(BRepBuilderAPI_MakeEdge(GeomConvert.CurveToBSplineCurve_s(arc)).Edge())
 
 
 def polyline_edges(points_rz: list[tuple[float, float]]) -> list[Edge]:

@@ -183,7 +183,8 @@ class FieldScan:
 
 def field_scan(body: Body, angles_deg: np.ndarray, dz_range: float = 0.05) -> FieldScan:
     """For each field angle θ: lateral feed offset δ_R = γ sin θ (the aplanat's beam tilt, the
-    linear term of (19); γ sin θ / n for a feed inside the dielectric, (20)), then the axial δ_Z minimising σ (focal curve); the feed moves to −x."""
+    linear term of (19); γ sin θ / n for a feed inside the dielectric, (20)), then the axial δ_Z
+    minimising σ (focal curve); the feed moves to −x."""
     launch = launch_grid(body)
     dr, dz, ang, sig, sig0 = [], [], [], [], []
     scale = body.n if body.feed_inside else 1.0        # (20): the linear term is n sin α δ_R inside
@@ -281,10 +282,8 @@ def astigmatism_3d(body: Body, r_exit: float, delta: float = 1e-3) -> tuple[floa
     ray = trace(body, (0.0, 0.0, 0.0), np.array([[sa, 0.0, np.sqrt(1 - sa * sa)]]))
     c = ray.exit_point[0]
     w = ray.launch[0]
-    t_b = _hit(np.zeros((1, 3)), w[None], body.mirror, np.array([1.0]))[0] if body.feed_inside else None
     if body.feed_inside:
-        b = t_b[0] * w
-        guess = b[:2]
+        guess = (_hit(np.zeros((1, 3)), w[None], body.mirror, np.array([1.0]))[0][0] * w)[:2]
     else:
         t_a = _hit(np.zeros((1, 3)), w[None], body.front, np.array([body.front.z(np.array([0.0]))[0] / w[2]]))[0]
         a = t_a[0] * w

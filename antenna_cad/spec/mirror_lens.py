@@ -58,7 +58,8 @@ class OptimizeSpec(StrictModel):
 
 class MirrorLensDesign(StrictModel):
     diameter_mm: float = Field(gt=0, le=20000, description="D, the exit aperture diameter")
-    refractive_index: float | None = Field(None, gt=1, le=10, description="optional check: must equal √εr of material")
+    refractive_index: float | None = Field(None, gt=1, le=10,
+                                           description="optional check: must equal √εr of material")
     feed_on_surface: bool = Field(False, description="f0 = 0: the feed on the front face (seed-004 §2.4)")
     f0: float | None = Field(None, gt=0, le=10, description="feed to front vertex, units of D")
     f0_mm: float | None = Field(None, gt=0, le=200000)
@@ -98,7 +99,8 @@ class MirrorLensDesign(StrictModel):
             raise ValueError(f"design.gamma_mm: must exceed the aperture radius D/2 = {D / 2:g} mm "
                              f"(sine condition r = γ sin α; got {self.gamma_mm:g})")
         if self.optimize is not None and self.optimize.gamma_min <= self.f0_norm:
-            raise ValueError(f"design.optimize.gamma_min: must be > f0 = {self.f0_norm:.4g} D (f2 is singular at γ = f0)")
+            raise ValueError(f"design.optimize.gamma_min: must be > f0 = {self.f0_norm:.4g} D "
+                             "(f2 is singular at γ = f0)")
         if has_gamma and not self.feed_on_surface and abs(self.gamma_norm - self.f0_norm) < 1e-3:
             raise ValueError(f"design.gamma: γ = f0 = {self.f0_norm:.4g} makes the series singular (seed-004 §3.5)")
         return self

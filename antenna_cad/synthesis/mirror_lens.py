@@ -94,7 +94,8 @@ class MirrorLensDesign:
     @property
     def z_range_mm(self) -> tuple[float, float]:
         p = self.profiles
-        return float(min(p.f.min(), p.Z_b.min())) * self.diameter_mm, float(max(p.f.max(), p.Z_b.max())) * self.diameter_mm
+        lo, hi = min(p.f.min(), p.Z_b.min()), max(p.f.max(), p.Z_b.max())
+        return float(lo) * self.diameter_mm, float(hi) * self.diameter_mm
 
     @property
     def body_radius_mm(self) -> float:
@@ -160,8 +161,8 @@ def synthesize_mirror_lens(*, diameter_mm: float, frequency_ghz: float, n: float
         if f0 == 0.0:
             raise DesignError("design.optimize", "the target A (21) optimisation is defined for f0 > 0; "
                               "give gamma for feed_on_surface (seed-004 §3.5: (21) does not give γ = 0.572)")
-        optimum = optimize_target(n, f0, d0, 0.5 * (optimize["gamma_min"] + optimize["gamma_max"]),
-                                  mode=optimize["mode"], bounds={"gamma": (optimize["gamma_min"], optimize["gamma_max"])})
+        lo, hi = optimize["gamma_min"], optimize["gamma_max"]
+        optimum = optimize_target(n, f0, d0, 0.5 * (lo + hi), mode=optimize["mode"], bounds={"gamma": (lo, hi)})
         gamma = float(optimum.gamma)
     p = synthesize_profiles(n, f0, d0, gamma)
     if p.Z_b[-1] <= p.f[-1]:

@@ -155,3 +155,11 @@ def test_impossible_designs_name_the_parameter(args, field):
     with pytest.raises(DesignError) as err:
         synthesize_profiles(*args)
     assert err.value.field == field
+
+
+def test_two_parameter_search_leaves_the_published_point():
+    """Digest §3.5 item 2: at n = 1.3 a 2-D (f0, γ) search of (21) finds a lower A at f0 ≈ 0.708,
+    γ ≈ 0.959 — the paper's point came from unstated constraints."""
+    opt = optimize_target(N, F0, D0, 0.94, free=("f0", "gamma"), bounds={"gamma": (0.88, 1.2), "f0": (0.3, 0.9)})
+    assert (opt.f0, opt.gamma) == (pytest.approx(0.708, abs=2e-3), pytest.approx(0.959, abs=2e-3))
+    assert opt.A < target_A(N, F0, D0, 0.93777) and opt.f0 + opt.d0 == pytest.approx(1.0)

@@ -24,6 +24,7 @@ from antenna_cad.synthesis.aplanatic import Profiles
 
 Profile = Callable[[np.ndarray], np.ndarray]
 GRID = 41                       # launch grid per side (direction cosines), ≈ 1300 rays in the cone
+MIN_RAYS = 50                   # fewer rays through the aperture: no usable wavefront
 CONE_MARGIN = 1.25              # launch cone beyond the on-axis cone, so a displaced feed fills the aperture
 
 
@@ -158,6 +159,8 @@ def wavefront(r: Rays) -> Wavefront:
     """Eikonal of the good rays on a plane normal to their mean direction, tilt and piston removed
     (seed-004 (18): L0 the mean)."""
     c, w, opl = r.exit_point[r.ok], r.exit_dir[r.ok], r.opl[r.ok]
+    if len(opl) < MIN_RAYS:
+        raise ValueError(f"only {len(opl)} rays reach the aperture")
     b = w.mean(axis=0)
     b /= np.linalg.norm(b)
     proj = c @ b
@@ -169,6 +172,13 @@ def wavefront(r: Rays) -> Wavefront:
 
 def sigma_at(body: Body, feed, launch: np.ndarray | None = None) -> Wavefront:
     return wavefront(trace(body, feed, launch_grid(body) if launch is None else launch))
+
+
+def _sigma_or_inf(body: Body, feed, launch) -> float:
+    try:
+        return sigma_at(body, feed, launch).sigma
+    except ValueError:
+        return np.inf
 
 
 @dataclass(frozen=True)
@@ -190,9 +200,12 @@ def field_scan(body: Body, angles_deg: np.ndarray, dz_range: float = 0.05) -> Fi
     scale = body.n if body.feed_inside else 1.0        # (20): the linear term is n sin α δ_R inside
     for th in np.radians(np.asarray(angles_deg, float)):
         d = body.gamma * np.sin(th) / scale
-        res = minimize_scalar(lambda z: sigma_at(body, (-d, 0.0, z), launch).sigma, bounds=(-dz_range, dz_range),
+        try:
+            at_focus = sigma_at(body, (-d, 0.0, 0.0), launch)
+        except ValueError as exc:
+            raise ValueError(f"field angle {np.degrees(th):.1f}° (feed offset {d:.3f} D): {exc}") from None
+        res = minimize_scalar(lambda z: _sigma_or_inf(body, (-d, 0.0, z), launch), bounds=(-dz_range, dz_range),
                               method="bounded", options={"xatol": 1e-7})
-        at_focus = sigma_at(body, (-d, 0.0, 0.0), launch)
         best, z = (at_focus, 0.0) if at_focus.sigma <= res.fun else (sigma_at(body, (-d, 0.0, res.x), launch), res.x)
         dr.append(d), dz.append(z), ang.append(best.field_angle_deg), sig.append(best.sigma)
         sig0.append(at_focus.sigma)

@@ -43,16 +43,23 @@ class FlangeSpec(StrictModel):
 
 
 class OptimizeSpec(StrictModel):
-    """Choose γ by minimising the seed's target A, eq. (21), at fixed n, f0, d0 (seed-004 §3.4–3.5)."""
+    """Choose γ (and optionally f0, with f0 + d0 held) by minimising the seed's target A, eq. (21),
+    at the material's n (seed-004 §3.4–3.5; n is the material's, not a free parameter here)."""
     mode: Literal["series", "exact"] = Field("series", description="series: (19) as the paper (reproduces "
                                               "γ* = 0.9378 for the published n, f0/d0); exact: marched geometry")
     gamma_min: float = Field(gt=0.5, le=10, description="search interval of γ (units of D)")
     gamma_max: float = Field(gt=0.5, le=10)
+    free_f0: bool = Field(False, description="also move f0 (d0 = f0 + d0 − f0) inside [f0_min, f0_max]; "
+                          "the paper's published point is not the 2-D optimum (seed-004 §3.5 item 2)")
+    f0_min: float = Field(0.05, gt=0, le=10, description="units of D")
+    f0_max: float = Field(0.95, gt=0, le=10)
 
     @model_validator(mode="after")
     def _order(self):
         if self.gamma_max <= self.gamma_min:
             raise ValueError("design.optimize.gamma_max: must be > gamma_min")
+        if self.f0_max <= self.f0_min:
+            raise ValueError("design.optimize.f0_max: must be > f0_min")
         return self
 
 

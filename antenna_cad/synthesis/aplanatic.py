@@ -64,6 +64,7 @@ def series_coefficients(n: float, f0: float, d0: float, gamma: float) -> SeriesC
     """Closed-form series of both generatrices, seed-004 eqs. (2)–(15) corrected (§0 items 1–3)."""
     if f0 <= 0:
         raise DesignError("design.f0", "the series of §2.3 needs f0 > 0 (use feed_on_surface for f0 = 0)")
+    _check_index(n)
     if abs(gamma - f0) < 1e-9 or abs(gamma**3 - f0**3) < 1e-12:
         raise DesignError("design.gamma", f"γ = f0 = {f0:g} makes f2 singular (seed-004 §3.5); choose γ > f0")
     g = gamma
@@ -94,6 +95,12 @@ def series_coefficients(n: float, f0: float, d0: float, gamma: float) -> SeriesC
     EW3 = EU3 / 2 - EU1 / 16 * (EU1**2 + 4 * EU2)
     F4 = F2**3 - (EW3 / 2 + F2 * RB3) / (2 * RB1**3)
     return SeriesCoefficients(n, f0, d0, g, f2, f4, F2, F4, k1, k3, k3p, D2, W2, RB1, RB3, rC1, rC3)
+
+
+def _check_index(n: float) -> None:
+    if n < 1.001:
+        raise DesignError("material", f"the mirror-lens needs a refracting body: n = {n:.5g} (εr {n * n:.5g}) "
+                          "must exceed 1.001")
 
 
 # ------------------------------------------------------------------ exact synthesis, seed-004 §2.2
@@ -241,7 +248,8 @@ def synthesize_profiles(n: float, f0: float, d0: float, gamma: float, step: floa
         rays.append(_ray(s[i], hist.f[i], hist, n, gamma, L0, r_prev)[1:])
         r_prev = rays[-1][0]
     r_a, alpha, Rb, Zb, dF, d, t = (np.array(c) for c in zip(*rays))
-    if np.any(np.diff(Rb) <= 0) or np.any(d <= 0) or np.any(t <= 0):
+    finite = all(np.all(np.isfinite(a)) for a in (hist.f, hist.df, Rb, Zb, dF, d, t))
+    if not finite or np.any(np.diff(Rb) <= 0) or np.any(d <= 0) or np.any(t <= 0):
         raise DesignError("design.gamma", f"the mirror generatrix folds over (n {n:g}, f0 {f0:g}, d0 {d0:g}, "
                           f"γ {gamma:g}); change gamma or d0")
     return Profiles(n, f0, d0, gamma, s, hist.f.copy(), hist.df.copy(), r_a, alpha, Rb, Zb, dF, d, t)
@@ -262,6 +270,7 @@ def feed_on_surface_profiles(n: float, d0: float, gamma: float, radius: float = 
                              samples: int = 2001) -> Profiles:
     """f0 = 0: the mirror as the polar curve r(α) of ODE (16), dr/dα = r tan((α + μ)/2), r(0) = d0,
     solved to rtol 1e-12; the lens points C from (17) and the lens-point relations (L203–207)."""
+    _check_index(n)
     if radius >= gamma:
         raise DesignError("design.gamma", f"γ = {gamma:g} must exceed the aperture radius {radius:g}; increase gamma")
     a_max = math.asin(radius / gamma)
@@ -401,10 +410,10 @@ class Optimum:
 def optimize_target(n: float, f0: float, d0: float, gamma: float, *, free: tuple[str, ...] = ("gamma",),
                     mode: str = "series", bounds: dict[str, tuple[float, float]] | None = None,
                     length: float | None = None) -> Optimum:
-    """Minimise A (21) over the ``free`` parameters among gamma, f0 and n (seed-004 §3.4), with
-    f0 + d0 = ``length`` held (default: the starting f0 + d0). Bounds default to γ ∈ [f0 + 0.05,
-    2·(f0 + d0)] … see §3.5: the free 3-parameter problem has degenerate zeros at γ → f0 and n → 1,
-    so bounds matter and the published point is reproduced only in 1-D (γ, series)."""
+    """Minimise A (21) over the ``free`` parameters among gamma, f0 and n (seed-004 §3.4), f0 + d0 =
+    ``length`` held (default: the starting f0 + d0). Default bounds: γ ∈ [f0 + 0.05, 2·length],
+    f0 ∈ [0.05, 0.95]·length, n ∈ [1.05, 4]. The free problem has degenerate zeros at γ → f0 and
+    n → 1 (§3.5 item 2), so bounds matter; the published γ is reproduced in 1-D (γ, series mode)."""
     length = f0 + d0 if length is None else length
     start = {"gamma": gamma, "f0": f0, "n": n}
     lim = {"gamma": (f0 + 0.05, 2 * length), "f0": (0.05 * length, 0.95 * length), "n": (1.05, 4.0)}

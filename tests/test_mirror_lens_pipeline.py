@@ -64,7 +64,8 @@ def test_hfss_design_scaling_and_model_parts():
     assert feed.max.Z == pytest.approx(0.0, abs=1e-6) and feed.min.Z < 0        # aperture at the focus
     flange = parts["flange"].shape.bounding_box()
     assert min(abs(flange.min.X), flange.max.X) > 173.0                          # outside the aperture
-    assert (parts["body"].shape & parts["mirror"].shape).volume < 1e-3           # a separate layer
+    mirror = parts["mirror"].shape.bounding_box()                                # a layer behind the back face
+    assert mirror.max.Z == pytest.approx(346.0 + t, abs=1e-6) and mirror.min.Z > f["front_rim_z_mm"]
     assert all(c.status == "pass" for c in model.checks)
 
 

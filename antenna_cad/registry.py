@@ -15,6 +15,7 @@ ADAPTERS: dict[str, str] = {
     "bifocal": "antenna_cad.kinds.bifocal",
     "luneburg": "antenna_cad.kinds.luneburg",
     "slot_array": "antenna_cad.kinds.slot_array",
+    "polyfocal": "antenna_cad.kinds.polyfocal",
 }
 assert set(ADAPTERS) == set(SPEC_MODELS), "every spec kind needs an adapter"
 

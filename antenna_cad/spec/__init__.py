@@ -16,6 +16,7 @@ from antenna_cad.spec.bifocal import BifocalSpec
 from antenna_cad.spec.collimator import CollimatorSpec
 from antenna_cad.spec.common import UNION_TAGS
 from antenna_cad.spec.luneburg import LuneburgSpec
+from antenna_cad.spec.polyfocal import PolyfocalSpec
 from antenna_cad.spec.slot_array import SlotArraySpec
 
 SPEC_MODELS: dict[str, type[BaseModel]] = {
@@ -23,6 +24,7 @@ SPEC_MODELS: dict[str, type[BaseModel]] = {
     "bifocal": BifocalSpec,
     "luneburg": LuneburgSpec,
     "slot_array": SlotArraySpec,
+    "polyfocal": PolyfocalSpec,
 }
 
 

@@ -15,6 +15,7 @@ from pydantic import BaseModel, Field, TypeAdapter, ValidationError
 from antenna_cad.spec.bifocal import BifocalSpec
 from antenna_cad.spec.collimator import CollimatorSpec
 from antenna_cad.spec.common import UNION_TAGS
+from antenna_cad.spec.graded import GradedSpec
 from antenna_cad.spec.luneburg import LuneburgSpec
 from antenna_cad.spec.polyfocal import PolyfocalSpec
 from antenna_cad.spec.slot_array import SlotArraySpec
@@ -25,6 +26,7 @@ SPEC_MODELS: dict[str, type[BaseModel]] = {
     "luneburg": LuneburgSpec,
     "slot_array": SlotArraySpec,
     "polyfocal": PolyfocalSpec,
+    "graded": GradedSpec,
 }
 
 

@@ -199,8 +199,8 @@ class Ray:
 
     def at(self, x: float):
         """(y, unit direction (dx, dy), optical path from the start) at x."""
-        for seg in self.segments:
-            if x <= seg.x1:
+        for k, seg in enumerate(self.segments):
+            if x <= seg.x1 or (k == len(self.segments) - 1 and x <= seg.x1 + 1e-9):
                 with np.errstate(invalid="ignore"):
                     y, dy, path = seg.at(x)
                 d = np.array([1.0, dy]) / np.hypot(1.0, dy)

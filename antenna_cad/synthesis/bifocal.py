@@ -752,6 +752,16 @@ def _kinber_design(n, eps_r, yb, kp, shape, antenna_x_mm, clearance) -> BifocalD
     missing = [k for k in need if k not in kp]
     if missing:
         raise DesignError("design.kinber", f"missing Kinber parameters {missing} (seed-001 §3.1 table)")
+    kp = dict(kp)
+    if kp["a2"] is None:                 # seed-001 §3.1: a2 (and b2 of a symmetric lens) from C² continuity
+        from antenna_cad.synthesis.kinber import solve_c2
+        if kp.get("h2") is None:
+            raise DesignError("design.kinber.h2", "required when a2 is solved from C² continuity (the "
+                              "A–O–B collinearity would couple h2 to a2)")
+        kp["a2"], kp["b2"], _ = solve_c2(n, kp["a0"], kp["h1"], kp["b0"], kp["h2"], kp["rho1"], np.inf, kp["b2"],
+                                         -kp["b2"] if kp["b2"] is not None else 1.0)
+    elif kp["b2"] is None:
+        raise DesignError("design.kinber.b2", "required when a2 is given")
     lens = kinber_lens(n, kp["a0"], kp["a2"], kp["h1"], kp["b0"], kp["b2"], kp.get("h2"), kp["rho1"],
                        np.inf, aperture=1.0)
     scale = 2.0 * yb

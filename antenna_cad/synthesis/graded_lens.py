@@ -13,10 +13,12 @@ seed's algorithm, digest §3.2 steps 1–6):
    surface-1 segment give the next surface-2 segment, F2' rays (from the right) through the newest
    surface-2 segment give the next surface-1 segment; every point carries its Snell normal
    N ∝ n v − w (no interpolation in the construction).
-4. When a ray needs the medium above the top layer, a layer i is added: no_i, q_i from C¹ continuity,
-   m_i solved from the central-focus eikonal of the ray from F' through the highest surface-2 point
-   (traced exactly to where it lands on surface 1 — the seed's approximation: the landing direction is
-   not forced toward F); the layer ends at that ray's turning height (3.27).
+4. When both surfaces wait for the medium above the top layer, a layer i is added: no_i, q_i from C¹
+   continuity, m_i (either sign) from the central-focus eikonal (3.31) of the ray from F' through Q,
+   the surface-2 point at the top boundary: it rises into the new layer, turns (3.27: the layer's
+   top) and comes back down to the height of E, the surface-1 point whose F ray has the same
+   invariant (3.25); the x offset to E is charged as a·Δx (the seed's approximation — that ray need
+   not land at E, so the central focus is approximate).
 """
 
 from __future__ import annotations
@@ -25,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.interpolate import CubicHermiteSpline
-from scipy.optimize import brentq, minimize_scalar
+from scipy.optimize import brentq
 
 from antenna_cad.raytrace.snell import refract
 from antenna_cad.synthesis.checks import DesignError
@@ -138,7 +140,6 @@ class Construction:
         layer is added (step 4)."""
         edge = self.g.aperture / 2 * 1.02
         i1 = i2 = 1                        # images of A and D are B and C, already known
-        self.imaged = (self.surf1[0].p[1], self.surf2[0].p[1])
         for _ in range(100000):
             if self.surf1[-1].p[1] >= edge and self.surf2[-1].p[1] >= edge:
                 return
@@ -157,7 +158,6 @@ class Construction:
                                       f"y = {q.p[1]:.4g} (the construction is not monotonic)")
                 other.append(q)
                 i1, i2 = (i1 + 1, i2) if not leftward else (i1, i2 + 1)
-                self.imaged = (self.surf1[i1 - 1].p[1], self.surf2[i2 - 1].p[1])   # highest points imaged
                 progressed = True
             if not progressed:
                 if len(self.medium.layers) > MAX_LAYERS:

@@ -16,6 +16,8 @@ ADAPTERS: dict[str, str] = {
     "luneburg": "antenna_cad.kinds.luneburg",
     "slot_array": "antenna_cad.kinds.slot_array",
     "mirror_lens": "antenna_cad.kinds.mirror_lens",
+    "polyfocal": "antenna_cad.kinds.polyfocal",
+    "graded": "antenna_cad.kinds.graded",
 }
 assert set(ADAPTERS) == set(SPEC_MODELS), "every spec kind needs an adapter"
 

@@ -14,9 +14,11 @@ from pydantic import BaseModel, Field, TypeAdapter, ValidationError
 from antenna_cad.spec.bifocal import BifocalSpec
 from antenna_cad.spec.collimator import CollimatorSpec
 from antenna_cad.spec.common import UNION_TAGS
+from antenna_cad.spec.graded import GradedSpec
 from antenna_cad.spec.luneburg import LuneburgSpec
 from antenna_cad.spec.mirror_lens import MirrorLensSpec
 from antenna_cad.spec.reader import ReadError, read_yaml
+from antenna_cad.spec.polyfocal import PolyfocalSpec
 from antenna_cad.spec.slot_array import SlotArraySpec
 
 SPEC_MODELS: dict[str, type[BaseModel]] = {
@@ -25,6 +27,8 @@ SPEC_MODELS: dict[str, type[BaseModel]] = {
     "luneburg": LuneburgSpec,
     "slot_array": SlotArraySpec,
     "mirror_lens": MirrorLensSpec,
+    "polyfocal": PolyfocalSpec,
+    "graded": GradedSpec,
 }
 
 

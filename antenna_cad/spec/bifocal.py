@@ -19,10 +19,12 @@ class KinberSpec(StrictModel):
     """Seed-001 §3.1 central-segment parameters of Kinber's construction, in units of the aperture
     D (the seed normalises D = 1; the lens is scaled to D = 2·edge_y_mm)."""
     a0: float = Field(ge=-COEF, le=COEF, description="illuminated face vertex x")
-    a2: float = Field(ge=-COEF, le=COEF, description="illuminated central parabola coefficient")
+    a2: float | None = Field(None, ge=-COEF, le=COEF, description="illuminated central parabola coefficient "
+                             "(None: solved from C² continuity at the junctions, seed-001 §3.1)")
     h1: float = Field(ge=MIN_RATIO, lt=0.5, description="half-height of the central segment")
     b0: float = Field(ge=-COEF, le=COEF, description="shadow face vertex x")
-    b2: float = Field(ge=-COEF, le=COEF, description="shadow central parabola coefficient")
+    b2: float | None = Field(None, ge=-COEF, le=COEF, description="shadow central parabola coefficient (None: "
+                             "−a2, a symmetric lens only)")
     h2: float | None = Field(None, ge=MIN_RATIO, lt=0.5, description="shadow segment half-height (None: A–O–B collinear)")
     rho1: float = Field(ge=MIN_RATIO, le=COEF, description="focal distance of F1 from the origin")
 

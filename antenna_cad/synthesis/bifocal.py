@@ -386,6 +386,20 @@ def _edge_normals(o1: _Optics, A1: np.ndarray, N1g: np.ndarray, N2g: np.ndarray)
     return N1, N2, float(np.max(np.abs(sol.fun)))
 
 
+def _rim_guess(pts: np.ndarray, nrm: np.ndarray, yb: float, cut: float = 1e-4) -> np.ndarray:
+    """Start of the rim-normal solve: the normal of the chord through the two chain points closest
+    to the rim (folded to y ≥ 0). The system has other roots; the last chain point's own normal
+    led least squares to a steep one depending on the BLAS kernel (rim slope 64 vs 1.08). A chain
+    with fewer than two such points (a design about to be refused) keeps its last normal."""
+    y, z = np.abs(pts[:, 1]), pts[:, 0]
+    keep = np.isfinite(y) & np.isfinite(z) & (y < (1.0 - cut) * yb)
+    if keep.sum() < 2:
+        return _mirror(nrm[-1]) if pts[-1, 1] < 0 else nrm[-1]
+    order = np.argsort(y[keep])
+    (y0, y1), (z0, z1) = y[keep][order][-2:], z[keep][order][-2:]
+    return _unit(np.array([1.0, -(z1 - z0) / (y1 - y0)]))
+
+
 def _rim_profile(pts, nrm, A1, N_edge, yb, cut=1e-4):
     """Even Hermite data from chain points (folded to y ≥ 0, kept for y < (1−cut)·Y_B) plus the rim A1."""
     fy = np.abs(pts[:, 1]) < (1.0 - cut) * yb
@@ -683,9 +697,7 @@ def synthesize_bifocal(*, edge_y_mm: float, eps_r: float, edge_x_mm: float | Non
                           f"({lo:.1f}, {act:.1f}) mm closes the point chain at the rim A1 "
                           "(TIR or the faces never meet) — change a, α or the edge")
     ip, inn, sp, sn = _nikulina_chain(rho1, o)
-    N1g = _mirror(inn[-1]) if ip[-1, 1] < 0 else inn[-1]
-    N2g = _mirror(sn[-1]) if sp[-1, 1] < 0 else sn[-1]
-    N1e, N2e, edge_res = _edge_normals(o, A1, N1g, N2g)
+    N1e, N2e, edge_res = _edge_normals(o, A1, _rim_guess(ip, inn, yb), _rim_guess(sp, sn, yb))
     yi, zi, si = _rim_profile(ip, inn, A1, N1e, yb)
     ys, zs, ss = _rim_profile(sp, sn, A1, N2e, yb)
     rim_gap = float(min(np.hypot(*(np.abs(ip[-1]) - A1)), np.hypot(*(np.abs(sp[-1]) - A1))))
@@ -752,6 +764,16 @@ def _kinber_design(n, eps_r, yb, kp, shape, antenna_x_mm, clearance) -> BifocalD
     missing = [k for k in need if k not in kp]
     if missing:
         raise DesignError("design.kinber", f"missing Kinber parameters {missing} (seed-001 §3.1 table)")
+    kp = dict(kp)
+    if kp["a2"] is None:                 # seed-001 §3.1: a2 (and b2 of a symmetric lens) from C² continuity
+        from antenna_cad.synthesis.kinber import solve_c2
+        if kp.get("h2") is None:
+            raise DesignError("design.kinber.h2", "required when a2 is solved from C² continuity (the "
+                              "A–O–B collinearity would couple h2 to a2)")
+        kp["a2"], kp["b2"], _ = solve_c2(n, kp["a0"], kp["h1"], kp["b0"], kp["h2"], kp["rho1"], np.inf, kp["b2"],
+                                         -kp["b2"] if kp["b2"] is not None else 1.0)
+    elif kp["b2"] is None:
+        raise DesignError("design.kinber.b2", "required when a2 is given")
     lens = kinber_lens(n, kp["a0"], kp["a2"], kp["h1"], kp["b0"], kp["b2"], kp.get("h2"), kp["rho1"],
                        np.inf, aperture=1.0)
     scale = 2.0 * yb

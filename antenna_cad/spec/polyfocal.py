@@ -1,0 +1,117 @@
+"""Spec of the polyfocal constrained lens (seed-001 §1, §2; kind ``polyfocal``).
+
+Optics are given in the seed's normalised units (λ = 1 in its Ch.1, D = 1 in Ch.2) and scaled by
+``design.unit_mm``; the realization (``lines``) is in millimetres. ``material`` is the dielectric
+that fills the lines (air, {eps_r: 1, …}, for hollow waveguides). Supported cases (seed-001):
+
+* ``2d`` / ``two_planes`` / ``foci`` — §1.2–§1.3: one focus pair (bifocal, with ``line_law``), or two
+  pairs (first angle 0: trifocal; otherwise four-focal); ``thickness`` = 2·z0.
+* ``2d`` / ``one_plane`` / ``plane_waves`` — §1.5: equal-line trifocal lens, foci [F on the axis,
+  F1/F2 pair]; ``thickness`` = d.
+* ``3d`` / ``one_plane`` / ``plane_waves`` — §2.4: five foci, [F1/F2 (f1, α, φ), F3/F4 (f3, β, ξ),
+  F5 (f5, ψ) in the xz plane].
+"""
+
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import Field, model_validator
+
+from antenna_cad.spec.bounds import MIN_DEG, MIN_MM, MIN_RATIO
+from antenna_cad.spec.common import SpecBase, StrictModel
+
+
+class FocusSpec(StrictModel):
+    """One focus, or a mirror pair of foci, in the seed's parameters (angles in degrees)."""
+    f: float = Field(gt=0.01, le=1e4, description="focal distance (normalised units): from the surface "
+                     "centre in 2-D (seed-001 (1.2)/(1.5)), from the lens centre O in 3-D (2.1)")
+    angle_deg: float = Field(0.0, ge=0, lt=80, description="angle to the lens axis (α, β, ψ)")
+    azimuth_deg: float = Field(0.0, ge=-90, le=90, description="3-D only: azimuth from Oy (φ, ξ)")
+
+
+class LinesSpec(StrictModel):
+    """Realization of the lines (seed-001 §6, §8.1): straight channels from the entry to the exit
+    point, each with the phase index that gives it the synthesized electrical length."""
+    type: Literal["parallel_plate", "waveguide_array"] = Field(
+        description="parallel_plate: TEM channels between two plates, the delay set by each channel's "
+        "dielectric fill (εr = n²); waveguide_array: TE10 rectangular guides filled with `material`, "
+        "the delay set by each guide's width")
+    pitch_mm: float = Field(gt=0.1, le=1000, description="element spacing on the entry surface "
+                            "(exit surface for plane-wave lenses)")
+    phase_index: float = Field(gt=0.05, le=10, description="phase index λ/λ_line of the central line; "
+                               "fixes the common constant of the line lengths")
+    wall_mm: float = Field(0.5, ge=MIN_MM, le=50, description="minimum metal septum between channels")
+    plate_spacing_mm: float = Field(gt=0.05, le=1000, description="channel height (2-D: the plate spacing)")
+    plate_thickness_mm: float = Field(2.0, ge=MIN_MM, le=100, description="top and bottom plates (2-D)")
+    margin_mm: float = Field(5.0, ge=0, le=1000, description="plates beyond the lens outline (2-D)")
+
+
+class PolyfocalDesignSpec(StrictModel):
+    dimensions: Literal["2d", "3d"]
+    symmetry: Literal["two_planes", "one_plane"]
+    output: Literal["foci", "plane_waves"]
+    foci: tuple[FocusSpec, ...] = Field(min_length=1, max_length=3,
+                                        description="focus pairs ±angle (and single foci) in the seed's order")
+    unit_mm: float = Field(gt=1e-3, le=1e5, description="one normalised unit in millimetres")
+    aperture: float = Field(ge=MIN_RATIO, le=1e4, description="aperture D (normalised units)")
+    thickness: float = Field(ge=MIN_RATIO, le=1e4, description="axial thickness (normalised): 2z0 (§1.2), d (§1.5); "
+                             "3-D: the output half moved by it along z (§2.1)")
+    line_law: Literal["equal_length", "straight", "flat"] = Field(
+        "equal_length", description="bifocal only (§1.2): (a) equal lines, (b) straight lines, (c) flat")
+    straight_index: float = Field(0.5, gt=0.05, lt=1.0, description="§1.2 (b): phase index n_w of the "
+                                  "identical straight lines")
+    view_angle_deg: float = Field(60.0, ge=MIN_DEG, le=150, description="full view angle of the σ study")
+    lines: LinesSpec
+
+    @property
+    def case(self) -> str:
+        return f"{self.dimensions}/{self.symmetry}/{self.output}"
+
+    @property
+    def foci_count(self) -> int:
+        if self.case == "3d/one_plane/plane_waves":
+            return 5
+        return sum(1 if f.angle_deg == 0 else 2 for f in self.foci)
+
+    @model_validator(mode="after")
+    def _supported(self):
+        counts = {"2d/two_planes/foci": (1, 2), "2d/one_plane/plane_waves": (2,), "3d/one_plane/plane_waves": (3,)}
+        if self.case not in counts:
+            raise ValueError(f"design.symmetry: the case {self.case} is not implemented; use one of "
+                             f"{', '.join(sorted(counts))} (seed-001 §1.2–§1.5, §2.4)")
+        if len(self.foci) not in counts[self.case]:
+            raise ValueError(f"design.foci: the case {self.case} takes {' or '.join(map(str, counts[self.case]))} "
+                             f"focus entries (got {len(self.foci)})")
+        if self.dimensions == "2d" and any(f.azimuth_deg for f in self.foci):
+            raise ValueError("design.foci: azimuth_deg is for 3-D lenses only")
+        if self.case == "2d/two_planes/foci" and len(self.foci) == 2:
+            a, b = self.foci
+            if b.angle_deg == 0 or a.angle_deg == b.angle_deg:
+                raise ValueError("design.foci: the second pair needs an angle > 0 and ≠ the first")
+        if self.case == "2d/one_plane/plane_waves" and (self.foci[0].angle_deg != 0 or self.foci[1].angle_deg == 0):
+            raise ValueError("design.foci: §1.5 takes [F on the axis (angle 0), the F1/F2 pair (angle > 0)]")
+        if self.case == "3d/one_plane/plane_waves":
+            f1, f3 = self.foci[0], self.foci[1]
+            if abs(f1.f - f3.f) < 1e-9:
+                raise ValueError("design.foci: §2.4 needs f1 ≠ f3 ((2.47) divides by f1² − f3²)")
+            if self.foci[2].azimuth_deg != 0:
+                raise ValueError("design.foci: the fifth focus lies in the xz plane (leave azimuth_deg out)")
+        if self.lines.wall_mm >= self.lines.pitch_mm:
+            raise ValueError("design.lines.wall_mm: must be < lines.pitch_mm")
+        if self.aperture * self.unit_mm < 2 * self.lines.pitch_mm:
+            raise ValueError("design.lines.pitch_mm: fewer than 3 elements across the aperture")
+        return self
+
+
+class MetalFabSpec(StrictModel):
+    """Milled or sheet-metal constrained lens: plates, septa body and channels."""
+    method: Literal["machined_metal"]
+    metal: str = Field("aluminium", pattern=r"^[A-Za-z0-9_. -]+$")
+    metal_density_kg_m3: float = Field(2700.0, ge=1, le=25000)
+
+
+class PolyfocalSpec(SpecBase):
+    kind: Literal["polyfocal"]
+    fabrication: MetalFabSpec
+    design: PolyfocalDesignSpec

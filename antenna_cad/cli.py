@@ -3,6 +3,8 @@
     make-lens SPEC [-o OUT]      build everything into OUT/<name>/ (default exports/)
     make-lens validate SPEC      check the spec and its physics, write nothing
     make-lens schema [-o FILE]   write the JSON Schema of specs
+    make-lens sweep SWEEP [-o OUT] [--scheduler tcp://HOST:PORT] [--workers N]
+                                 run a design sweep on dask into OUT/<sweep name>/
     make-lens --version
 """
 
@@ -21,7 +23,7 @@ app = typer.Typer(add_completion=False, no_args_is_help=True,
                   help="Physics spec of a microwave antenna → STEP/STL, 1:1 templates, cut list.")
 out_console = Console()
 err_console = Console(stderr=True, soft_wrap=True)
-COMMANDS = {"build", "validate", "schema"}
+COMMANDS = {"build", "validate", "schema", "sweep"}
 STATUS_STYLE = {"pass": "green", "warn": "yellow", "fail": "red"}
 
 
@@ -123,6 +125,46 @@ def schema(out: Path = typer.Option(Path("schemas/lens-spec.schema.json"), "-o",
     out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(json_schema_text(), encoding="utf-8")
     out_console.print(f"wrote {out}")
+
+
+@app.command()
+def sweep(sweep_path: Path = typer.Argument(..., metavar="SWEEP", help="sweep YAML"),
+          out: Path = typer.Option(Path("exports"), "-o", "--out", help="output root folder"),
+          scheduler: str = typer.Option(None, "--scheduler", help="running dask scheduler, tcp://HOST:PORT"),
+          workers: int = typer.Option(None, "--workers", min=1, help="local worker processes (default: one per core)")
+          ) -> None:
+    """Run a design sweep (axes over spec fields) on dask: table, Pareto front, index.html in OUT/<name>/."""
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
+
+    from antenna_cad.spec import SpecError
+    from antenna_cad.sweep import SweepInterrupted, run_sweep
+    if scheduler and workers:
+        err_console.print("--workers: only for a local cluster (not with --scheduler)", markup=False)
+        raise typer.Exit(2)
+    try:
+        with Progress("{task.description}", BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+                      console=err_console, transient=True) as bar:
+            task = bar.add_task(f"sweep {sweep_path.name}", total=None)
+            result = run_sweep(sweep_path, out, scheduler, workers, lambda done, total: bar.update(
+                task, completed=done, total=total))
+    except SpecError as exc:
+        for line in exc.lines:
+            err_console.print(line, markup=False, highlight=False)
+        raise typer.Exit(2)
+    except SweepInterrupted as stop:
+        err_console.print(f"interrupted: {stop.rows} rows done are in {stop.path}", markup=False)
+        raise typer.Exit(130)
+    counts = {s: sum(r["status"] == s for r in result.rows) for s in ("ok", "invalid", "failed")}
+    shown = ["variant", *result.axes, *result.objectives]
+    front = Table(title=f"Pareto front ({len(result.front)} of {counts['ok']} ok variants)")
+    for col in shown:
+        front.add_column(col)
+    for row in result.front:
+        front.add_row(*(f"{row[c]:.4g}" if isinstance(row[c], float) else str(row[c]) for c in shown))
+    out_console.print(front)
+    out_console.print(f"{len(result.rows)} variants ({result.unique} computed, {counts['ok']} ok, "
+                      f"{counts['invalid']} invalid, {counts['failed']} failed) in {result.seconds:.1f} s → "
+                      f"{result.out_dir}/index.html")
 
 
 def main() -> None:

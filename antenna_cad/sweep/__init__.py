@@ -42,8 +42,8 @@ def run_sweep(path: str | Path, out_root: Path, scheduler: str | None = None, wo
     """Run the sweep file ``path`` into ``out_root/<name>/``: results.csv (rewritten atomically after
     every row, so an interrupted sweep keeps what is done), then results.parquet, pareto.csv, index.html.
     Raises SpecError (nothing written) when the sweep file or its base spec is unusable."""
-    sweep, base, source = load_sweep(path)
-    variants = expand(sweep, base, source)
+    file = load_sweep(path)
+    sweep, variants = file.sweep, expand(file)
     out_dir = (Path(out_root) / sweep.name).resolve()
     out_dir.mkdir(parents=True, exist_ok=True)
     for stale in (RESULTS_PARQUET, PARETO_CSV, PAGE):
@@ -63,5 +63,5 @@ def run_sweep(path: str | Path, out_root: Path, scheduler: str | None = None, wo
     front = pareto_front(rows, sweep.objectives)
     unique = len({v.key for v in variants if v.key})
     write_tables(out_dir, cols, rows, front)
-    write_page(out_dir, sweep, source, cols, rows, front, unique)
+    write_page(out_dir, sweep, file.base_source, cols, rows, front, unique)
     return SweepResult(sweep.name, out_dir, list(sweep.axes), dict(sweep.objectives), cols, rows, front, unique, seconds)

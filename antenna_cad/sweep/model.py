@@ -19,7 +19,7 @@ Errors name the file, the field and the rule, like spec errors (:class:`antenna_
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any, Literal, Union
+from typing import Any, Literal, NamedTuple, Union
 
 import yaml
 from pydantic import Field, ValidationError, model_validator
@@ -98,8 +98,15 @@ class SweepSpec(StrictModel):
         return groups
 
 
-def load_sweep(path: str | Path) -> tuple[SweepSpec, dict, str]:
-    """The sweep model, the base spec document (a mapping, not yet validated) and its source name."""
+class SweepFile(NamedTuple):
+    sweep: SweepSpec
+    base: dict            # the base spec document (a mapping, not yet validated)
+    base_source: str      # its file, for the spec loader's messages
+    source: str           # the sweep file
+
+
+def load_sweep(path: str | Path) -> SweepFile:
+    """Read and validate a sweep file and read its base spec (SpecError naming file and field)."""
     path = Path(path)
     data = _read_yaml(path)
     try:
@@ -107,12 +114,12 @@ def load_sweep(path: str | Path) -> tuple[SweepSpec, dict, str]:
     except ValidationError as exc:
         raise SpecError([_line(str(path), e) for e in exc.errors()]) from None
     if isinstance(sweep.base, dict):
-        return sweep, sweep.base, f"{path} (base)"
+        return SweepFile(sweep, sweep.base, f"{path} (base)", str(path))
     base_path = (path.parent / sweep.base)
     base = _read_yaml(base_path)
     if not isinstance(base, dict):
         raise SpecError([f"{base_path}: <root>: must be a mapping of spec fields"])
-    return sweep, base, str(base_path)
+    return SweepFile(sweep, base, str(base_path), str(path))
 
 
 def _read_yaml(path: Path):

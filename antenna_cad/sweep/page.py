@@ -92,7 +92,8 @@ def write_page(out_dir: Path, sweep: SweepSpec, base_source: str, cols: list[str
     objectives = list(sweep.objectives)
     scatters = "".join(_figure(pareto_plot(ok, front, x, y), f"pareto-{x}-{y}", f"{y} against {x}")
                        for x, y in itertools.combinations(objectives, 2))
-    pareto = (table(cols, [[r.get(c) for c in cols] for r in front], "pareto-table") + scatters
+    pareto = (f'<div class="scroll">{table(cols, [[r.get(c) for c in cols] for r in front], "pareto-table")}</div>'
+              + scatters
               if objectives else "<p>No objectives in the sweep file.</p>")
     plots = "".join(
         _figure(axis_plot(ok, f, a, [o for o in axes if o != a]), f"plot-{f}-{a}", f"{f} against {a}")

@@ -100,10 +100,13 @@ MODE_STAGES = {"figures": ("design", "asbuilt"), "build": ("build",)}
 def run_part(stage: str, payload: dict) -> Result:
     """One task: a stage's part, its failure caught as the row's message."""
     from antenna_cad.spec import SpecError
+    from antenna_cad.synthesis.checks import DesignError
     try:
         return STAGES[stage].run(payload)
     except SpecError as exc:
         return {"error": f"{stage}: {'; '.join(exc.lines)}"}
+    except DesignError as exc:
+        return {"error": f"{stage}: {exc}"}
     except Exception as exc:            # a failing variant is a row with its message, never the end
         return {"error": f"{stage}: {type(exc).__name__}: {exc}"}
 

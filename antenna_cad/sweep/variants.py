@@ -11,7 +11,7 @@ import json
 from dataclasses import dataclass
 
 from antenna_cad.spec import SpecError, parse_spec
-from antenna_cad.sweep.model import SweepSpec
+from antenna_cad.sweep.model import SweepFile
 
 
 @dataclass(frozen=True)
@@ -41,26 +41,26 @@ def spec_key(spec: dict) -> str:
     return hashlib.sha256(json.dumps(spec, sort_keys=True, ensure_ascii=True).encode()).hexdigest()
 
 
-def base_document(sweep: SweepSpec, base: dict, source: str) -> dict:
+def base_document(file: SweepFile) -> dict:
     """The base spec with the sweep's ``set`` applied; every axis must name a field of its resolved
     spec (defaults included), so a mistyped path is an error of the sweep file, not a sweep of errors."""
-    doc = copy.deepcopy(base)
-    for path, value in sweep.set.items():
-        _set(doc, path, value, source, "set")
-    resolved = parse_spec(doc, source).model_dump(mode="json")
-    for path in sweep.axes:
+    doc = copy.deepcopy(file.base)
+    for path, value in file.sweep.set.items():
+        _set(doc, path, value, file.source, "set")
+    resolved = parse_spec(doc, file.base_source).model_dump(mode="json")
+    for path in file.sweep.axes:
         node = resolved
         for part in path.split("."):
             if not isinstance(node, dict) or part not in node:
-                raise SpecError([f"{source}: axes.{path}: not a field of the base spec"
+                raise SpecError([f"{file.source}: axes.{path}: not a field of the base spec"
                                  + (" (set it to a mapping with `set:` first)" if isinstance(node, str) else "")])
             node = node[part]
     return doc
 
 
-def expand(sweep: SweepSpec, base: dict, source: str) -> list[Variant]:
+def expand(file: SweepFile) -> list[Variant]:
     """Every variant of the sweep, valid or not (an invalid one carries the loader's message)."""
-    doc = base_document(sweep, base, source)
+    sweep, doc = file.sweep, base_document(file)
     groups = sweep.axis_groups()
     columns = [list(zip(*(sweep.axis_values(p) for p in group))) for group in groups]
     variants = []
@@ -69,7 +69,7 @@ def expand(sweep: SweepSpec, base: dict, source: str) -> list[Variant]:
         spec = copy.deepcopy(doc)
         try:
             for path, value in values.items():
-                _set(spec, path, copy.deepcopy(value), source, "axes")
+                _set(spec, path, copy.deepcopy(value), file.source, "axes")
             resolved = parse_spec(spec, f"variant {index}").model_dump(mode="json")
         except SpecError as exc:
             variants.append(Variant(index, values, None, "", "; ".join(exc.lines)))

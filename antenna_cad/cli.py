@@ -158,7 +158,7 @@ def sweep(sweep_path: Path = typer.Argument(..., metavar="SWEEP", help="sweep YA
     shown = ["variant", *result.axes, *result.objectives]
     front = Table(title=f"Pareto front ({len(result.front)} of {counts['ok']} ok variants)")
     for col in shown:
-        front.add_column(col)
+        front.add_column(col.rsplit(".", 1)[-1])
     for row in result.front:
         front.add_row(*(f"{row[c]:.4g}" if isinstance(row[c], float) else str(row[c]) for c in shown))
     out_console.print(front)

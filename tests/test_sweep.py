@@ -4,8 +4,9 @@ and on a scheduler + worker started here, the table, the Pareto front and the pa
 import csv
 import json
 import math
-import os
 import re
+import shutil
+import signal
 import socket
 import subprocess
 import sys
@@ -203,30 +204,29 @@ def _free_port() -> int:
         return s.getsockname()[1]
 
 
-def test_sweep_on_a_running_scheduler(tmp_path):
-    """`dask scheduler` + `dask worker` processes on 127.0.0.1, torn down at the end."""
+def _wait_for_rows(path: Path, count: int, proc, limit_s: float = 120.0) -> None:
+    end = time.monotonic() + limit_s
+    while time.monotonic() < end and proc.poll() is None:
+        if path.exists() and len(path.read_text(encoding="utf-8").splitlines()) > count:
+            return
+        time.sleep(0.2)
+    raise AssertionError(f"no {count} rows in {path} (exit {proc.poll()})")
+
+
+@pytest.fixture(scope="module")
+def scheduler(tmp_path_factory):
+    """`dask scheduler` + one `dask worker` process on 127.0.0.1 at a free port, torn down at the end."""
+    logs_dir = tmp_path_factory.mktemp("dask")
     port, dask = _free_port(), [sys.executable, "-m", "dask"]
     address = f"tcp://127.0.0.1:{port}"
-    env = os.environ | {"PYTHONPATH": str(ROOT)}
-    logs = [open(tmp_path / f"{n}.log", "w") for n in ("scheduler", "worker")]
+    logs = [open(logs_dir / f"{n}.log", "w") for n in ("scheduler", "worker")]
     procs = [subprocess.Popen(dask + ["scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"],
-                              stdout=logs[0], stderr=subprocess.STDOUT, env=env)]
+                              stdout=logs[0], stderr=subprocess.STDOUT)]
     try:
-        procs.append(subprocess.Popen(dask + ["worker", address, "--nworkers", "1", "--nthreads", "1",
+        procs.append(subprocess.Popen(dask + ["worker", address, "--no-nanny", "--nthreads", "1",
                                               "--no-dashboard", "--host", "127.0.0.1"],
-                                      stdout=logs[1], stderr=subprocess.STDOUT, env=env))
-        doc = SMALL | {"name": "remote", "axes": {"design.focal_length_mm": [3000, 4000],
-                                                   "fabrication.sheet_thickness_mm": [50]}}
-        start = time.perf_counter()
-        result = run_sweep(_write(tmp_path, doc), tmp_path / "out", scheduler=address)
-        print(f"scheduler {address}: {len(result.rows)} rows in {time.perf_counter() - start:.1f} s; "
-              + json.dumps([{k: r[k] for k in ("variant", "status", "mass_kg", "fabricated_on_axis_p2p_deg")}
-                            for r in result.rows]))
-        assert [r["status"] for r in result.rows] == ["ok", "ok"]
-        variants = expand(load_sweep(tmp_path / "sweep.yaml"))
-        for row, v in zip(result.rows, variants):
-            assert row["mass_kg"] == pytest.approx(_single_run(v.spec)["mass_kg"], rel=REL)
-        assert (result.out_dir / "index.html").exists() and (result.out_dir / "results.parquet").exists()
+                                      stdout=logs[1], stderr=subprocess.STDOUT))
+        yield address
     finally:
         for p in reversed(procs):
             p.terminate()
@@ -234,6 +234,48 @@ def test_sweep_on_a_running_scheduler(tmp_path):
             p.wait(timeout=30)
         for log in logs:
             log.close()
+
+
+def test_sweep_on_a_running_scheduler(scheduler, tmp_path):
+    doc = SMALL | {"name": "remote", "axes": {"design.focal_length_mm": [3000, 4000],
+                                               "fabrication.sheet_thickness_mm": [50]}}
+    start = time.perf_counter()
+    result = run_sweep(_write(tmp_path, doc), tmp_path / "out", scheduler=scheduler)
+    print(f"scheduler {scheduler}: {len(result.rows)} rows in {time.perf_counter() - start:.1f} s; "
+          + json.dumps([{k: r[k] for k in ("variant", "status", "mass_kg", "fabricated_on_axis_p2p_deg")}
+                        for r in result.rows]))
+    assert [r["status"] for r in result.rows] == ["ok", "ok"]
+    variants = expand(load_sweep(tmp_path / "sweep.yaml"))
+    for row, v in zip(result.rows, variants):
+        assert row["mass_kg"] == pytest.approx(_single_run(v.spec)["mass_kg"], rel=REL)
+    assert (result.out_dir / "index.html").exists() and (result.out_dir / "results.parquet").exists()
+
+
+def _wait_for_rows(path: Path, count: int, proc, limit_s: float = 120.0) -> None:
+    end = time.monotonic() + limit_s
+    while time.monotonic() < end and proc.poll() is None:
+        if path.exists() and len(path.read_text(encoding="utf-8").splitlines()) > count:
+            return
+        time.sleep(0.2)
+    raise AssertionError(f"no {count} rows in {path} (exit {proc.poll()})")
+
+
+@pytest.mark.slow
+def test_ctrl_c_keeps_the_rows_done(scheduler, tmp_path):
+    """`make-lens sweep --scheduler` interrupted by SIGINT: exit 130, the finished rows on disk."""
+    many = SMALL | {"name": "stopped", "axes": {"design.focal_length_mm": {"from": 3000, "to": 8000, "steps": 30}}}
+    exe = shutil.which("make-lens") or str(Path(sys.executable).parent / "make-lens")
+    cli = subprocess.Popen([exe, "sweep", str(_write(tmp_path, many)), "-o", str(tmp_path / "out"),
+                            "--scheduler", scheduler], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    table = tmp_path / "out" / "stopped" / "results.csv"
+    _wait_for_rows(table, 2, cli)
+    cli.send_signal(signal.SIGINT)
+    output, _ = cli.communicate(timeout=60)
+    rows = _rows(table.parent)
+    print(f"Ctrl-C: exit {cli.returncode}, {len(rows)} of 30 rows kept; {output.strip()}")
+    assert cli.returncode == 130 and "interrupted" in output and "Traceback" not in output
+    assert 2 <= len(rows) < 30 and all(r["status"] == "ok" and float(r["mass_kg"]) > 0 for r in rows)
+    assert not (table.parent / "index.html").exists()
 
 
 @pytest.mark.parametrize("name", ["collimator-trade", "luneburg-layers"])

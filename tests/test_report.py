@@ -4,7 +4,6 @@ figure drawn."""
 
 import json
 import re
-import shutil
 from pathlib import Path
 
 import pypdf

@@ -65,8 +65,8 @@ def local(tmp_path_factory):
     return path, tmp / "out" / "small", done.output
 
 
-def _rows(out: Path) -> list[dict]:
-    with open(out / "results.csv", newline="", encoding="utf-8") as fh:
+def _rows(out: Path, name: str = "results.csv") -> list[dict]:
+    with open(out / name, newline="", encoding="utf-8") as fh:
         return list(csv.DictReader(fh))
 
 
@@ -125,7 +125,8 @@ def test_invalid_and_failing_variants_are_rows_and_the_rest_complete(local):
     rows = {int(r["variant"]): r for r in _rows(out)}
     for i in (1, 2, 3):                                         # f = 300 mm: valid spec, impossible design
         assert rows[i]["status"] == "failed"
-        assert rows[i]["error"].startswith("design: design.focal_length_mm:") and "totally internally reflected" in rows[i]["error"]
+        assert rows[i]["error"].startswith("design: design.focal_length_mm:")
+        assert "totally internally reflected" in rows[i]["error"]
     for i in (10, 11, 12):                                      # f = -5 mm: rejected by the spec loader
         assert rows[i]["status"] == "invalid"
         assert rows[i]["error"] == f"variant {i}: design.focal_length_mm: must be > 0 (got -5)"
@@ -158,12 +159,7 @@ def test_parquet_and_pareto_agree_with_the_table(local):
         and (o["mass_kg"], o["fabricated_on_axis_p2p_deg"]) != (d["mass_kg"], d["fabricated_on_axis_p2p_deg"])
         for o in ok)}
     assert {d["variant"] for d in data if d["pareto"]} == front and front
-    assert {int(r["variant"]) for r in _rows_of(out / "pareto.csv")} == front
-
-
-def _rows_of(path: Path) -> list[dict]:
-    with open(path, newline="", encoding="utf-8") as fh:
-        return list(csv.DictReader(fh))
+    assert {int(r["variant"]) for r in _rows(out, "pareto.csv")} == front
 
 
 def test_pareto_front_directions():
@@ -202,15 +198,6 @@ def _free_port() -> int:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         return s.getsockname()[1]
-
-
-def _wait_for_rows(path: Path, count: int, proc, limit_s: float = 120.0) -> None:
-    end = time.monotonic() + limit_s
-    while time.monotonic() < end and proc.poll() is None:
-        if path.exists() and len(path.read_text(encoding="utf-8").splitlines()) > count:
-            return
-        time.sleep(0.2)
-    raise AssertionError(f"no {count} rows in {path} (exit {proc.poll()})")
 
 
 @pytest.fixture(scope="module")
@@ -276,6 +263,24 @@ def test_ctrl_c_keeps_the_rows_done(scheduler, tmp_path):
     assert cli.returncode == 130 and "interrupted" in output and "Traceback" not in output
     assert 2 <= len(rows) < 30 and all(r["status"] == "ok" and float(r["mass_kg"]) > 0 for r in rows)
     assert not (table.parent / "index.html").exists()
+
+
+@pytest.mark.slow
+def test_build_mode_writes_each_variant_in_its_own_folder(scheduler, tmp_path):
+    doc = {"name": "builds", "base": str(ROOT / "recipes" / "ptfe-lens-120mm.yaml"), "mode": "build",
+           "set": {"outputs.report": False}, "axes": {"design.focal_length_mm": [250, 300]},
+           "figures": ["thickness_mm", "ideal_on_axis_p2p_deg"], "objectives": {"thickness_mm": "min"}}
+    result = run_sweep(_write(tmp_path, doc), tmp_path / "out", scheduler=scheduler)
+    assert [r["status"] for r in result.rows] == ["ok", "ok"], result.rows
+    folders = [result.out_dir / r["folder"] for r in result.rows]
+    assert len(set(folders)) == 2
+    for row, folder, v in zip(result.rows, folders, expand(load_sweep(tmp_path / "sweep.yaml"))):
+        assert folder == result.out_dir / "builds" / v.key[:12] / "ptfe-lens-120mm"
+        manifest = json.loads((folder / "manifest.json").read_text())
+        assert manifest["spec"]["design"]["focal_length_mm"] == v.values["design.focal_length_mm"]
+        assert row["thickness_mm"] == manifest["figures"]["thickness_mm"]
+        assert (folder / "ptfe-lens-120mm.step").stat().st_size > 0
+    assert _rows(result.out_dir)[0]["folder"] == result.rows[0]["folder"]
 
 
 @pytest.mark.parametrize("name", ["collimator-trade", "luneburg-layers"])

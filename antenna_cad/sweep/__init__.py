@@ -10,9 +10,8 @@ from pathlib import Path
 
 from antenna_cad.sweep.execute import Progress, connect, run
 from antenna_cad.sweep.model import load_sweep
-from antenna_cad.sweep.page import PAGE, write_page
-from antenna_cad.sweep.results import (PARETO_CSV, RESULTS_CSV, RESULTS_PARQUET, RowWriter, columns, make_row,
-                                       pareto_front, write_tables)
+from antenna_cad.sweep.results import (PAGE, PARETO_CSV, RESULTS_CSV, RESULTS_PARQUET, RowWriter, columns,
+                                       make_row, pareto_front, write_tables)
 from antenna_cad.sweep.variants import expand
 
 
@@ -63,5 +62,7 @@ def run_sweep(path: str | Path, out_root: Path, scheduler: str | None = None, wo
     front = pareto_front(rows, sweep.objectives)
     unique = len({v.key for v in variants if v.key})
     write_tables(out_dir, cols, rows, front)
+    from antenna_cad.sweep.page import write_page      # matplotlib: on the client only, not on workers
     write_page(out_dir, sweep, file.base_source, cols, rows, front, unique)
-    return SweepResult(sweep.name, out_dir, list(sweep.axes), dict(sweep.objectives), cols, rows, front, unique, seconds)
+    return SweepResult(sweep.name, out_dir, list(sweep.axes), dict(sweep.objectives), cols, rows, front, unique,
+                       seconds)

@@ -9,15 +9,12 @@ import itertools
 import math
 from pathlib import Path
 
-import matplotlib.pyplot as plt
-
 from antenna_cad import __version__
 from antenna_cad.export.page_parts import CSS, table
-from antenna_cad.export.plots import STYLE, figure_svg
+from antenna_cad.export.plots import STYLE, figure_svg, plt       # plt on the Agg backend
 from antenna_cad.sweep.model import SweepSpec
-from antenna_cad.sweep.results import atomic_write
+from antenna_cad.sweep.results import PAGE, atomic_write
 
-PAGE = "index.html"
 MAX_SERIES = 8          # lines per figure-vs-axis plot; more combinations of the other axes: points only
 MAX_TICK_CHARS = 18
 
@@ -100,9 +97,10 @@ def write_page(out_dir: Path, sweep: SweepSpec, base_source: str, cols: list[str
         for f in sweep.figures if any(_number(r.get(f)) for r in ok) for a in axes) or "<p>No completed variant.</p>"
     failures = (table(("variant", "status", "error"), [(r["variant"], r["status"], r["error"]) for r in bad])
                 if bad else "<p>Every variant completed.</p>")
+    everything = f'<div class="scroll">{table(cols, [[r.get(c) for c in cols] for r in rows], "results-table")}</div>'
     sections = [("summary", "Summary", summary), ("pareto", f"Pareto front ({len(front)})", pareto),
                 ("plots", "Figures against axes", plots), ("failures", f"Failed and invalid ({len(bad)})", failures),
-                ("results", "All variants", f'<div class="scroll">{table(cols, [[r.get(c) for c in cols] for r in rows], "results-table")}</div>')]
+                ("results", "All variants", everything)]
     nav = "".join(f'<a href="#{sid}">{title}</a>' for sid, title, _ in sections)
     body = "".join(f'<section id="{sid}"><h2>{title}</h2>{content}</section>' for sid, title, content in sections)
     page = (f'<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'

@@ -15,7 +15,7 @@ from antenna_cad.sweep.variants import Variant
 
 META = ("variant", "spec_hash", "status", "error")
 CHECKS = ("checks", "check_issues")
-RESULTS_CSV, RESULTS_PARQUET, PARETO_CSV = "results.csv", "results.parquet", "pareto.csv"
+RESULTS_CSV, RESULTS_PARQUET, PARETO_CSV, PAGE = "results.csv", "results.parquet", "pareto.csv", "index.html"
 
 
 def columns(sweep: SweepSpec) -> list[str]:

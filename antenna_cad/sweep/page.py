@@ -15,7 +15,7 @@ from antenna_cad.export.plots import STYLE, figure_svg, plt       # plt on the A
 from antenna_cad.sweep.model import SweepSpec
 from antenna_cad.sweep.results import PAGE, atomic_write
 
-MAX_SERIES = 8          # lines per figure-vs-axis plot; more combinations of the other axes: points only
+MAX_SERIES = 10         # lines per figure-vs-axis plot; more combinations of the other axes: points only
 MAX_TICK_CHARS = 18
 
 
@@ -59,15 +59,16 @@ def axis_plot(rows: list[dict], figure: str, axis: str, others: list[str]) -> st
         return figure_svg(fig)
 
 
-def pareto_plot(rows: list[dict], front: list[dict], x: str, y: str) -> str:
-    """Every ok variant in grey, the front in colour, joined in the order of ``x``."""
+def pareto_plot(rows: list[dict], front: list[dict], x: str, y: str, joined: bool) -> str:
+    """Every ok variant in grey, the front in colour; ``joined`` (two objectives: the front is a
+    curve in this plane) links the front in the order of ``x``."""
     pool = [r for r in rows if _number(r.get(x)) and _number(r.get(y))]
     with plt.rc_context(STYLE):
         fig, ax = plt.subplots(figsize=(5.4, 3.8))
         ax.plot([r[x] for r in pool], [r[y] for r in pool], ".", color="0.65", label="variants")
         ordered = sorted(front, key=lambda r: r[x])
-        ax.plot([r[x] for r in ordered], [r[y] for r in ordered], "o-", color="#d62728", markersize=4,
-                linewidth=1.0, label="Pareto front")
+        ax.plot([r[x] for r in ordered], [r[y] for r in ordered], "o-" if joined else "o", color="#d62728",
+                markersize=4, linewidth=1.0, label="Pareto front")
         ax.set_xlabel(x)
         ax.set_ylabel(y)
         ax.legend(fontsize=7, loc="best")
@@ -87,7 +88,9 @@ def write_page(out_dir: Path, sweep: SweepSpec, base_source: str, cols: list[str
         *counts.items(),
         ("objectives", ", ".join(f"{k}: {v}" for k, v in sweep.objectives.items()) or "none")])
     objectives = list(sweep.objectives)
-    scatters = "".join(_figure(pareto_plot(ok, front, x, y), f"pareto-{x}-{y}", f"{y} against {x}")
+    joined = len(objectives) == 2
+    scatters = "".join(_figure(pareto_plot(ok, front, x, y, joined), f"pareto-{x}-{y}",
+                               f"{y} against {x}" + ("" if joined else " (front over all objectives, projected)"))
                        for x, y in itertools.combinations(objectives, 2))
     pareto = (f'<div class="scroll">{table(cols, [[r.get(c) for c in cols] for r in front], "pareto-table")}</div>'
               + scatters

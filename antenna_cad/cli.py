@@ -137,7 +137,7 @@ def sweep(sweep_path: Path = typer.Argument(..., metavar="SWEEP", help="sweep YA
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
 
     from antenna_cad.spec import SpecError
-    from antenna_cad.sweep import SweepInterrupted, run_sweep
+    from antenna_cad.sweep import SchedulerUnreachable, SweepInterrupted, run_sweep
     if scheduler and workers:
         err_console.print("--workers: only for a local cluster (not with --scheduler)", markup=False)
         raise typer.Exit(2)
@@ -150,6 +150,9 @@ def sweep(sweep_path: Path = typer.Argument(..., metavar="SWEEP", help="sweep YA
     except SpecError as exc:
         for line in exc.lines:
             err_console.print(line, markup=False, highlight=False)
+        raise typer.Exit(2)
+    except SchedulerUnreachable as exc:
+        err_console.print(str(exc), markup=False, highlight=False)
         raise typer.Exit(2)
     except SweepInterrupted as stop:
         err_console.print(f"interrupted: {stop.rows} rows done are in {stop.path}", markup=False)

@@ -107,6 +107,17 @@ def test_bad_sweep_file_names_the_field(tmp_path, change, expected):
     assert not (tmp_path / "out").exists()                     # nothing written
 
 
+def test_unreachable_scheduler_is_a_clean_error(tmp_path, monkeypatch):
+    monkeypatch.setattr("antenna_cad.sweep.execute.CONNECT_TIMEOUT", "1s")
+    path, out = _write(tmp_path, SMALL), tmp_path / "out"
+    address = f"tcp://127.0.0.1:{_free_port()}"                  # nobody listens there
+    done = CliRunner().invoke(app, ["sweep", str(path), "-o", str(out), "--scheduler", address])
+    assert done.exit_code == 2 and f"--scheduler: cannot reach {address}" in done.output, done.output
+    assert "Traceback" not in done.output and not out.exists()
+    both = CliRunner().invoke(app, ["sweep", str(path), "--scheduler", address, "--workers", "2"])
+    assert both.exit_code == 2 and "--workers: only for a local cluster" in both.output
+
+
 def test_local_cluster_gives_the_figures_of_single_runs(local):
     path, out, _ = local
     variants = {v.index: v for v in expand(load_sweep(path))}

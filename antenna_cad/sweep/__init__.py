@@ -8,11 +8,14 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from antenna_cad.sweep.execute import Progress, connect, run
+from antenna_cad.sweep.execute import Progress, SchedulerUnreachable, connect, run
 from antenna_cad.sweep.model import load_sweep
 from antenna_cad.sweep.results import (PAGE, PARETO_CSV, RESULTS_CSV, RESULTS_PARQUET, RowWriter, columns,
                                        make_row, pareto_front, write_tables)
 from antenna_cad.sweep.variants import expand
+
+
+__all__ = ["SchedulerUnreachable", "SweepInterrupted", "SweepResult", "run_sweep"]
 
 
 class SweepInterrupted(KeyboardInterrupt):
@@ -40,19 +43,20 @@ def run_sweep(path: str | Path, out_root: Path, scheduler: str | None = None, wo
               progress: Progress | None = None) -> SweepResult:
     """Run the sweep file ``path`` into ``out_root/<name>/``: results.csv (rewritten atomically after
     every row, so an interrupted sweep keeps what is done), then results.parquet, pareto.csv, index.html.
-    Raises SpecError (nothing written) when the sweep file or its base spec is unusable."""
+    Raises SpecError when the sweep file or its base spec is unusable, SchedulerUnreachable when the
+    scheduler does not answer (nothing written either way), SweepInterrupted on Ctrl-C."""
     file = load_sweep(path)
     sweep, variants = file.sweep, expand(file)
     out_dir = (Path(out_root) / sweep.name).resolve()
-    out_dir.mkdir(parents=True, exist_ok=True)
-    for stale in (RESULTS_PARQUET, PARETO_CSV, PAGE):
-        (out_dir / stale).unlink(missing_ok=True)
     cols = columns(sweep)
     writer = RowWriter(out_dir, cols)
-    writer.add([make_row(v, None, out_dir) for v in variants if not v.key])
     start = time.perf_counter()
     try:
-        with connect(scheduler, workers) as client:
+        with connect(scheduler, workers) as client:     # an unreachable scheduler fails here: nothing written
+            out_dir.mkdir(parents=True, exist_ok=True)
+            for stale in (RESULTS_PARQUET, PARETO_CSV, PAGE):
+                (out_dir / stale).unlink(missing_ok=True)
+            writer.add([make_row(v, None, out_dir) for v in variants if not v.key])
             run(client, variants, sweep.mode, tuple(sweep.figures), out_dir,
                 lambda same, result: writer.add([make_row(v, result, out_dir) for v in same]), progress)
     except KeyboardInterrupt:

@@ -18,6 +18,11 @@ from antenna_cad.sweep.tasks import MODE_STAGES, STAGES, finish, run_part
 from antenna_cad.sweep.variants import Variant
 
 Progress = Callable[[int, int], None]      # rows done, rows in all
+CONNECT_TIMEOUT = "30s"
+
+
+class SchedulerUnreachable(RuntimeError):
+    """No dask scheduler answers at the address given."""
 
 
 @contextmanager
@@ -26,7 +31,11 @@ def connect(scheduler: str | None = None, workers: int | None = None):
     one per core) single-threaded processes, without dashboard; closed (with its cluster) on exit."""
     from dask.distributed import Client, LocalCluster
     if scheduler:
-        with Client(scheduler, timeout="30s") as client:
+        try:
+            client = Client(scheduler, timeout=CONNECT_TIMEOUT)
+        except OSError as exc:
+            raise SchedulerUnreachable(f"--scheduler: cannot reach {scheduler}: {exc}") from None
+        with client:
             yield client
         return
     with LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,

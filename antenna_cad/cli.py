@@ -5,6 +5,8 @@
     make-lens validate SPEC          every rule a build applies, before any CAD work; writes nothing
     make-lens schema [-o FILE]       the JSON Schema of specs (stdout unless -o)
     make-lens check OUT              re-read every file of a build folder with independent readers
+    make-lens sweep SWEEP [-o OUT] [--scheduler tcp://HOST:PORT] [--workers N]
+                                     run a design sweep on dask into OUT/<sweep name>/
     make-lens --version
 """
 
@@ -27,8 +29,8 @@ app = typer.Typer(add_completion=False, no_args_is_help=True, rich_markup_mode=N
                   help="Physics spec of a microwave antenna → STEP/STL, 1:1 templates, cut list.\n\n" + EXIT_CODES)
 out_console = Console()
 err_console = Console(stderr=True, soft_wrap=True)
-COMMANDS = {"build", "validate", "schema", "check"}
-VALUE_OPTIONS = {"-o", "--out"}
+COMMANDS = {"build", "validate", "schema", "check", "sweep"}
+VALUE_OPTIONS = {"-o", "--out", "--scheduler", "--workers"}
 STATUS_STYLE = {"pass": "green", "warn": "yellow", "fail": "red"}
 
 
@@ -184,6 +186,49 @@ def check(folder: Path = typer.Argument(..., metavar="OUT", help="a build folder
                       + (": failed " + "; ".join(f"{f.file} {f.check}" for f in failed[:10]) if failed else ""))
     if failed:
         raise typer.Exit(1)
+
+
+@app.command()
+def sweep(sweep_path: Path = typer.Argument(..., metavar="SWEEP", help="sweep YAML"),
+          out: Path = typer.Option(Path("exports"), "-o", "--out", help="output root folder"),
+          scheduler: str = typer.Option(None, "--scheduler", help="running dask scheduler, tcp://HOST:PORT"),
+          workers: int = typer.Option(None, "--workers", min=1, help="local worker processes (default: one per core)")
+          ) -> None:
+    """Run a design sweep (axes over spec fields) on dask: table, Pareto front, index.html in OUT/<name>/."""
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
+
+    from antenna_cad.spec import SpecError
+    from antenna_cad.sweep import SchedulerUnreachable, SweepInterrupted, run_sweep
+    if scheduler and workers:
+        err_console.print("--workers: only for a local cluster (not with --scheduler)", markup=False)
+        raise typer.Exit(2)
+    try:
+        with Progress("{task.description}", BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+                      console=err_console, transient=True) as bar:
+            task = bar.add_task(f"sweep {sweep_path.name}", total=None)
+            result = run_sweep(sweep_path, out, scheduler, workers, lambda done, total: bar.update(
+                task, completed=done, total=total))
+    except SpecError as exc:
+        for line in exc.lines:
+            err_console.print(line, markup=False, highlight=False)
+        raise typer.Exit(2)
+    except SchedulerUnreachable as exc:
+        err_console.print(str(exc), markup=False, highlight=False)
+        raise typer.Exit(2)
+    except SweepInterrupted as stop:
+        err_console.print(f"interrupted: {stop.rows} rows done are in {stop.path}", markup=False)
+        raise typer.Exit(130)
+    counts = {s: sum(r["status"] == s for r in result.rows) for s in ("ok", "invalid", "failed")}
+    shown = ["variant", *result.axes, *result.objectives]
+    front = Table(title=f"Pareto front ({len(result.front)} of {counts['ok']} ok variants)")
+    for col in shown:
+        front.add_column(col.rsplit(".", 1)[-1])
+    for row in result.front:
+        front.add_row(*(f"{row[c]:.4g}" if isinstance(row[c], float) else str(row[c]) for c in shown))
+    out_console.print(front)
+    out_console.print(f"{len(result.rows)} variants ({result.unique} computed, {counts['ok']} ok, "
+                      f"{counts['invalid']} invalid, {counts['failed']} failed) in {result.seconds:.1f} s → "
+                      f"{result.out_dir}/index.html")
 
 
 def main() -> None:

@@ -4,13 +4,10 @@ figure drawn."""
 
 import json
 import re
-import shutil
 from pathlib import Path
 
 import pypdf
 import pytest
-from selenium import webdriver
-from selenium.webdriver.chrome.service import Service
 
 from antenna_cad.pipeline import build
 from antenna_cad.registry import adapter
@@ -18,29 +15,12 @@ from antenna_cad.spec import load_spec
 
 ROOT = Path(__file__).resolve().parents[1]
 RECIPES = ["xps-collimator-0.5m", "ptfe-lens-120mm"]
-CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-                  "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                  "--disable-dev-shm-usage", "--window-size=1200,900"]
 
 
 @pytest.fixture(scope="module")
 def reports(tmp_path_factory):
     out = tmp_path_factory.mktemp("reports")
     return {name: build(load_spec(ROOT / "recipes" / f"{name}.yaml"), out) for name in RECIPES}
-
-
-@pytest.fixture(scope="module")
-def browser(tmp_path_factory):
-    options = webdriver.ChromeOptions()
-    options.binary_location = shutil.which("chromium") or "/usr/bin/chromium"
-    for flag in CHROMIUM_FLAGS:
-        options.add_argument(flag)
-    options.add_argument(f"--user-data-dir={tmp_path_factory.mktemp('chromium-profile')}")
-    options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
-    service = Service(executable_path=shutil.which("chromedriver") or "/usr/bin/chromedriver")
-    driver = webdriver.Chrome(options=options, service=service)
-    yield driver
-    driver.quit()
 
 
 @pytest.mark.parametrize("name", RECIPES)

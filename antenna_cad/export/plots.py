@@ -50,10 +50,15 @@ def plot_svg(plot: Plot) -> str:
     with plt.rc_context(STYLE):
         fig, ax = plt.subplots(figsize=(7.0, 4.2) if not plot.equal_aspect else (7.0, 5.0))
         draw_plot(ax, plot)
-        fig.tight_layout()
-        buf = io.StringIO()
-        fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None})
-        plt.close(fig)
+        return figure_svg(fig)
+
+
+def figure_svg(fig) -> str:
+    """A finished matplotlib figure as an inline SVG element (laid out tight, then closed)."""
+    fig.tight_layout()
+    buf = io.StringIO()
+    fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None})
+    plt.close(fig)
     text = buf.getvalue()
     return text[text.index("<svg"):]       # drop the XML prolog and doctype: inline in HTML
 

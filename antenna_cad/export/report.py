@@ -17,6 +17,7 @@ from matplotlib.colors import to_hex
 
 from antenna_cad import __version__
 from antenna_cad.export.mesh import picture_meshes
+from antenna_cad.export.page_parts import CSS, table as _table
 from antenna_cad.export.plots import assembly_png, plot_svg
 from antenna_cad.fabrication.cutlist import FIELDS as CUT_FIELDS
 from antenna_cad.verification import Table, Verification
@@ -27,19 +28,6 @@ METAL = "#9a9a9a"
 GRADE_MAP = colormaps["viridis_r"]             # low εr light, high εr dark
 REPORT_HTML, REPORT_PDF = "report.html", "report.pdf"
 PICTURE_FACETS = 200.0         # chord tolerance of the pictures = model size / this
-
-CSS = """
-body{font:14px/1.45 system-ui,sans-serif;margin:0 auto;max-width:1100px;padding:0 1.2em 3em;color:#222}
-h1{margin:.6em 0 .1em}h2{border-bottom:2px solid #ddd;padding-bottom:.15em;margin-top:1.8em}
-table{border-collapse:collapse;margin:.6em 0;font-size:13px}td,th{border:1px solid #ccc;padding:2px 7px;
-text-align:left;vertical-align:top}th{background:#f2f2f2}td.num{text-align:right;font-variant-numeric:tabular-nums}
-.pass{background:#d9f2d9}.warn{background:#fff1c2}.fail{background:#f8d0d0}
-.badge{display:inline-block;padding:1px 10px;border-radius:9px;font-weight:600}
-figure{margin:1em 0;page-break-inside:avoid}figure svg,figure img{max-width:100%;height:auto}
-figcaption{font-size:12px;color:#555}pre{background:#f7f7f7;padding:.7em;overflow:auto;font-size:12px}
-nav a{margin-right:1em}.scroll{max-height:32em;overflow:auto}
-@media print{nav{display:none}.scroll{max-height:none}}
-"""
 
 
 @dataclass(frozen=True)
@@ -116,23 +104,6 @@ def write_report_html(path: Path, r: ReportContent) -> None:
 def _overall(checks) -> str:
     statuses = {c.status for c in checks}
     return "fail" if "fail" in statuses else ("warn" if "warn" in statuses else "pass")
-
-
-def _cell(value) -> str:
-    if value is None:
-        return "<td>—</td>"
-    if isinstance(value, bool):
-        return f"<td>{'yes' if value else 'no'}</td>"
-    if isinstance(value, (int, float)):
-        return f'<td class="num">{value:.6g}</td>'
-    return f"<td>{html.escape(str(value))}</td>"
-
-
-def _table(columns, rows, css_id: str = "") -> str:
-    head = "".join(f"<th>{html.escape(str(c))}</th>" for c in columns)
-    body = "".join("<tr>" + "".join(_cell(v) for v in row) + "</tr>" for row in rows)
-    ident = f' id="{css_id}"' if css_id else ""
-    return f'<table{ident}><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'
 
 
 def _checks_table(checks) -> str:

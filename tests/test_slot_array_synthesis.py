@@ -1,4 +1,4 @@
-"""Tests of the seed-003 slot-array synthesis (antenna_cad/synthesis/slot_array.py).
+"""Tests of the seed-003 slot-array synthesis (antenna_cad/synthesis/slot_array/).
 
 Reference values and tolerances live in tests/data/slot_array_reference.csv (seed-003 §5 / §8.4)
 and tests/data/slot_array_table_1_1.csv (Table 1.1, seed-003 §3.2).

@@ -1,0 +1,260 @@
+"""WORK IN PROGRESS (issue 15, not wired into the pipeline): point-by-point (marching) construction
+shared by the two trifocal beam formers (seed-003 §3.6, §3.7).
+
+Thesis frame (x, z) (seed-003 §2.6, rows 3.2/3.3): z is the axis, the foci F1 = (x1, z1), F = (0, z_F),
+F2 = (−x1, z1) lie at z < 0 (x1 < 0; erratum §7.7). A ray from focus j meets the *first surface*
+(mirror 1, or the lens input surface) at P, is reflected (or refracted into index n₂) toward the
+*guide curve* (mirror 2, or the mirror of the mirror–lens former) at Q and enters the guide that
+starts there; the guides are transmission lines along the axis with phase term T(x) = n_w t(x).
+At broadside (β = 90°) the three eikonals are
+
+    Ψ_j(x) = |F_j P_j| + n₂ |P_j Q(x)| + T(x) − s_j x = const_j,   s_1 = sin α, s_F = 0, s_2 = −sin α.
+
+Subtracting the F equation removes T, so the surfaces do not depend on β, n_w or t_B. Along the guide
+curve dΨ_j/dx = 0 with dL_j = n₂ e_j·dQ gives n₂ (e_j − e_F)·(1, z′) = s_j (e_j: arriving unit rays)
+and T′ = −n₂ e_F·(1, z′): the guide-curve slope is fixed by the arriving rays, and the F2 ray that
+must reach a known guide point is fixed too (:func:`first_from_guide`, explicit). The new guide point
+is where an F1 ray from a known first-surface point meets an F ray from the newest first-surface
+segment with Ψ_1 = const_1 (:func:`guide_from_firsts`, one scalar brentq root). Segments are smooth
+functions of their parameter, frozen as Chebyshev interpolants (:class:`Segment`).
+
+Findings so far (numbers from this module, reproduced in the issue-15 report):
+* the §3.8 two-mirror set (F1 (−0.25, −0.23), F (0, −0.25), C (−0.08, 0.25), O2 z −1.02, α = 27.5°
+  from O1 = the mirror-1 vertex) is inconsistent with the three eikonals at B for every β_C: where B
+  lands near z_O2 (β_C ≈ 72.2–72.5°) the eikonals require a guide-curve slope 11–12 at B, the
+  parabola through O2 has 0.3 to −0.2; with a collimating mirror 1 (b2 ≈ −0.5) B is at z ≈ 0;
+* tying the new first-surface point to the F2 ellipse of the F-ray landing point of the same P (a
+  literal reading of §3.6) makes the Ψ_1 residual independent of the unknown (degenerate);
+* with the explicit F2 step the first march step closes but the new segments do not nest: the F ray
+  needed at the far end of a new guide segment comes from beyond the newest first-surface segment,
+  so the march must advance a front over the union of known surfaces rather than segment by segment.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from antenna_cad.synthesis.checks import DesignError
+
+class MarchError(DesignError):
+    """The march cannot continue (no real root, folded or crossing segments)."""
+
+
+def _norm(x: float, z: float) -> float:
+    return math.hypot(x, z)
+
+
+def _unit2(x: float, z: float) -> tuple[float, float]:
+    r = math.hypot(x, z)
+    return x / r, z / r
+
+
+def _normal(slope: float) -> tuple[float, float]:
+    return _unit2(-slope, 1.0)
+
+
+def _redirect(dx: float, dz: float, slope: float, n2: float) -> tuple[float, float]:
+    """Reflect (n2 = 1) or refract from air into index n2 (vector laws) at a surface of ``slope``."""
+    nx, nz = _normal(slope)
+    c = dx * nx + dz * nz
+    if n2 == 1.0:
+        return dx - 2 * c * nx, dz - 2 * c * nz
+    if c > 0:
+        nx, nz, c = -nx, -nz, -c
+    mu = 1.0 / n2
+    k = 1.0 - mu * mu * (1.0 - c * c)
+    f = mu * -c - math.sqrt(k)
+    return mu * dx + f * nx, mu * dz + f * nz
+
+
+def _slope_between(ix: float, iz: float, ox: float, oz: float, n2: float) -> float:
+    """Slope of the surface that turns unit direction i (air) into unit o (index n2): normal ∥ i − n2 o."""
+    vx, vz = ix - n2 * ox, iz - n2 * oz
+    return -vx / vz
+
+
+def _meet(px, pz, ax, az, qx, qz, bx, bz) -> tuple[float, float]:
+    """(a, b) with P + a·A = Q + b·B."""
+    det = -ax * bz + bx * az
+    rx, rz = qx - px, qz - pz
+    return (-rx * bz + bx * rz) / det, (ax * rz - az * rx) / det
+
+
+def land_on_parabola(P, e, c0: float, c2: float) -> float:
+    """Smallest s > 0 with P + s e on z = c0 + c2 x² (NaN if the ray misses)."""
+    px, pz = P
+    ex, ez = e
+    a, b, c = c2 * ex * ex, 2 * c2 * px * ex - ez, c2 * px * px + c0 - pz
+    if abs(a) < 1e-15:
+        s = -c / b
+        return s if s > 0 else math.nan
+    disc = b * b - 4 * a * c
+    if disc < 0:
+        return math.nan
+    roots = [r for r in ((-b - math.sqrt(disc)) / (2 * a), (-b + math.sqrt(disc)) / (2 * a)) if r > 1e-12]
+    return min(roots) if roots else math.nan
+
+
+@dataclass(frozen=True)
+class Foci:
+    """Normalised design data: F1 (x < 0), F on the axis, beam sine s_1 = sin α, index n₂ of the
+    second medium, and the constants c_1 = c_2 and c_F of the eikonals (T = 0 at B)."""
+    F1: tuple[float, float]
+    F: tuple[float, float]
+    s1: float
+    n2: float
+    c1: float
+    cF: float
+
+    @property
+    def F2(self) -> tuple[float, float]:
+        return -self.F1[0], self.F1[1]
+
+
+class Segment:
+    """A constructed segment as a smooth function of its parameter u ∈ [u0, u1]: ``f(u)`` returns a
+    vector of numbers (point, slope, …). It is frozen as a Chebyshev interpolant on ``nodes``
+    points (machine precision for the smooth maps of the march; the error at the mid-nodes is
+    measured and kept in ``interp_error``)."""
+
+    def __init__(self, f, u0: float, u1: float, nodes: int = 33):
+        k = np.arange(nodes)
+        self.u0, self.u1 = float(u0), float(u1)
+        self.u = 0.5 * (u0 + u1) - 0.5 * (u1 - u0) * np.cos(np.pi * k / (nodes - 1))
+        self.values = np.array([f(x) for x in self.u])
+        self._w = np.where((k == 0) | (k == nodes - 1), 0.5, 1.0) * (-1.0) ** k
+        mid = 0.5 * (self.u[:-1] + self.u[1:])[:: max(1, nodes // 6)]
+        self.interp_error = float(np.max(np.abs(np.array([f(x) for x in mid]) - self(mid))))
+
+    def __call__(self, u):
+        u = np.atleast_1d(np.asarray(u, float))
+        d = u[:, None] - self.u[None, :]
+        exact = d == 0
+        d[exact] = 1.0
+        c = self._w[None, :] / d
+        out = (c @ self.values) / c.sum(axis=1)[:, None]
+        hit = exact.any(axis=1)
+        out[hit] = self.values[np.argmax(exact[hit], axis=1)]
+        return out
+
+
+def _root(g, lo: float, hi: float, field: str, what: str, n: int = 24) -> float:
+    """The root of g on [lo, hi] nearest a sign change found on an n-point scan (brentq)."""
+    us = np.linspace(lo, hi, n)
+    gs = np.array([g(u) for u in us])
+    ok = np.isfinite(gs)
+    for i in range(n - 1):
+        if ok[i] and abs(gs[i]) < 1e-13:
+            return float(us[i])
+        if ok[i] and ok[i + 1] and gs[i] * gs[i + 1] <= 0:
+            return float(brentq(g, us[i], us[i + 1], xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200))
+    if ok[-1] and abs(gs[-1]) < 1e-13:
+        return float(us[-1])
+    best = np.nanmin(np.abs(gs)) if ok.any() else math.nan
+    raise MarchError(field, f"the march cannot continue: no real root {what} (smallest residual {best:.3g} D); "
+                     "the initial-segment parameters do not admit a trifocal surface there")
+
+
+def guide_from_initial(fo: Foci, S0: Segment, g0: float, g2: float, x_b: float, field: str) -> Segment:
+    """Initial guide-curve segment z = g0 + g2 x² on |x| ≤ |x_B| with T and the arriving F-ray
+    direction from the F rays through the initial first-surface segment ``S0`` (root on x_P)."""
+    F, n2 = fo.F, fo.n2
+
+    def ray(xp):
+        x, z, s = S0(xp)[0]
+        e = _unit2(*_redirect(*_unit2(x - F[0], z - F[1]), s, n2))
+        a = land_on_parabola((x, z), e, g0, g2)
+        return (x, z), e, a
+
+    def f(xq):
+        def miss(xp):
+            p, e, a = ray(xp)
+            return p[0] + a * e[0] - xq
+        p, e, a = ray(_root(miss, S0.u0, S0.u1, field, f"for the F ray to x = {xq:.4g} D", n=5))
+        qx, qz = p[0] + a * e[0], p[1] + a * e[1]
+        return [qx, qz, 2 * g2 * qx, fo.cF - _norm(p[0] - F[0], p[1] - F[1]) - n2 * a, e[0], e[1]]
+    return Segment(f, -abs(x_b), abs(x_b))
+
+
+def first_from_guide(fo: Foci, G: Segment, field: str) -> Segment:
+    """New first-surface segment from the F2 condition on guide segment G (explicit): the arriving
+    F2 direction e₂ follows from dΨ₂/dx = 0, n₂(e₂ − e_F)·(1, z′) = s₂; N lies back along e₂ where
+    |F2 N| + n₂|N Q| = const_2 − T − s₂ x; its slope from the reflection/refraction law."""
+    F2, n2, s2 = fo.F2, fo.n2, -fo.s1
+
+    def f(u):
+        qx, qz, zs, T, efx, efz = G(u)[0]
+        tx, tz = _unit2(1.0, zs)
+        nx, nz = -tz, tx
+        ct = (efx + efz * zs + s2 / n2) * tx
+        if abs(ct) >= 1.0:
+            raise MarchError(field, f"no F2 ray reaches the guide curve at x = {qx:.4g} D (|cos| = {abs(ct):.3g} > 1)")
+        st = math.copysign(math.sqrt(1.0 - ct * ct), efx * nx + efz * nz)
+        ex, ez = ct * tx + st * nx, ct * tz + st * nz
+        vx, vz = qx - F2[0], qz - F2[1]
+        K = fo.c1 - T + s2 * qx
+        ev, vv = ex * vx + ez * vz, vx * vx + vz * vz
+        if n2 == 1.0:
+            roots = [(K * K - vv) / (2.0 * (K - ev))]
+        else:
+            a, b, c = 1.0 - n2 * n2, 2.0 * (K * n2 - ev), vv - K * K
+            disc = b * b - 4 * a * c
+            roots = sorted([(-b - math.sqrt(disc)) / (2 * a), (-b + math.sqrt(disc)) / (2 * a)]) if disc >= 0 else []
+        for r in roots:
+            Nx, Nz = qx - r * ex, qz - r * ez
+            ix, iz = _unit2(Nx - F2[0], Nz - F2[1])
+            if 0 < r < K / n2 and (n2 == 1.0 or ix * ex + iz * ez > 1.0 / n2):
+                return [Nx, Nz, _slope_between(ix, iz, ex, ez, n2)]
+        raise MarchError(field, f"no first-surface point for the F2 ray to x = {qx:.4g} D of the guide curve")
+    return Segment(f, G.u0, G.u1)
+
+
+def guide_from_firsts(fo: Foci, Sp: Segment, Sn: Segment, field: str) -> Segment:
+    """New guide-curve segment: for every P on ``Sp`` (F1 rays), the point N on ``Sn`` whose F ray
+    meets the F1 ray from P where Ψ_1 = const_1 (scalar root, brentq); T from Ψ_F; exact slopes."""
+    F1, F, n2, s1 = fo.F1, fo.F, fo.n2, fo.s1
+
+    def at(u, v):
+        px, pz, sp = Sp(u)[0]
+        e1 = _unit2(*_redirect(*_unit2(px - F1[0], pz - F1[1]), sp, n2))
+        nx, nz, sn = Sn(v)[0]
+        ef = _unit2(*_redirect(*_unit2(nx - F[0], nz - F[1]), sn, n2))
+        a, b = _meet(px, pz, *e1, nx, nz, *ef)
+        if not (a > 0 and b > 0):
+            return math.nan, None
+        mx, mz = px + a * e1[0], pz + a * e1[1]
+        T = fo.cF - _norm(nx - F[0], nz - F[1]) - n2 * b
+        g = _norm(px - F1[0], pz - F1[1]) + n2 * a + T - s1 * mx - fo.c1
+        return g, (mx, mz, T, e1, ef)
+
+    def f(u):
+        v = _root(lambda v: at(u, v)[0], Sn.u0, Sn.u1, field, f"for the F1 ray from x = {Sp(u)[0][0]:.4g} D")
+        mx, mz, T, e1, ef = at(u, v)[1]
+        dx, dz = n2 * (e1[0] - ef[0]), n2 * (e1[1] - ef[1])
+        return [mx, mz, (s1 - dx) / dz, T, ef[0], ef[1]]
+    return Segment(f, Sp.u0, Sp.u1)
+
+
+def construct(fo: Foci, S0: Segment, g0: float, g2: float, x_b: float, *, half_width: float,
+              margin: float, max_steps: int, field: str) -> tuple[list, list]:
+    """The march: guide segments G_k and first-surface segments S_k until the guide curve, with
+    all three eikonals holding on it, covers x ≤ half_width + margin (right half; module docstring)."""
+    G = [guide_from_initial(fo, S0, g0, g2, x_b, field)]
+    S = [S0]
+    need = half_width + margin
+    for _ in range(max_steps):
+        S.append(first_from_guide(fo, G[-1], field))
+        if G[-1].values[:, 0].max() >= need:
+            return S, G
+        G.append(guide_from_firsts(fo, S[-2], S[-1], field))
+        for seg, what in ((S[-1], "first surface"), (G[-1], "guide curve")):
+            dx = np.diff(seg.values[:, 0])
+            if not (np.all(dx > 0) or np.all(dx < 0)):
+                raise MarchError(field, f"the {what} folds back (x not monotone) near x = "
+                                 f"{seg.values[np.argmin(np.abs(dx)), 0]:.4g} D: crossing segments")
+    raise MarchError(field, f"the guide curve did not reach |x| = {need:.3g} D in {max_steps} steps "
+                     f"(reached {G[-1].values[:, 0].max():.4g} D)")

@@ -534,6 +534,6 @@ def test_bad_beamformer_parameters_raise():
     with pytest.raises(DesignError, match="diverges"):
         sa.bifocal_mirror_lens(**R9_PARAMS, half_width=0.7)
     with pytest.raises(DesignError, match="beamformer.type"):
-        sa.synthesize_slot_array(**dict(KA, beamformer_type="trifocal_two_mirror"))
+        sa.synthesize_slot_array(**dict(KA, beamformer_type="no_such_former"))
     with pytest.raises(DesignError, match="slots.lengths_mm"):
         sa.synthesize_slot_array(**dict(XB, lengths_mm=None))

@@ -85,7 +85,7 @@ def with_surfaces(bf: "BeamFormer", mirrors: Sequence[Curve], lenses: Sequence[C
     mirrors, lenses = tuple(mirrors), tuple(lenses)
     if bf.type == "single_mirror":
         trace = partial(trace_single_mirror, mirrors[0])
-    elif bf.type == "bifocal_two_mirror":
+    elif bf.type in ("bifocal_two_mirror", "trifocal_two_mirror"):
         trace = partial(trace_two_mirror, *mirrors)
     else:
         n = bf.params["n"] if lens_index is None else float(lens_index)

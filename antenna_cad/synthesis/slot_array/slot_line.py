@@ -23,7 +23,7 @@ def slot_line_t_mm(bf: BeamFormer, x_mm, n_guide: float, cos_beta: float,
     """
     x = np.asarray(x_mm, float)
     gc = bf.guide_curve
-    lbar = lambda xx: 0.5 * (bf.eikonal(xx, 0) + bf.eikonal(xx, 1))
+    lbar = lambda xx: np.mean([bf.eikonal(xx, j) for j in range(len(bf.foci_mm))], axis=0)
     num = (lbar(np.zeros(1))[0] - lbar(x)) + cos_beta * (gc.y_at(x) - float(gc.y_at(0.0)))
     return t0_mm + num / (n_guide - cos_beta)
 
@@ -43,8 +43,14 @@ def traced_rays(bf: BeamFormer, source, x_mm, iterations: int = 30) -> tuple[np.
         return L, vertices
     tol = 1e-12 * bf.aperture_mm
     xh0 = x.copy()
+    if bf.type.startswith("trifocal"):           # folded landing maps: start from a landing table
+        first = (bf.lenses or bf.mirrors)[0]
+        grid = np.linspace(*first.x_range_mm, 401)
+        Qg, _, okg, _ = bf.trace(src, grid)
+        k = np.argmin(np.where(okg[None, :], np.abs(Qg[None, :, 0] - x[:, None]), np.inf), axis=1)
+        xh0 = grid[k]
     Q0 = bf.trace(src, xh0)[0]
-    xh1 = x - (Q0[:, 0] - x)
+    xh1 = xh0 - (Q0[:, 0] - x)
     for _ in range(iterations):
         Q1 = bf.trace(src, xh1)[0]
         f0, f1 = Q0[:, 0] - x, Q1[:, 0] - x
@@ -100,7 +106,7 @@ def slot_phase_spread(bf: BeamFormer, x_mm, y_ref_mm, n_guide: float, cos_beta: 
     ux, inv = np.unique(x, return_inverse=True)
     yq = bf.guide_curve.y_at(ux)[inv]
     out = []
-    for j in range(2):
+    for j in range(len(bf.foci_mm)):
         L = traced_eikonal_mm(bf, j, ux)[inv]
         psi = L + n_guide * (y - yq) - bf.beam_dirs[j][0] * x - cos_beta * y
         ph = 2 * np.pi * psi / wavelength_mm

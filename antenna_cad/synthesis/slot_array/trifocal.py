@@ -148,11 +148,11 @@ def _root(g, lo: float, hi: float, field: str, what: str, n: int = 24) -> float:
     gs = np.array([g(u) for u in us])
     ok = np.isfinite(gs)
     for i in range(n - 1):
-        if ok[i] and abs(gs[i]) < 1e-13:
+        if ok[i] and abs(gs[i]) < 1e-11:
             return float(us[i])
         if ok[i] and ok[i + 1] and gs[i] * gs[i + 1] <= 0:
             return float(brentq(g, us[i], us[i + 1], xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200))
-    if ok[-1] and abs(gs[-1]) < 1e-13:
+    if ok[-1] and abs(gs[-1]) < 1e-11:
         return float(us[-1])
     best = np.nanmin(np.abs(gs)) if ok.any() else math.nan
     raise MarchError(field, f"the march cannot continue: no real root {what} (smallest residual {best:.3g} D); "
@@ -213,15 +213,49 @@ def first_from_guide(fo: Foci, G: Segment, field: str) -> Segment:
     return Segment(f, G.u0, G.u1)
 
 
-def guide_from_firsts(fo: Foci, Sp: Segment, Sn: Segment, field: str) -> Segment:
-    """New guide-curve segment: for every P on ``Sp`` (F1 rays), the point N on ``Sn`` whose F ray
-    meets the F1 ray from P where Ψ_1 = const_1 (scalar root, brentq); T from Ψ_F; exact slopes."""
-    F1, F, n2, s1 = fo.F1, fo.F, fo.n2, fo.s1
+def in_x(S: Segment) -> Segment:
+    """``S`` re-parametrised by its own x (values[:, 0] monotone in u), frozen again."""
+    x0, x1 = S.values[0, 0], S.values[-1, 0]
 
-    def at(u, v):
-        px, pz, sp = Sp(u)[0]
+    def f(x):
+        if (x - x0) * (x1 - x0) <= 0:
+            return S.values[0]
+        if (x - x1) * (x0 - x1) <= 0:
+            return S.values[-1]
+        u = brentq(lambda u: S(u)[0][0] - x, S.u0, S.u1, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
+        return S(u)[0]
+    return Segment(f, min(x0, x1), max(x0, x1))
+
+
+class Surface:
+    """The first surface known so far (right half): segments parametrised by x, joined end to end."""
+
+    def __init__(self, first: Segment):
+        self.segs = [first]
+
+    @property
+    def x1(self) -> float:
+        return self.segs[-1].u1
+
+    def __call__(self, x: float):
+        for seg in reversed(self.segs):
+            if seg.u0 - 1e-14 <= x <= seg.u1 + 1e-14:
+                return seg(min(max(x, seg.u0), seg.u1))[0]
+        raise ValueError(f"x = {x} outside the known first surface")
+
+
+def guide_from_surface(fo: Foci, surf: Surface, p0: float, field: str) -> tuple[Segment, float]:
+    """New guide-curve segment: for F1-ray sources P at x = p ≥ p0 on the known first surface, the
+    point N on the newest first-surface segment whose F ray meets the F1 ray from P where
+    Ψ_1 = const_1 (scalar brentq root); T from Ψ_F; exact slopes. The segment ends at the p whose N
+    is the end of the newest segment. Returns (segment over p, that end p)."""
+    F1, F, n2, s1 = fo.F1, fo.F, fo.n2, fo.s1
+    new = surf.segs[-1]
+
+    def at(p, xn):
+        px, pz, sp = surf(p)
         e1 = _unit2(*_redirect(*_unit2(px - F1[0], pz - F1[1]), sp, n2))
-        nx, nz, sn = Sn(v)[0]
+        nx, nz, sn = new(xn)[0]
         ef = _unit2(*_redirect(*_unit2(nx - F[0], nz - F[1]), sn, n2))
         a, b = _meet(px, pz, *e1, nx, nz, *ef)
         if not (a > 0 and b > 0):
@@ -231,30 +265,87 @@ def guide_from_firsts(fo: Foci, Sp: Segment, Sn: Segment, field: str) -> Segment
         g = _norm(px - F1[0], pz - F1[1]) + n2 * a + T - s1 * mx - fo.c1
         return g, (mx, mz, T, e1, ef)
 
-    def f(u):
-        v = _root(lambda v: at(u, v)[0], Sn.u0, Sn.u1, field, f"for the F1 ray from x = {Sp(u)[0][0]:.4g} D")
-        mx, mz, T, e1, ef = at(u, v)[1]
+    g = lambda p, v: at(p, v)[0]
+
+    def local_root(p, n_guess, w):
+        """Root of g(p, ·) nearest ``n_guess`` (bracket grown both ways from it)."""
+        lo, hi = max(n_guess - w, new.u0), min(n_guess + w, new.u1)
+        for _ in range(60):
+            glo, ghi = g(p, lo), g(p, hi)
+            if math.isfinite(glo) and math.isfinite(ghi) and glo * ghi <= 0:
+                return float(brentq(lambda v: g(p, v), lo, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200))
+            if lo <= new.u0 and hi >= new.u1:
+                break
+            w *= 2.0
+            lo, hi = max(n_guess - w, new.u0), min(n_guess + w, new.u1)
+        raise MarchError(field, f"the march cannot continue: no real root for the F1 ray from x = {p:.4g} D "
+                         "(the F ray that must meet it is not on the known first surface)")
+
+    # continuation from (p0, new.u0) (the end of the previous guide segment) to N = new.u1
+    span = new.u1 - new.u0
+    ps, ns = [p0], [new.u0]
+    dp = (surf.x1 - p0) / 400.0
+    while True:
+        p = ps[-1] + dp
+        if p > surf.x1:
+            raise MarchError(field, "the march cannot continue: the F1-ray sources run past the known first surface")
+        ge = g(p, new.u1)
+        if math.isfinite(ge) and ge * g(ps[-1], new.u1) <= 0:           # N reaches the segment end
+            p1 = float(brentq(lambda q: g(q, new.u1), ps[-1], p, xtol=1e-15, rtol=4 * np.finfo(float).eps))
+            break
+        n = local_root(p, ns[-1] + (ns[-1] - ns[-2] if len(ns) > 1 else 0.0), max(abs(ns[-1] - ns[-2]) if len(ns) > 1 else 0.0, 1e-4 * span))
+        if n < ns[-1]:
+            raise MarchError(field, f"the first surface is used backwards near x = {n:.4g} D (fold)")
+        ps.append(p), ns.append(n)
+        dn = ns[-1] - ns[-2]
+        dp *= 0.5 if dn > span / 40 else (2.0 if dn < span / 400 else 1.0)
+    track_p, track_n = np.array(ps + [p1]), np.array(ns + [new.u1])
+
+    def f(p):
+        k = int(np.clip(np.searchsorted(track_p, p) - 1, 0, len(track_p) - 2))
+        t = (p - track_p[k]) / (track_p[k + 1] - track_p[k])
+        guess = track_n[k] + t * (track_n[k + 1] - track_n[k])
+        xn = local_root(p, guess, max(track_n[k + 1] - track_n[k], 1e-6 * span))
+        mx, mz, T, e1, ef = at(p, xn)[1]
         dx, dz = n2 * (e1[0] - ef[0]), n2 * (e1[1] - ef[1])
         return [mx, mz, (s1 - dx) / dz, T, ef[0], ef[1]]
-    return Segment(f, Sp.u0, Sp.u1)
+    return Segment(f, p0, p1), p1
+
+
+def _monotone_x(seg: Segment, what: str, field: str) -> None:
+    dx = np.diff(seg.values[:, 0])
+    if not (np.all(dx > 0) or np.all(dx < 0)):
+        raise MarchError(field, f"the {what} folds back (x not monotone) near x = "
+                         f"{seg.values[np.argmin(np.abs(dx)), 0]:.4g} D: crossing segments")
 
 
 def construct(fo: Foci, S0: Segment, g0: float, g2: float, x_b: float, *, half_width: float,
-              margin: float, max_steps: int, field: str) -> tuple[list, list]:
-    """The march: guide segments G_k and first-surface segments S_k until the guide curve, with
-    all three eikonals holding on it, covers x ≤ half_width + margin (right half; module docstring)."""
+              margin: float, max_steps: int, field: str, join_tol: float = 1e-7) -> tuple[Surface, list]:
+    """The march (module docstring): alternate the explicit F2 step (new first-surface segment on the
+    newest guide segment) and the F1/F step (new guide segment) until the guide curve, with all
+    three eikonals holding on it, covers x ≤ half_width + margin. Right half; x → −x gives the rest.
+    A new first-surface segment must start where the known surface ends (within ``join_tol``):
+    otherwise the initial segments are incompatible (the slope of the initial guide parabola at B
+    differs from the one the eikonals require) and a :class:`MarchError` names ``field``."""
     G = [guide_from_initial(fo, S0, g0, g2, x_b, field)]
-    S = [S0]
+    surf = Surface(S0)
+    p = S0.u0
     need = half_width + margin
     for _ in range(max_steps):
-        S.append(first_from_guide(fo, G[-1], field))
+        raw = first_from_guide(fo, G[-1], field)
+        _monotone_x(raw, "first surface", field)
+        start = raw.values[0] if abs(raw.values[0, 0] - surf.x1) < abs(raw.values[-1, 0] - surf.x1) else raw.values[-1]
+        gap = math.hypot(start[0] - surf.x1, start[1] - surf(surf.x1)[1])
+        if gap > join_tol:
+            raise MarchError(field, f"the new first-surface segment starts {gap:.3g} D away from the known "
+                             f"surface end x = {surf.x1:.4g} D: the initial segments are incompatible "
+                             "(the initial guide parabola's slope at B differs from the one the three "
+                             "eikonals require)")
+        surf.segs.append(in_x(raw))
         if G[-1].values[:, 0].max() >= need:
-            return S, G
-        G.append(guide_from_firsts(fo, S[-2], S[-1], field))
-        for seg, what in ((S[-1], "first surface"), (G[-1], "guide curve")):
-            dx = np.diff(seg.values[:, 0])
-            if not (np.all(dx > 0) or np.all(dx < 0)):
-                raise MarchError(field, f"the {what} folds back (x not monotone) near x = "
-                                 f"{seg.values[np.argmin(np.abs(dx)), 0]:.4g} D: crossing segments")
+            return surf, G
+        Gk, p = guide_from_surface(fo, surf, p, field)
+        _monotone_x(Gk, "guide curve", field)
+        G.append(Gk)
     raise MarchError(field, f"the guide curve did not reach |x| = {need:.3g} D in {max_steps} steps "
                      f"(reached {G[-1].values[:, 0].max():.4g} D)")

@@ -15,6 +15,7 @@ ROOT = Path(__file__).resolve().parents[1]
 X_RECIPE = ROOT / "recipes" / "x-slot-array-ellipse.yaml"
 KA_RECIPE = ROOT / "recipes" / "ka-slot-array-two-mirror.yaml"
 ML_RECIPE = ROOT / "recipes" / "ka-slot-array-mirror-lens.yaml"
+TRI_RECIPE = ROOT / "recipes" / "ka-slot-array-trifocal-two-mirror.yaml"
 
 
 @pytest.fixture(scope="module")
@@ -26,7 +27,7 @@ def x_build(tmp_path_factory):
     return spec, design, build(spec, tmp_path_factory.mktemp("slot"))
 
 
-@pytest.mark.parametrize("recipe", [X_RECIPE, KA_RECIPE, ML_RECIPE])
+@pytest.mark.parametrize("recipe", [X_RECIPE, KA_RECIPE, ML_RECIPE, TRI_RECIPE])
 def test_recipes_validate_and_synthesise(recipe):
     from antenna_cad.registry import synthesize
     spec = load_spec(recipe)
@@ -292,7 +293,7 @@ def test_slot_outlines_hold_the_template_chord_tolerance():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("recipe", [KA_RECIPE, ML_RECIPE], ids=["two-mirror", "mirror-lens"])
+@pytest.mark.parametrize("recipe", [KA_RECIPE, ML_RECIPE, TRI_RECIPE], ids=["two-mirror", "mirror-lens", "trifocal"])
 def test_ka_recipes_build_everything(recipe, tmp_path):
     import json
 

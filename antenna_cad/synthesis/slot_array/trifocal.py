@@ -238,10 +238,12 @@ class Surface:
         return self.segs[-1].u1
 
     def __call__(self, x: float):
-        for seg in reversed(self.segs):
-            if seg.u0 - 1e-14 <= x <= seg.u1 + 1e-14:
-                return seg(min(max(x, seg.u0), seg.u1))[0]
-        raise ValueError(f"x = {x} outside the known first surface")
+        gaps = [max(seg.u0 - x, x - seg.u1, 0.0) for seg in self.segs]
+        k = len(gaps) - 1 - int(np.argmin(gaps[::-1]))
+        if gaps[k] > 1e-7:                      # joins are checked to 1e-7 D in :func:`construct`
+            raise ValueError(f"x = {x} outside the known first surface")
+        seg = self.segs[k]
+        return seg(min(max(x, seg.u0), seg.u1))[0]
 
 
 def guide_from_surface(fo: Foci, surf: Surface, p0: float, field: str) -> tuple[Segment, float]:
@@ -341,6 +343,9 @@ def construct(fo: Foci, S0: Segment, g0: float, g2: float, x_b: float, *, half_w
                              f"surface end x = {surf.x1:.4g} D: the initial segments are incompatible "
                              "(the initial guide parabola's slope at B differs from the one the three "
                              "eikonals require)")
+        if raw.values[:, 0].max() <= surf.x1 + join_tol:
+            raise MarchError(field, f"the new first-surface segment runs back over the known surface from x = "
+                             f"{surf.x1:.4g} D (fold)")
         surf.segs.append(in_x(raw))
         if G[-1].values[:, 0].max() >= need:
             return surf, G

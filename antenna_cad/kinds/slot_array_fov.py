@@ -28,4 +28,7 @@ def fov_block(design: SlotArrayDesign) -> tuple[Plot, Table, dict[str, float]]:
                   ("former", "σ(80°)", "thesis σ(80°)", "largest φ traced deg"), rows,
                   "thesis values: seed-003 §3.8 (Fig. 3.15), each for a design optimised for 80°; NaN: the "
                   "rays miss before 40°")
-    return plot, table, {"sigma_fov80_design": own.sigma_fov()}
+    figures = {"fov_traced_half_angle_deg": float(own.angle_deg.max())}
+    if np.isfinite(own.sigma_fov()):                      # NaN: rays miss before the edge of the field of view
+        figures["sigma_fov80_design"] = own.sigma_fov()
+    return plot, table, figures

@@ -86,7 +86,7 @@ class SlotsSpec(StrictModel):
 BEAMFORMER_PARAMS = {"single_mirror": ("minor_semi_axis_mm", "focal_separation_mm"),
     "bifocal_two_mirror": ("a0", "a2", "h1", "b0", "b2", "h2", "rho1"),
     "bifocal_mirror_lens": ("lens_a2", "lens_vertex", "x0", "p1", "p2", "f0", "n"),
-    "trifocal_two_mirror": ("f1", "f", "c", "beta_c_deg")}
+    "trifocal_two_mirror": ("f1", "f", "c")}
 POINT = tuple[float, float]     # (x, z) in the seed's frame, units of D (seed-003 §3.6)
 
 
@@ -118,7 +118,7 @@ class BeamFormerSpec(StrictModel):
     f2: POINT | None = Field(None, description="optional; must be the mirror image of f1 (erratum §7.7)")
     c: POINT | None = Field(None, description="point C of mirror 1 (x < 0) where the F1 central ray reflects")
     beta_c_deg: float | None = Field(None, gt=30, lt=120, description="direction of the reflected ray C→B "
-                                     "below +x (not given in the seed)")
+                                     "below +x (not given in the seed); omitted: found by the §3.8 optimiser")
     t_b: float | None = Field(None, ge=0, le=5, description="t at B (normalised); default: slot_line_offset_mm at x = 0")
     scale_mm: float | None = Field(None, gt=0, description="physical size of the normalised D = 1")
     slot_line_offset_mm: float = Field(10.0, ge=0, description="t0: last mirror → first slot line")
@@ -146,7 +146,7 @@ class BeamFormerSpec(StrictModel):
         return self
 
     def params(self) -> dict:
-        extra = {"t_b": self.t_b} if self.type == "trifocal_two_mirror" else {}
+        extra = {"t_b": self.t_b, "beta_c_deg": self.beta_c_deg} if self.type == "trifocal_two_mirror" else {}
         return {k: getattr(self, k) for k in BEAMFORMER_PARAMS[self.type]} | extra
 
 

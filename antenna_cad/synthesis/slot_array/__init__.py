@@ -23,7 +23,8 @@ slotted guide is ≈ 1 % lower (10.7 vs 10.80 GHz, §3.1).
 
 Modules (one per concern): :mod:`.scan` (§3.1 scan law), :mod:`.taper` (§3.2), :mod:`.curves`,
 :mod:`.beamformer` (the shared result and ray traces) and one module per former
-(:mod:`.ellipse`, :mod:`.bifocal_two_mirror`, :mod:`.bifocal_mirror_lens`), :mod:`.slot_line`,
+(:mod:`.ellipse`, :mod:`.bifocal_two_mirror`, :mod:`.bifocal_mirror_lens`, :mod:`.trifocal_two_mirror`
+on the march of :mod:`.trifocal`), :mod:`.slot_line`, :mod:`.fov` (σ against field angle),
 :mod:`.layout`, :mod:`.feeds`, :mod:`.design`. The names below are re-exported so that
 ``from antenna_cad.synthesis.slot_array import ...`` keeps working.
 """
@@ -48,8 +49,10 @@ from antenna_cad.synthesis.slot_array.scan import (ScanFigures, broadside_freque
                                                    period_for_angle_mm, scan_figures, wavenumber_per_mm)
 from antenna_cad.synthesis.slot_array.slot_line import (feed_phase_errors, slot_line_t_mm, slot_phase_spread,
                                                         traced_eikonal_mm, traced_rays)
+from antenna_cad.synthesis.slot_array.fov import FieldCurve, field_curve, sigma_at
 from antenna_cad.synthesis.slot_array.taper import (slot_length_from_alpha_mm, taper_alpha_np_per_m,
                                                     taper_slot_lengths_mm)
+from antenna_cad.synthesis.slot_array.trifocal_two_mirror import optimise_beta_c, trifocal_two_mirror
 
 __all__ = ['reflect', 'refract', 'BeamFormer', 'trace_mirror_lens', 'trace_single_mirror', 'trace_two_mirror',
            'with_surfaces', 'bifocal_mirror_lens', 'bifocal_two_mirror', 'BEAMFORMERS', 'C_MM_GHZ',
@@ -61,5 +64,6 @@ __all__ = ['reflect', 'refract', 'BeamFormer', 'trace_mirror_lens', 'trace_singl
            'ScanFigures', 'broadside_frequency_ghz', 'guide_gamma_per_mm', 'guide_wavelength_mm',
            'harmonic_direction_cosine', 'ideal_gain_dbi', 'period_for_angle_mm', 'scan_figures',
            'wavenumber_per_mm', 'feed_phase_errors', 'slot_line_t_mm', 'slot_phase_spread',
-           'traced_eikonal_mm', 'traced_rays', 'slot_length_from_alpha_mm', 'taper_alpha_np_per_m',
-           'taper_slot_lengths_mm']
+           'traced_eikonal_mm', 'traced_rays', 'FieldCurve', 'field_curve', 'sigma_at',
+           'slot_length_from_alpha_mm', 'taper_alpha_np_per_m', 'taper_slot_lengths_mm', 'optimise_beta_c',
+           'trifocal_two_mirror']

@@ -20,7 +20,7 @@ from antenna_cad.synthesis.slot_array.scan import (ScanFigures, guide_gamma_per_
                                                    period_for_angle_mm, scan_figures)
 from antenna_cad.synthesis.slot_array.slot_line import feed_phase_errors, slot_line_t_mm, slot_phase_spread
 from antenna_cad.synthesis.slot_array.taper import taper_slot_lengths_mm
-from antenna_cad.synthesis.slot_array.trifocal_two_mirror import trifocal_two_mirror
+from antenna_cad.synthesis.slot_array.trifocal_two_mirror import optimise_beta_c, trifocal_two_mirror
 
 
 @dataclass(frozen=True)
@@ -95,7 +95,8 @@ def synthesize_slot_array(
     single_mirror: minor_semi_axis_mm, focal_separation_mm; bifocal_two_mirror: a0, a2, h1, b0,
     b2, h2, rho1 (rho2 = inf: plane output fronts are required to feed the guides);
     bifocal_mirror_lens: lens_a2, lens_vertex, x0, p1, p2, f0, n; trifocal_two_mirror: f1, f (x, z
-    pairs), c, beta_c_deg, optional t_b (t at B, normalised; replaces t0). ``slot_line_offset_mm`` is
+    pairs), c, beta_c_deg (None: optimised, §3.8), optional t_b (t at B, normalised; replaces t0).
+    ``slot_line_offset_mm`` is
     t0, the distance along the guide from the last mirror to the first slot line at x = 0.
     Slots: ``lengths_mm`` (per cell for the longitudinal layouts, s1..s3 for transverse_3),
     ``l2_mm``/``l2_ratio`` (other three slots of the 4-slot cell), ``slot_offset_mm`` (default
@@ -154,8 +155,10 @@ def synthesize_slot_array(
     elif beamformer_type == "trifocal_two_mirror":
         D = span if scale_mm is None else float(scale_mm)
         hw = (np.abs(guide_x).max() + a / 2 + wall_mm) / D
-        bf = trifocal_two_mirror(f1=bp["f1"], f_z=bp["f"][1], c=bp["c"], beta_c=np.radians(bp["beta_c_deg"]),
-                                 half_width=hw + 0.005, margin=0.02, scale_mm=D)
+        beta_c = (np.radians(bp["beta_c_deg"]) if bp.get("beta_c_deg") is not None else
+                  optimise_beta_c(f1=bp["f1"], f_z=bp["f"][1], c=bp["c"], half_width=hw)[0])
+        bf = trifocal_two_mirror(f1=bp["f1"], f_z=bp["f"][1], c=bp["c"], beta_c=beta_c, half_width=hw + 0.005,
+                                 margin=0.02, scale_mm=D)
         aim_point = np.array([0.0, bf.params["b0"] * D])
         if bp.get("t_b") is not None:        # t at B (seed-003 §3.6) → t at x = 0
             xb = float(bf.params["B"][0]) * D
@@ -245,6 +248,9 @@ def synthesize_slot_array(
         "slot_line_sag_mm": float(t.max() - t.min()),
         "load_length_mm": load_length_mm, "load_power_fraction": 1.0 - taper_eta,
     }
+    if "beta_c_rad" in bf.params:                          # trifocal: the parameters the seed leaves out
+        figures |= {"beta_c_deg": float(np.degrees(bf.params["beta_c_rad"])), "mirror2_vertex_z": bf.params["a0"],
+                    "march_guide_half_width": bf.params["guide_half_width"]}
     return SlotArrayDesign(scan, bf, slots, slot_line, coupling_edge, feeds, a,
                            float(guide_height_mm), float(wall_mm), eps, float(layer_height_mm),
                            float(coupling_slot_mm), termination, load_length_mm, spread, figures,

@@ -1,33 +1,23 @@
-"""WORK IN PROGRESS (issue 15, not wired into the pipeline): point-by-point (marching) construction
-shared by the two trifocal beam formers (seed-003 §3.6, §3.7).
+"""Point-by-point (marching) construction of the trifocal beam formers (seed-003 §3.6; §3.7 uses the
+same equations with refraction, n₂ = n).
 
 Thesis frame (x, z) (seed-003 §2.6, rows 3.2/3.3): z is the axis, the foci F1 = (x1, z1), F = (0, z_F),
 F2 = (−x1, z1) lie at z < 0 (x1 < 0; erratum §7.7). A ray from focus j meets the *first surface*
-(mirror 1, or the lens input surface) at P, is reflected (or refracted into index n₂) toward the
-*guide curve* (mirror 2, or the mirror of the mirror–lens former) at Q and enters the guide that
-starts there; the guides are transmission lines along the axis with phase term T(x) = n_w t(x).
-At broadside (β = 90°) the three eikonals are
+(mirror 1) at P, is reflected (or refracted into index n₂) toward the *guide curve* (mirror 2) at Q
+and enters the guide that starts there; the guides are transmission lines along the axis with phase
+term T(x) = n_w t(x). At broadside (β = 90°) the three eikonals are
 
     Ψ_j(x) = |F_j P_j| + n₂ |P_j Q(x)| + T(x) − s_j x = const_j,   s_1 = sin α, s_F = 0, s_2 = −sin α.
 
 Subtracting the F equation removes T, so the surfaces do not depend on β, n_w or t_B. Along the guide
 curve dΨ_j/dx = 0 with dL_j = n₂ e_j·dQ gives n₂ (e_j − e_F)·(1, z′) = s_j (e_j: arriving unit rays)
-and T′ = −n₂ e_F·(1, z′): the guide-curve slope is fixed by the arriving rays, and the F2 ray that
-must reach a known guide point is fixed too (:func:`first_from_guide`, explicit). The new guide point
-is where an F1 ray from a known first-surface point meets an F ray from the newest first-surface
-segment with Ψ_1 = const_1 (:func:`guide_from_firsts`, one scalar brentq root). Segments are smooth
-functions of their parameter, frozen as Chebyshev interpolants (:class:`Segment`).
-
-Findings so far (numbers from this module, reproduced in the issue-15 report):
-* the §3.8 two-mirror set (F1 (−0.25, −0.23), F (0, −0.25), C (−0.08, 0.25), O2 z −1.02, α = 27.5°
-  from O1 = the mirror-1 vertex) is inconsistent with the three eikonals at B for every β_C: where B
-  lands near z_O2 (β_C ≈ 72.2–72.5°) the eikonals require a guide-curve slope 11–12 at B, the
-  parabola through O2 has 0.3 to −0.2; with a collimating mirror 1 (b2 ≈ −0.5) B is at z ≈ 0;
-* tying the new first-surface point to the F2 ellipse of the F-ray landing point of the same P (a
-  literal reading of §3.6) makes the Ψ_1 residual independent of the unknown (degenerate);
-* with the explicit F2 step the first march step closes but the new segments do not nest: the F ray
-  needed at the far end of a new guide segment comes from beyond the newest first-surface segment,
-  so the march must advance a front over the union of known surfaces rather than segment by segment.
+and T′ = −n₂ e_F·(1, z′): the guide-curve slope is fixed by the arriving rays (so the initial guide
+parabola must have that slope at B: the C¹ condition), and the F2 ray that must reach a known guide
+point is fixed too, which makes the new first-surface point explicit (:func:`first_from_guide`). The
+new guide point is where an F1 ray from the known first surface meets an F ray from the newest
+first-surface segment with Ψ_1 = const_1 (:func:`guide_from_surface`: one scalar brentq root per
+point, followed continuously from the previous one). Segments are smooth functions of their parameter,
+frozen as Chebyshev interpolants (:class:`Segment`). Never the garbled closed forms (3.18)/(3.24).
 """
 
 from __future__ import annotations

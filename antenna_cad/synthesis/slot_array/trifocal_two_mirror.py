@@ -118,3 +118,47 @@ def trifocal_two_mirror(*, f1, f_z: float, c, beta_c: float, half_width: float =
               "construction": (fo, surf, G)}
     return BeamFormer("trifocal_two_mirror", (mir1, mir2), (), foci, dirs, sig, sig / sc, sc, mir2, locus,
                       centre, eikonal, trace, params)
+
+
+def optimise_beta_c(*, f1, f_z: float, c, half_width: float, bounds_deg: tuple[float, float] = (55.0, 70.0),
+                    field_prefix: str = "beamformer") -> tuple[float, float]:
+    """β_C (rad) minimising σ over the field of view (seed-003 §3.8), the parameter the seed leaves out.
+
+    Objective: the larger σ of a source half-way between F and F1 and one 45 % beyond F1 (each moved
+    radially to its best distance; :func:`antenna_cad.synthesis.slot_array.fov.sigma_at`); β_C for
+    which the march cannot cover ``half_width`` score 1. Bounded scalar search (scipy). Returns
+    (β_C, objective).
+    """
+    from scipy.optimize import minimize_scalar
+
+    from antenna_cad.synthesis.slot_array.fov import sigma_at
+
+    x = np.linspace(-half_width, half_width, N_SIGMA_RAYS)
+
+    def objective(beta_deg: float) -> float:
+        try:
+            bf = trifocal_two_mirror(f1=f1, f_z=f_z, c=c, beta_c=math.radians(beta_deg), half_width=half_width + 0.005,
+                                     margin=0.02, n_seg=21, field_prefix=field_prefix)
+        except DesignError:
+            return 1.0
+        cen, F = bf.focal_locus_centre_mm, bf.foci_mm[0]
+        up = 1.0 if F[1] > cen[1] else -1.0
+        R0, psi0 = float(np.linalg.norm(F - cen)), math.atan2(F[0] - cen[0], up * (F[1] - cen[1]))
+        worst = 0.0
+        for frac in (0.5, 1.45):
+            pos = lambda R: cen + np.array([R * math.sin(frac * psi0), up * R * math.cos(frac * psi0)])
+            res = minimize_scalar(lambda R: np.nan_to_num(sigma_at(bf, pos(R), x)[0], nan=1.0),
+                                  bounds=(0.6 * R0, 1.4 * R0), method="bounded", options={"xatol": 1e-5 * R0})
+            worst = max(worst, float(res.fun))
+        return worst
+
+    grid = np.linspace(*bounds_deg, 31)
+    scores = [objective(b) for b in grid]
+    k = int(np.argmin(scores))
+    if scores[k] >= 1.0:
+        raise DesignError(field_prefix + ".beta_c_deg", f"no β_C in {bounds_deg[0]:g}–{bounds_deg[1]:g}° lets the "
+                          f"march cover |x| ≤ {half_width:.3g} D: change c or the foci")
+    lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
+    res = minimize_scalar(objective, bounds=(lo, hi), method="bounded", options={"xatol": 1e-3})
+    best = (float(res.x), float(res.fun)) if res.fun < scores[k] else (float(grid[k]), float(scores[k]))
+    return math.radians(best[0]), best[1]

@@ -44,8 +44,9 @@ def _eikonal_residuals(fo: tr.Foci, surf: tr.Surface, M, T) -> list[float]:
         xs = np.linspace(-surf.x1, surf.x1, 201)
         g = np.array([miss(x) for x in xs])
         best = math.inf
-        for i in np.flatnonzero(g[:-1] * g[1:] <= 0):
-            x = brentq(miss, xs[i], xs[i + 1], xtol=1e-15, rtol=1e-15)
+        roots = [brentq(miss, xs[i], xs[i + 1], xtol=1e-15, rtol=1e-15) for i in np.flatnonzero(g[:-1] * g[1:] <= 0)]
+        roots += [x for x, gx in zip(xs[[0, -1]], g[[0, -1]]) if abs(gx) < 1e-11]     # the surface's last point
+        for x in roots:
             px, pz, _ = _surface_point(surf, x)
             best = min(best, abs(math.dist((px, pz), F) + math.dist((px, pz), M) + T - s * M[0] - c))
         out.append(best)

@@ -16,7 +16,7 @@ from antenna_cad.synthesis.slot_array import trifocal as tr
 from antenna_cad.synthesis.slot_array.fov import THESIS_SIGMA_80, field_curve, reference_formers, sigma_at
 from antenna_cad.synthesis.slot_array.trifocal_two_mirror import initial_segments, trifocal_two_mirror
 
-RECIPE = dict(f1=(-0.25, -0.23), f_z=-0.25, c=(-0.2, 0.25), beta_c=math.radians(61.354))   # Ka recipe, D units
+RECIPE = dict(f1=(-0.25, -0.23), f_z=-0.25, c=(-0.16, 0.25), beta_c=math.radians(61.647))   # Ka recipe, D units
 
 
 @pytest.fixture(scope="module")
@@ -75,15 +75,17 @@ def test_segments_join_continuously_with_monotone_x(former):
 
 
 def test_design_beams_are_perfect_and_sigma_is_minimal_there(former):
-    assert np.all(former.sigma_norm < 1e-8)                        # traced through the assembled curves
+    # traced through the assembled C¹ Hermite curves (interpolation between the constructed points)
+    assert np.all(former.sigma_norm < 1e-7)
     x = np.linspace(-0.345, 0.345, 50)
     design = [sigma_at(former, F, x) for F in former.foci_mm]          # source at each design focus
-    assert max(s for s, _ in design) < 1e-8
+    assert max(s for s, _ in design) < 1e-7
     alpha = former.params["alpha_rad"]
     assert [sp for _, sp in design] == pytest.approx([math.sin(alpha), 0.0, -math.sin(alpha)], abs=1e-9)
     curve = field_curve(former, 0.345, n_angles=7)
     between = float(np.interp(math.degrees(alpha) / 2, curve.angle_deg, curve.sigma))
     assert between > 1e3 * max(s for s, _ in design)
+    assert curve.sigma_fov() == pytest.approx(1.3e-3, rel=0.15)        # the Ka recipe's σ(80°), see README
 
 
 def test_thesis_two_mirror_set_is_incompatible_at_b():
@@ -122,8 +124,8 @@ def test_spec_rules_name_the_field(change, field):
 
 @pytest.mark.slow
 def test_optimiser_finds_beta_c_of_the_recipe():
-    """§3.8: β_C omitted → bounded search over 55–70°; the recipe's 61.354° is its result, and it beats
+    """§3.8: β_C omitted → bounded search over 55–70°; the recipe's 61.647° is its result, and it beats
     the neighbours it was chosen against."""
     from antenna_cad.synthesis.slot_array.trifocal_two_mirror import optimise_beta_c
     beta, score = optimise_beta_c(f1=RECIPE["f1"], f_z=RECIPE["f_z"], c=RECIPE["c"], half_width=0.345)
-    assert math.degrees(beta) == pytest.approx(61.354, abs=0.02) and score < 2.1e-3
+    assert math.degrees(beta) == pytest.approx(61.647, abs=0.02) and score < 1.2e-3

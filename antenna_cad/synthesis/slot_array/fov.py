@@ -105,8 +105,8 @@ def reference_formers() -> dict[str, tuple[BeamFormer, float]]:
         "bifocal_two_mirror": (bifocal_two_mirror(a0=.25, a2=-.01, h1=.005, b0=-.25, b2=.1, h2=.055, rho1=1.2), 0.5),
         "bifocal_mirror_lens": (bifocal_mirror_lens(lens_a2=-.15, lens_vertex=.42, x0=.06, p1=.8325, p2=3.0,
                                                     f0=1.4, n=np.sqrt(2.2)), 0.5),
-        "trifocal_two_mirror": (trifocal_two_mirror(f1=(-0.25, -0.23), f_z=-0.25, c=(-0.2, 0.25),
-                                                    beta_c=np.radians(61.354), half_width=0.35, margin=0.02), 0.345),
+        "trifocal_two_mirror": (trifocal_two_mirror(f1=(-0.25, -0.23), f_z=-0.25, c=(-0.16, 0.25),
+                                                    beta_c=np.radians(61.647), half_width=0.35, margin=0.02), 0.345),
     }
 
 

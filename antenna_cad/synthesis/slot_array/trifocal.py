@@ -115,6 +115,7 @@ class Segment:
         k = np.arange(nodes)
         self.u0, self.u1 = float(u0), float(u1)
         self.u = 0.5 * (u0 + u1) - 0.5 * (u1 - u0) * np.cos(np.pi * k / (nodes - 1))
+        self.u[0], self.u[-1] = self.u0, self.u1          # end nodes exactly at the ends
         self.values = np.array([f(x) for x in self.u])
         self._w = np.where((k == 0) | (k == nodes - 1), 0.5, 1.0) * (-1.0) ** k
         mid = 0.5 * (self.u[:-1] + self.u[1:])[:: max(1, nodes // 6)]
@@ -203,8 +204,9 @@ def first_from_guide(fo: Foci, G: Segment, field: str) -> Segment:
     return Segment(f, G.u0, G.u1)
 
 
-def in_x(S: Segment) -> Segment:
-    """``S`` re-parametrised by its own x (values[:, 0] monotone in u), frozen again."""
+def in_x(S: Segment, field: str) -> Segment:
+    """``S`` re-parametrised by its own x (values[:, 0] monotone in u), frozen again; a segment whose x
+    is not monotone between its nodes is a fold (:class:`MarchError` naming ``field``)."""
     x0, x1 = S.values[0, 0], S.values[-1, 0]
 
     def f(x):
@@ -212,8 +214,10 @@ def in_x(S: Segment) -> Segment:
             return S.values[0]
         if (x - x1) * (x0 - x1) <= 0:
             return S.values[-1]
-        u = brentq(lambda u: S(u)[0][0] - x, S.u0, S.u1, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
-        return S(u)[0]
+        g = lambda u: S(u)[0][0] - x
+        if g(S.u0) * g(S.u1) > 0:
+            raise MarchError(field, f"the first surface folds back near x = {x:.4g} D: crossing segments")
+        return S(brentq(g, S.u0, S.u1, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200))[0]
     return Segment(f, min(x0, x1), max(x0, x1))
 
 
@@ -336,7 +340,7 @@ def construct(fo: Foci, S0: Segment, g0: float, g2: float, x_b: float, *, half_w
         if raw.values[:, 0].max() <= surf.x1 + join_tol:
             raise MarchError(field, f"the new first-surface segment runs back over the known surface from x = "
                              f"{surf.x1:.4g} D (fold)")
-        surf.segs.append(in_x(raw))
+        surf.segs.append(in_x(raw, field))
         if G[-1].values[:, 0].max() >= need:
             return surf, G
         Gk, p = guide_from_surface(fo, surf, p, field)

@@ -61,7 +61,7 @@ def _sample(seg: tr.Segment, n: int) -> np.ndarray:
 
 
 def trifocal_two_mirror(*, f1, f_z: float, c, beta_c: float, half_width: float = 0.35, margin: float = 0.03,
-                        n_seg: int = 41, max_steps: int = 30, scale_mm: float = 1.0,
+                        n_seg: int = 81, max_steps: int = 30, scale_mm: float = 1.0,
                         field_prefix: str = "beamformer") -> BeamFormer:
     """Trifocal two-mirror former, normalised inputs (module docstring), outputs scaled to mm.
 

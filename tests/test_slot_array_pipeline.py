@@ -316,4 +316,6 @@ def test_ka_recipes_build_everything(recipe, tmp_path):
     w, h = (float(v) * 25.4 / 72 for v in pdf.pages[0].mediabox.upper_right)
     assert (round(w), round(h)) == (210, 297) and len(pdf.pages) >= 40
     fig = manifest["verification"]["figures"]
-    assert fig["design_focus_phase_rms_deg"] < 1e-4 and fig["phase_rms_deg_as_built_worst_feed"] < 22.5
+    # trifocal: the C¹ Hermite curves between the march's exact points leave ≈ 2e-8 D of path error
+    assert fig["design_focus_phase_rms_deg"] < (1e-3 if recipe is TRI_RECIPE else 1e-4)
+    assert fig["phase_rms_deg_as_built_worst_feed"] < 22.5

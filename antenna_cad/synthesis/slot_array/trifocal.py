@@ -111,7 +111,7 @@ class Segment:
     points (machine precision for the smooth maps of the march; the error at the mid-nodes is
     measured and kept in ``interp_error``)."""
 
-    def __init__(self, f, u0: float, u1: float, nodes: int = 33):
+    def __init__(self, f, u0: float, u1: float, nodes: int = 49):
         k = np.arange(nodes)
         self.u0, self.u1 = float(u0), float(u1)
         self.u = 0.5 * (u0 + u1) - 0.5 * (u1 - u0) * np.cos(np.pi * k / (nodes - 1))

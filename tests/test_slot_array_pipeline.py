@@ -15,6 +15,7 @@ ROOT = Path(__file__).resolve().parents[1]
 X_RECIPE = ROOT / "recipes" / "x-slot-array-ellipse.yaml"
 KA_RECIPE = ROOT / "recipes" / "ka-slot-array-two-mirror.yaml"
 ML_RECIPE = ROOT / "recipes" / "ka-slot-array-mirror-lens.yaml"
+TRI_RECIPE = ROOT / "recipes" / "ka-slot-array-trifocal-two-mirror.yaml"
 
 
 @pytest.fixture(scope="module")
@@ -26,7 +27,7 @@ def x_build(tmp_path_factory):
     return spec, design, build(spec, tmp_path_factory.mktemp("slot"))
 
 
-@pytest.mark.parametrize("recipe", [X_RECIPE, KA_RECIPE, ML_RECIPE])
+@pytest.mark.parametrize("recipe", [X_RECIPE, KA_RECIPE, ML_RECIPE, TRI_RECIPE])
 def test_recipes_validate_and_synthesise(recipe):
     from antenna_cad.registry import synthesize
     spec = load_spec(recipe)
@@ -252,7 +253,8 @@ def test_verification_figures_reach_the_manifest(x_build):
         "tolerance_loss_db_fill_eps_r_all_guides", "tolerance_loss_db_guide_width_all_guides",
         "tolerance_loss_db_feed_position_along_the_axis"}
     tables = {t["name"]: t for t in manifest["verification"]["tables"]}
-    assert set(tables) == {"feeds", "slots", "sensitivity"}
+    assert set(tables) == {"feeds", "slots", "sensitivity", "fov-sigma"}
+    assert len(tables["fov-sigma"]["rows"]) == 5 and 0 < fig["sigma_fov80_design"] < 5.6e-4 * 2
     assert len(tables["feeds"]["rows"]) == 5
     assert [r[-1] for r in tables["sensitivity"]["rows"]].count("dominant") == 1
     assert {c.name for c in result.checks} >= {"as_built_phase_rms", "slot_table_period", "tolerance_budget"}
@@ -264,7 +266,7 @@ def test_verification_plots_are_complete(x_model):
     fab = kind.fabricate(spec, design, None, ())
     v = adapter(spec.kind).verify(spec, design, None, fab)
     plots = {p.name: p for p in v.plots}
-    assert set(plots) == {"scan-curves", "beamformer-rays", "slot-phase", "sensitivity"}
+    assert set(plots) == {"scan-curves", "beamformer-rays", "slot-phase", "sensitivity", "fov-sigma"}
     assert plots["beamformer-rays"].equal_aspect
     for p in v.plots:
         for s in p.series:
@@ -291,7 +293,7 @@ def test_slot_outlines_hold_the_template_chord_tolerance():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("recipe", [KA_RECIPE, ML_RECIPE], ids=["two-mirror", "mirror-lens"])
+@pytest.mark.parametrize("recipe", [KA_RECIPE, ML_RECIPE, TRI_RECIPE], ids=["two-mirror", "mirror-lens", "trifocal"])
 def test_ka_recipes_build_everything(recipe, tmp_path):
     import json
 
@@ -314,4 +316,6 @@ def test_ka_recipes_build_everything(recipe, tmp_path):
     w, h = (float(v) * 25.4 / 72 for v in pdf.pages[0].mediabox.upper_right)
     assert (round(w), round(h)) == (210, 297) and len(pdf.pages) >= 40
     fig = manifest["verification"]["figures"]
-    assert fig["design_focus_phase_rms_deg"] < 1e-4 and fig["phase_rms_deg_as_built_worst_feed"] < 22.5
+    # trifocal: the C¹ Hermite curves between the march's exact points leave ≈ 2e-8 D of path error
+    assert fig["design_focus_phase_rms_deg"] < (1e-3 if recipe is TRI_RECIPE else 1e-4)
+    assert fig["phase_rms_deg_as_built_worst_feed"] < 22.5

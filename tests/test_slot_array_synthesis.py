@@ -1,4 +1,4 @@
-"""Tests of the seed-003 slot-array synthesis (antenna_cad/synthesis/slot_array.py).
+"""Tests of the seed-003 slot-array synthesis (antenna_cad/synthesis/slot_array/).
 
 Reference values and tolerances live in tests/data/slot_array_reference.csv (seed-003 §5 / §8.4)
 and tests/data/slot_array_table_1_1.csv (Table 1.1, seed-003 §3.2).
@@ -534,6 +534,6 @@ def test_bad_beamformer_parameters_raise():
     with pytest.raises(DesignError, match="diverges"):
         sa.bifocal_mirror_lens(**R9_PARAMS, half_width=0.7)
     with pytest.raises(DesignError, match="beamformer.type"):
-        sa.synthesize_slot_array(**dict(KA, beamformer_type="trifocal_two_mirror"))
+        sa.synthesize_slot_array(**dict(KA, beamformer_type="no_such_former"))
     with pytest.raises(DesignError, match="slots.lengths_mm"):
         sa.synthesize_slot_array(**dict(XB, lengths_mm=None))

@@ -1,0 +1,34 @@
+"""Report block of the slot array: σ against field angle for this design and the reference formers
+(seed-003 §3.8, Fig. 3.15), with the σ(80°) values next to the thesis's."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from antenna_cad.synthesis.slot_array import SlotArrayDesign
+from antenna_cad.synthesis.slot_array.fov import FOV_DEG, THESIS_SIGMA_80, field_curve, reference_curves
+from antenna_cad.verification import Plot, Series, Table
+
+
+def fov_block(design: SlotArrayDesign) -> tuple[Plot, Table, dict[str, float]]:
+    """(plot of σ·10⁴ against beam azimuth, table of σ(80°), figures) — geometrical optics at β = 90°."""
+    s = design.slots
+    half = float(np.abs(s.guide_x_mm).max() + design.guide_width_mm / 2)
+    own = field_curve(design.beamformer, half, f"this design ({design.beamformer.type})")
+    curves = [own, *reference_curves()]
+    series = tuple(Series(c.name, c.angle_deg, 1e4 * c.sigma, "line" if k else "points")
+                   for k, c in enumerate(curves))
+    rows = tuple((c.name, f"{c.sigma_fov():.3g}", f"{THESIS_SIGMA_80[c.name]:.2g}" if c.name in THESIS_SIGMA_80 else "—",
+                  round(float(c.angle_deg.max()), 1)) for c in curves)
+    plot = Plot("fov-sigma", "RMS path error σ against field angle (β = 90°)", "beam azimuth φ deg",
+                "σ × 10⁴ (units of the aperture width)", series,
+                f"source moved radially to minimum σ at every polar angle; {FOV_DEG:g}° field of view = |φ| ≤ "
+                f"{FOV_DEG / 2:g}°; a curve ends where rays miss the surfaces", hlines=())
+    table = Table("fov-sigma", f"σ at the {FOV_DEG:g}° field of view (largest σ for |φ| ≤ {FOV_DEG / 2:g}°)",
+                  ("former", "σ(80°)", "thesis σ(80°)", "largest φ traced deg"), rows,
+                  "thesis values: seed-003 §3.8 (Fig. 3.15), each for a design optimised for 80°; NaN: the "
+                  "rays miss before 40°")
+    figures = {"fov_traced_half_angle_deg": float(own.angle_deg.max())}
+    if np.isfinite(own.sigma_fov()):                      # NaN: rays miss before the edge of the field of view
+        figures["sigma_fov80_design"] = own.sigma_fov()
+    return plot, table, figures

@@ -84,7 +84,8 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None) -> B
         sheet_files = _write_templates(spec, fab, tmp)
         stage("templates")
         (tmp / "cutlist.csv").write_text(cutlist_csv(list(fab.rows), fab.totals_kg), encoding="utf-8")
-        for file_name, text in fab.files.items():
+        for file_name, text in (fab.files | verification.files).items():
+            (tmp / file_name).parent.mkdir(parents=True, exist_ok=True)
             (tmp / file_name).write_text(text, encoding="utf-8")
         figures = kind.summary(spec, design, layup)
         if spec.outputs.report:

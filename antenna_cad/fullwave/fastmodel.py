@@ -5,7 +5,7 @@ radius r (zero where the lens is sanded to its profile). The thin phase screen k
 takes every zone at face value; but thirteen of fifteen zones of a typical foam stack are narrower than
 λ, so the staircase is a sub-wavelength grating whose higher orders are evanescent and only the
 zone-averaged phase propagates (DESIGN.md "Verification models"). The model keeps the screen and lets
-diffraction do the averaging: the screen's field exp(−i·k0(n−1)Δd(r)) over the aperture is propagated
+diffraction do the averaging: the screen's field exp(i·k0(n−1)Δd(r)) over the aperture is propagated
 to the aperture plane by the exact scalar angular spectrum of a body of revolution (order-0 Hankel
 transform, evanescent components decaying as exp(−2πL·√(ρ² − 1/λ²))), divided by the same
 propagation of the unstepped aperture. L runs from the stack's mean front face to the aperture plane.
@@ -22,8 +22,9 @@ RHO_MAX = 2.0               # spatial frequencies kept, units of 1/λ (≥ e^-20
 
 
 def thin_screen_deg(delta_d_mm: np.ndarray, n: float, wavelength_mm: float) -> np.ndarray:
-    """k0(n−1)Δd, the stair-step phase at face value (seed-000 §7.3), as a phase delay (deg)."""
-    return -360.0 * (n - 1.0) * np.asarray(delta_d_mm) / wavelength_mm
+    """k0(n−1)Δd, the stair-step phase at face value (seed-000 §7.3), as a phase delay (deg; time
+    e^{−iωt}, so a delay is a positive phase, as in Meep and the GO path)."""
+    return 360.0 * (n - 1.0) * np.asarray(delta_d_mm) / wavelength_mm
 
 
 def _hankel(u: np.ndarray, r: np.ndarray, dr: float, rho: np.ndarray) -> np.ndarray:

@@ -147,6 +147,8 @@ def run(deck: dict) -> dict:
     out["r_mm"] = np.arange(len(out["er"])) / res * lam
     if whole is not None:
         e = sum(np.abs(np.asarray(sim.get_dft_array(whole, c, 0))) ** 2 for c in (mp.Er, mp.Ep, mp.Ez)) ** 0.5
+        if abs(e.shape[0] - r_in * res) > abs(e.shape[0] - (z1 - z0) * res):
+            e = e.T                                   # stored as [r, z]
         step = max(1, int(np.ceil(max(e.shape) / MAP_MAX_PX)))
         out["map_abs"] = e[::step, ::step]
         out["map_extent_mm"] = np.array([0.0, r_in * lam, z0 * lam, z1 * lam])

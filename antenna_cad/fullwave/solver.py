@@ -68,7 +68,9 @@ def deck_key(deck: dict) -> str:
 
 def estimate_s(decks: list[dict], jobs: int = 1) -> float:
     """Wall-time estimate of running ``decks`` (uncached ones only) ``jobs`` at a time."""
-    todo = [d for d in decks if not (cache_dir() / f"{deck_key(d)}.npz").exists()]
+    keys = [deck_key(d) for d in decks]
+    todo = [d for i, (d, k) in enumerate(zip(decks, keys))
+            if not (cache_dir() / f"{k}.npz").exists() and k not in keys[:i]]
     total = sum(SETUP_S + runner.cell_updates(d) / THROUGHPUT for d in todo)
     return total / max(1, min(jobs, len(todo))) if todo else 0.0
 
@@ -79,13 +81,13 @@ def _clean_env() -> dict:
 
 
 def run_decks(decks: list[dict], python: str, jobs: int = 1) -> list[dict]:
-    """Run every deck (cached ones are read back), ``jobs`` processes at a time; each result is a
-    dict of arrays as the runner saved it, plus ``cached`` (bool)."""
+    """Run every deck (cached ones are read back, identical ones run once), ``jobs`` processes at a
+    time; each result is a dict of arrays as the runner saved it, plus ``cached`` (bool)."""
     folder = cache_dir()
     folder.mkdir(parents=True, exist_ok=True)
     keys = [deck_key(d) for d in decks]
-    pending = [i for i, k in enumerate(keys) if not (folder / f"{k}.npz").exists()]
-    fresh = set(pending)
+    pending = [i for i, k in enumerate(keys) if not (folder / f"{k}.npz").exists() and k not in keys[:i]]
+    fresh = {keys[i] for i in pending}
     with tempfile.TemporaryDirectory(prefix="fullwave-") as tmp:
         running: list[tuple[int, subprocess.Popen]] = []
         while pending or running:
@@ -108,7 +110,7 @@ def run_decks(decks: list[dict], python: str, jobs: int = 1) -> list[dict]:
             shutil.copyfile(Path(tmp) / f"{keys[i]}.npz", part)
             os.replace(part, folder / f"{keys[i]}.npz")          # atomic: a reader never sees half a file
     results = []
-    for i, k in enumerate(keys):
+    for k in keys:
         with np.load(folder / f"{k}.npz") as data:
-            results.append({name: data[name] for name in data.files} | {"cached": i not in fresh})
+            results.append({name: data[name] for name in data.files} | {"cached": k not in fresh})
     return results

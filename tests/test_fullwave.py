@@ -7,6 +7,7 @@ skipped elsewhere with "Meep not found, install python3-meep"."""
 from __future__ import annotations
 
 import csv
+import json
 import os
 from pathlib import Path
 
@@ -154,3 +155,98 @@ def test_aperture_stats_of_known_fields():
     assert st.p2p_deg == pytest.approx(10 * (1 - (0.5 * LAM / 270) ** 2), rel=1e-3)
     assert st.taper_db == pytest.approx(20 * np.log10(np.exp(-(270 / 400) ** 2) / np.exp(-(LAM / 400) ** 2)), abs=0.05)
     assert -0.05 < st.phase_efficiency_db < 0
+
+
+# ------------------------------------------------------------------ the stage in the pipeline
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _recipe(**verification):
+    import yaml
+    data = yaml.safe_load((ROOT / "recipes" / "xps-collimator-0.5m.yaml").read_text())
+    data["outputs"] = {"step": False, "stl": False, "templates": False, "report": False}
+    data["verification"] = verification
+    return data
+
+
+def _verify(data):
+    from antenna_cad.registry import adapter
+    from antenna_cad.spec import parse_spec
+    spec = parse_spec(data)
+    kind = adapter(spec.kind)
+    design = kind.synthesize(spec)
+    layup, panels = kind.plan(spec, design)
+    return kind.verify(spec, design, layup, kind.fabricate(spec, design, layup, panels))
+
+
+def test_without_meep_verdicts_follow_the_fast_model_and_say_why():
+    v = _verify(_recipe())
+    note = next(c for c in v.checks if c.name == "full_wave")
+    assert "skipped: Meep not found, install python3-meep" in note.message and "fast sub-wavelength" in note.message
+    assert not any(k.startswith("fullwave_") for k in v.figures)
+    sanding = next(c for c in v.checks if c.name == "unsanded_step_phase_error")
+    assert "fast sub-wavelength model" in sanding.message
+    assert sanding.value == pytest.approx(v.figures["model_fabricated_on_axis_p2p_deg"])
+    assert sanding.value < v.figures["fabricated_on_axis_p2p_deg"]          # GO is the pessimist here
+    deck = json.loads(v.files["fullwave/stepped.json"])
+    assert deck["frequency_ghz"] == 10.0 and deck["resolution_px_per_lambda"] == 16.0
+    assert deck["feed"] == {"z_mm": -4000.0, "pattern": "dipole", "q": 1.0}
+    assert {p["eps_r"] for p in deck["parts"]} == {1.047} and len(deck["parts"]) == 7      # one per 50 mm sheet
+    assert all(p["polygon"][2][1] - p["polygon"][0][1] == pytest.approx(50.0) for p in deck["parts"])
+    assert "runner.py stepped.json stepped.npz" in v.files["fullwave/rerun.sh"]
+
+
+def test_auto_over_budget_says_so_and_on_without_meep_is_an_error(monkeypatch, tmp_path):
+    from typer.testing import CliRunner
+    import yaml
+    from antenna_cad.cli import app
+    monkeypatch.setattr(solver, "meep_python", lambda: "/usr/bin/python3")
+    v = _verify(_recipe(budget_s=1))
+    note = next(c for c in v.checks if c.name == "full_wave")
+    assert "skipped: estimated" in note.message and "> budget_s 1 s" in note.message
+    monkeypatch.setattr(solver, "meep_python", lambda: None)
+    spec = tmp_path / "on.yaml"
+    spec.write_text(yaml.safe_dump(_recipe(full_wave="on")))
+    result = CliRunner().invoke(app, ["build", str(spec), "-o", str(tmp_path / "out")])
+    assert result.exit_code == 2 and "verification.full_wave: on, but Meep not found" in result.output
+    assert not (tmp_path / "out" / "xps-collimator-0.5m").exists()
+
+
+@pytest.mark.parametrize("block, message", [
+    ({"full_wave": "maybe"}, "verification.full_wave: must be 'auto', 'on' or 'off'"),
+    ({"resolution_px_per_lambda": 4}, "verification.resolution_px_per_lambda: must be ≥ 6"),
+    ({"plane_offset_lambda": 1}, "verification.plane_offset_lambda: must be ≥ 2"),
+    ({"budget": 10}, "verification.budget: unknown key"),
+])
+def test_verification_block_errors_name_the_field(block, message):
+    from antenna_cad.spec import SpecError, parse_spec
+    with pytest.raises(SpecError) as err:
+        parse_spec(_recipe(**block), "spec.yaml")
+    assert any(line.startswith(f"spec.yaml: {message}") for line in err.value.lines), err.value.lines
+
+
+@pytest.mark.slow
+def test_default_recipe_full_wave_figures_deck_and_plots(meep, tmp_path):
+    from antenna_cad.pipeline import build
+    from antenna_cad.spec import parse_spec
+    data = _recipe()
+    data["outputs"]["report"] = True
+    result = build(parse_spec(data), tmp_path)
+    figures = json.loads((result.out_dir / "manifest.json").read_text())["verification"]["figures"]
+    for lens in ("ideal", "stepped", "fabricated"):
+        for k in ("p2p_deg", "rms_deg", "taper_db", "phase_efficiency_db"):
+            assert np.isfinite(figures[f"fullwave_{lens}_on_axis_{k}"])
+    for k in ("fullwave_stepped_minus_ideal_p2p_deg", "fullwave_stepped_minus_ideal_rms_deg",
+              "fullwave_resolution_px_per_lambda", "fullwave_seconds"):
+        assert np.isfinite(figures[k])
+    # the staircase of sub-wavelength zones: full-wave well below GO and the thin screen (table row)
+    assert figures["fullwave_stepped_minus_ideal_rms_deg"] < 0.5 * figures["stepped_on_axis_rms_deg"]
+    assert {"ideal.json", "stepped.json", "fabricated.json", "rerun.sh", "runner.py"} <= \
+        {p.name for p in (result.out_dir / "fullwave").iterdir()}
+    html = (result.out_dir / "report.html").read_text()
+    assert all(f'id="plot-fullwave-{n}"' in html for n in ("aperture-phase", "aperture-amplitude", "field-map"))
+    again = build(parse_spec(data), tmp_path)          # unchanged geometry: every run from the cache
+    first, second = (next(c.message for c in r.checks if c.name == "full_wave") for r in (result, again))
+    assert "2 runs (0 from the cache" in first and "2 runs (2 from the cache" in second     # fabricated = as cut
+    assert again.seconds["verify"] < result.seconds["verify"]

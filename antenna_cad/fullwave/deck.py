@@ -20,13 +20,15 @@ PML_R_LAMBDA = 4.0          # radial PML with the sheet feed (2 λ gave a 3° di
 PML_Z_LAMBDA = 2.0
 BACK_MARGIN_LAMBDA = 1.0    # air behind the aperture plane before the PML
 PROFILE_POINTS = 400
+DECIMALS = 1                # polygon coordinates to 0.1 mm: far below any grid, and the cut outlines' chord
+                            # tolerance (≈ 0.002 mm) no longer tells the stack as cut from the one as fabricated
 
 
 def ideal_parts(front_z, back_z, radius_mm: float, eps_r: float) -> list[dict]:
     """The ideal lens: front face z = front_z(r), back face z = back_z(r), 0 ≤ r ≤ radius."""
     r = np.linspace(0.0, radius_mm, PROFILE_POINTS)
     poly = np.concatenate([np.column_stack([r, front_z(r)]), np.column_stack([r[::-1], back_z(r[::-1])])])
-    return [{"label": "lens", "eps_r": float(eps_r), "polygon": np.round(poly, 4).tolist()}]
+    return [{"label": "lens", "eps_r": float(eps_r), "polygon": np.round(poly, DECIMALS).tolist()}]
 
 
 def slab_parts(slabs: Slabs, eps_r: float, labels: list[str] | None = None) -> list[dict]:
@@ -34,10 +36,10 @@ def slab_parts(slabs: Slabs, eps_r: float, labels: list[str] | None = None) -> l
     y = np.concatenate([[-np.inf], slabs.y_breaks, [np.inf]])
     parts = []
     for k, row in enumerate(slabs.material):
-        z0, z1 = float(slabs.z_edges[k]), float(slabs.z_edges[k + 1])
+        z0, z1 = round(float(slabs.z_edges[k]), DECIMALS), round(float(slabs.z_edges[k + 1]), DECIMALS)
         edges = np.diff(np.concatenate([[0], row.astype(int), [0]]))
         for lo, hi in zip(y[np.nonzero(edges == 1)[0]], y[np.nonzero(edges == -1)[0]]):
-            lo, hi = max(float(lo), 0.0), float(hi)
+            lo, hi = round(max(float(lo), 0.0), DECIMALS), round(float(hi), DECIMALS)
             if hi > lo and np.isfinite(hi):
                 label = labels[k] if labels else f"slab-{k:02d}"
                 parts.append({"label": label, "eps_r": float(eps_r),

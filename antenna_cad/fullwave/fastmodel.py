@@ -28,19 +28,19 @@ def thin_screen_deg(delta_d_mm: np.ndarray, n: float, wavelength_mm: float) -> n
 
 
 def _hankel(u: np.ndarray, r: np.ndarray, dr: float, rho: np.ndarray) -> np.ndarray:
-    return 2 * np.pi * (j0(2 * np.pi * np.outer(rho, r)) @ (u * r)) * dr
+    return 2 * np.pi * (j0(2 * np.pi * np.outer(rho, r)) @ (u * r[:, None])) * dr
 
 
 def propagate(u: np.ndarray, r: np.ndarray, radius_mm: float, wavelength_mm: float, distance_mm: float,
               r_obs: np.ndarray) -> np.ndarray:
-    """Scalar field of the axisymmetric aperture field u(r) (samples ``r``, spacing uniform) after
+    """Scalar fields of the axisymmetric aperture fields u[:, j] (samples ``r``, spacing uniform) after
     ``distance_mm`` of free space, at radii ``r_obs``: angular spectrum by Hankel transform."""
     dr = r[1] - r[0]
     d_rho = 1.0 / (4.0 * radius_mm)
     rho = np.arange(0.0, RHO_MAX / wavelength_mm, d_rho) + 0.5 * d_rho
     kz = 2 * np.pi * np.sqrt((1.0 / wavelength_mm ** 2 - rho ** 2).astype(complex))
-    spectrum = _hankel(u, r, dr, rho) * np.exp(1j * kz * distance_mm)
-    return 2 * np.pi * (j0(2 * np.pi * np.outer(r_obs, rho)) @ (spectrum * rho)) * d_rho
+    spectrum = _hankel(u, r, dr, rho) * np.exp(1j * kz * distance_mm)[:, None]
+    return 2 * np.pi * (j0(2 * np.pi * np.outer(r_obs, rho)) @ (spectrum * rho[:, None])) * d_rho
 
 
 def fast_phase(excess_mm, n: float, wavelength_mm: float, radius_mm: float, distance_mm: float,
@@ -50,6 +50,6 @@ def fast_phase(excess_mm, n: float, wavelength_mm: float, radius_mm: float, dist
     step = wavelength_mm / SAMPLES_PER_LAMBDA
     r = np.arange(0.5 * step, radius_mm, step)
     screen = np.exp(1j * np.radians(thin_screen_deg(excess_mm(r), n, wavelength_mm)))
-    stepped = propagate(screen, r, radius_mm, wavelength_mm, distance_mm, r_obs)
-    ideal = propagate(np.ones_like(r), r, radius_mm, wavelength_mm, distance_mm, r_obs)
+    stepped, ideal = propagate(np.column_stack([screen, np.ones_like(r)]), r, radius_mm, wavelength_mm,
+                               distance_mm, r_obs).T
     return np.degrees(np.angle(stepped / ideal))

@@ -82,7 +82,7 @@ def _clean_env() -> dict:
 
 def run_decks(decks: list[dict], python: str, jobs: int = 1) -> list[dict]:
     """Run every deck (cached ones are read back, identical ones run once), ``jobs`` processes at a
-    time; each result is a dict of arrays as the runner saved it, plus ``cached`` (bool)."""
+    time; each result is a dict of arrays as the runner saved it, plus ``cached`` (bool) and ``key``."""
     folder = cache_dir()
     folder.mkdir(parents=True, exist_ok=True)
     keys = [deck_key(d) for d in decks]
@@ -112,5 +112,5 @@ def run_decks(decks: list[dict], python: str, jobs: int = 1) -> list[dict]:
     results = []
     for k in keys:
         with np.load(folder / f"{k}.npz") as data:
-            results.append({name: data[name] for name in data.files} | {"cached": k not in fresh})
+            results.append({name: data[name] for name in data.files} | {"cached": k not in fresh, "key": k})
     return results

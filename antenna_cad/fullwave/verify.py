@@ -81,6 +81,7 @@ def full_wave_study(lens: RevolvedLens, settings, go: dict[str, tuple[np.ndarray
     if python is None:
         return FullWave(fast_model(lens, settings), checks=(_note(why, FAST),), files=files)
     results = dict(zip(variants, solver.run_decks(decks, python, jobs)))
+    unique = {o["key"]: o for o in results.values()}          # the stack as fabricated may equal the stack as cut
     lam, R = lens.wavelength_mm, lens.radius_mm
     ideal = results["ideal"]
     r = ideal["r_mm"]
@@ -91,13 +92,13 @@ def full_wave_study(lens: RevolvedLens, settings, go: dict[str, tuple[np.ndarray
         p2p, rms = difference_stats(r, results["stepped"]["er"], ideal["er"], lam, R)
         figures |= {"fullwave_stepped_minus_ideal_p2p_deg": p2p, "fullwave_stepped_minus_ideal_rms_deg": rms}
     figures |= {"fullwave_resolution_px_per_lambda": settings.resolution_px_per_lambda,
-                "fullwave_seconds": float(sum(float(o["seconds"]) for o in results.values()))}
+                "fullwave_seconds": float(sum(float(o["seconds"]) for o in unique.values()))}
     name = f"full-wave (Meep {results['ideal']['meep_version']}, {settings.resolution_px_per_lambda:g} px/λ)"
     sel = window(r, lam, R)
     added = {v: np.where(sel, phase_deg(r, results[v]["er"] / ideal["er"], lam, R), 0.0) for v in lens.sections}
     model = PhaseModel(name, r, added)
-    cached = sum(bool(o["cached"]) for o in results.values())
-    note = _note(f"{why}; {len(results)} runs ({cached} from the cache)", name)
+    cached = sum(bool(o["cached"]) for o in unique.values())
+    note = _note(f"{why}; {len(unique)} runs ({cached} from the cache; solver {figures['fullwave_seconds']:.0f} s)", name)
     return FullWave(model, figures, (note,), _plots(lens, results, go, settings), files)
 
 

@@ -143,7 +143,7 @@ def run(deck: dict) -> dict:
     seconds = time.perf_counter() - t0
     out = {"er": np.asarray(sim.get_dft_array(plane, mp.Er, 0)),
            "ep": np.asarray(sim.get_dft_array(plane, mp.Ep, 0)),
-           "seconds": seconds, "cells": nr * nz, "lambda_mm": lam, "eps_grid": eps[::max(1, nr // MAP_MAX_PX), ::max(1, nz // MAP_MAX_PX)]}
+           "seconds": seconds, "cells": nr * nz, "lambda_mm": lam}
     out["r_mm"] = np.arange(len(out["er"])) / res * lam
     if whole is not None:
         e = sum(np.abs(np.asarray(sim.get_dft_array(whole, c, 0))) ** 2 for c in (mp.Er, mp.Ep, mp.Ez)) ** 0.5

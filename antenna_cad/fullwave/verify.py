@@ -56,7 +56,7 @@ def fast_model(lens: RevolvedLens, settings) -> PhaseModel:
     return PhaseModel(FAST, r, {v: lens.fast_difference_deg(v, settings.plane_offset_lambda, r) for v in lens.sections})
 
 
-def _decision(lens: RevolvedLens, settings, decks: list[dict], jobs: int) -> tuple[str | None, str]:
+def _decision(settings, decks: list[dict], jobs: int) -> tuple[str | None, str]:
     """(interpreter, why): the interpreter when the full-wave stage runs, else None and the reason."""
     if settings.full_wave == "off":
         return None, "off in the spec (verification.full_wave)"
@@ -78,7 +78,7 @@ def full_wave_study(lens: RevolvedLens, settings, go: dict[str, tuple[np.ndarray
     variants = ["ideal", *lens.sections]
     decks = [lens.deck(v, settings) for v in variants]
     jobs = max(1, min(len(decks), os.cpu_count() or 1))
-    python, why = _decision(lens, settings, decks, jobs)
+    python, why = _decision(settings, decks, jobs)
     files = _deck_files(variants, decks)
     if python is None:
         return FullWave(fast_model(lens, settings), checks=(_note(why, FAST),), files=files)

@@ -1,14 +1,13 @@
 """Full-wave check (issue 10): the Meep runner against analytic fields, its convergence, the cache, the
 fast sub-wavelength model against the stored Meep table, and the verdict plumbing.
 
-Tests that need Meep (Debian python3-meep) run in CI (CI=true: a missing Meep fails them) and are
-skipped elsewhere with "Meep not found, install python3-meep"."""
+Tests that need Meep (Debian python3-meep; the ``meep`` fixture of tests/conftest.py) run in CI
+(CI=true: a missing Meep fails them) and are skipped elsewhere with "Meep not found, install python3-meep"."""
 
 from __future__ import annotations
 
 import csv
 import json
-import os
 from pathlib import Path
 
 import numpy as np
@@ -24,16 +23,6 @@ from tests.fullwave_cases import CASES, case_lens
 TABLE = Path(__file__).parent / "data" / "fullwave_table.csv"
 FAST_WORST_RMS_ERROR_DEG = 1.1      # README "Full-wave check": worst |fast − Meep| RMS over the table
 LAM = 30.0                          # 10 GHz
-
-
-@pytest.fixture(scope="module")
-def meep():
-    python = solver.meep_python()
-    if python is None:
-        if os.environ.get("CI") == "true":
-            pytest.fail(f"{solver.MISSING} (CI must run the full-wave tests)")
-        pytest.skip(solver.MISSING)
-    return python
 
 
 @pytest.fixture(autouse=True)
@@ -85,6 +74,7 @@ def test_uniform_slab_matches_plane_wave_slab_theory(meep):
     assert 20 * np.log10(abs(got) / abs(theory)) == pytest.approx(0.0, abs=0.1)
 
 
+@pytest.mark.slow
 def test_stepped_minus_ideal_converges_between_two_resolutions(meep):
     """εr 1.3, D 300 mm, F 900 mm, 10 mm sheets (10 λ): stepped − ideal at 10 and 16 px/λ within 0.5°."""
     lens = case_lens(1.3, 300.0, 900.0, 10.0, 10.0)

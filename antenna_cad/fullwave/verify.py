@@ -56,20 +56,20 @@ def fast_model(lens: RevolvedLens, settings) -> PhaseModel:
     return PhaseModel(FAST, r, {v: lens.fast_difference_deg(v, settings.plane_offset_lambda, r) for v in lens.sections})
 
 
-def _decision(settings, decks: list[dict], jobs: int) -> tuple[str | None, str]:
-    """(interpreter, why): the interpreter when the full-wave stage runs, else None and the reason."""
+def _decision(settings, decks: list[dict], jobs: int) -> tuple[str | None, str, float]:
+    """(interpreter, why, estimated s): the interpreter when the full-wave stage runs, else None."""
     if settings.full_wave == "off":
-        return None, "off in the spec (verification.full_wave)"
+        return None, "off in the spec (verification.full_wave)", 0.0
     python = solver.meep_python()
     if python is None:
         if settings.full_wave == "on":
             raise DesignError("verification.full_wave", f"on, but {solver.MISSING}")
-        return None, f"skipped: {solver.MISSING}"
+        return None, f"skipped: {solver.MISSING}", 0.0
     estimate = solver.estimate_s(decks, jobs)
     if settings.full_wave == "auto" and estimate > settings.budget_s:
         return None, (f"skipped: estimated {estimate:.0f} s > budget_s {settings.budget_s:g} s "
-                      "(raise it, or lower resolution_px_per_lambda)")
-    return python, f"ran (estimated {estimate:.0f} s)"
+                      "(raise it, or lower resolution_px_per_lambda)"), estimate
+    return python, f"ran (estimated {estimate:.0f} s)", estimate
 
 
 def full_wave_study(lens: RevolvedLens, settings, go: dict[str, tuple[np.ndarray, np.ndarray]]) -> FullWave:
@@ -78,10 +78,10 @@ def full_wave_study(lens: RevolvedLens, settings, go: dict[str, tuple[np.ndarray
     variants = ["ideal", *lens.sections]
     decks = [lens.deck(v, settings) for v in variants]
     jobs = max(1, min(len(decks), os.cpu_count() or 1))
-    python, why = _decision(settings, decks, jobs)
+    python, why, estimate = _decision(settings, decks, jobs)
     files = _deck_files(variants, decks)
     if python is None:
-        return FullWave(fast_model(lens, settings), checks=(_note(why, FAST),), files=files)
+        return FullWave(fast_model(lens, settings), checks=(_note(why, FAST, estimate, settings),), files=files)
     results = dict(zip(variants, solver.run_decks(decks, python, jobs)))
     unique = {o["key"]: o for o in results.values()}          # the stack as fabricated may equal the stack as cut
     lam, R = lens.wavelength_mm, lens.radius_mm
@@ -100,12 +100,15 @@ def full_wave_study(lens: RevolvedLens, settings, go: dict[str, tuple[np.ndarray
     added = {v: phase_deg(r, results[v]["er"] / ideal["er"], lam, R)[sel] for v in lens.sections}
     model = PhaseModel(name, r[sel], added)
     cached = sum(bool(o["cached"]) for o in unique.values())
-    note = _note(f"{why}; {len(unique)} runs ({cached} from the cache; solver {figures['fullwave_seconds']:.0f} s)", name)
+    note = _note(f"{why}; {len(unique)} runs ({cached} from the cache; solver {figures['fullwave_seconds']:.0f} s)",
+                 name, estimate, settings)
     return FullWave(model, figures, (note,), _plots(lens, results, go, settings), files)
 
 
-def _note(why: str, model: str) -> Check:
-    return Check("full_wave", "pass", 0.0, 0.0, "", f"full-wave stage {why}; stair-step verdicts from the {model}")
+def _note(why: str, model: str, estimate: float, settings) -> Check:
+    """The stage's record: estimated time against budget_s, what ran and which model the verdicts use."""
+    return Check("full_wave", "pass", estimate, settings.budget_s, "s",
+                 f"full-wave stage {why}; stair-step verdicts from the {model}")
 
 
 def _deck_files(variants: list[str], decks: list[dict]) -> dict[str, str]:

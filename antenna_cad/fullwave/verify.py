@@ -100,7 +100,7 @@ def full_wave_study(lens: RevolvedLens, settings, go: dict[str, tuple[np.ndarray
     added = {v: phase_deg(r, results[v]["er"] / ideal["er"], lam, R)[sel] for v in lens.sections}
     model = PhaseModel(name, r[sel], added)
     cached = sum(bool(o["cached"]) for o in unique.values())
-    note = _note(f"{why}; {len(unique)} runs ({cached} from the cache; solver {figures['fullwave_seconds']:.0f} s)",
+    note = _note(f"{why}; {len(unique)} run{'s' * (len(unique) != 1)} ({cached} from the cache; solver {figures['fullwave_seconds']:.0f} s)",
                  name, estimate, settings)
     return FullWave(model, figures, (note,), _plots(lens, results, go, settings), files)
 

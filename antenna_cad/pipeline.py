@@ -161,7 +161,8 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
             templates = _write_templates(spec, p.fab, tmp)
             stage("templates")
             (tmp / "cutlist.csv").write_text(cutlist_csv(list(p.fab.rows), p.fab.totals_kg), encoding="utf-8")
-            for file_name, text in p.fab.files.items():
+            for file_name, text in (p.fab.files | verification.files).items():
+                (tmp / file_name).parent.mkdir(parents=True, exist_ok=True)
                 (tmp / file_name).write_text(text, encoding="utf-8")
             if spec.outputs.report:
                 write_report(tmp, spec, figures, checks, verification, model, p.fab, parts)

@@ -36,6 +36,7 @@ class Plot:
     caption: str = ""
     equal_aspect: bool = False      # profiles and ray fans: 1 mm in x = 1 mm in y
     hlines: tuple[tuple[str, float], ...] = ()     # labelled horizontal limits (budgets)
+    image: tuple[np.ndarray, tuple[float, float, float, float]] | None = None   # (dB[r, z], (r0, r1, z0, z1)) map
 
 
 @dataclass(frozen=True)
@@ -55,6 +56,7 @@ class Verification:
     checks: tuple[Check, ...] = ()
     tables: tuple[Table, ...] = ()
     plots: tuple[Plot, ...] = ()
+    files: dict[str, str] = field(default_factory=dict)    # output path → text (the full-wave deck)
 
 
 def detrended(y: np.ndarray, phase_deg: np.ndarray) -> np.ndarray:

@@ -24,6 +24,10 @@ STYLE = {"svg.hashsalt": "antenna_cad", "svg.fonttype": "path", "font.size": 9, 
 
 def draw_plot(ax, plot: Plot) -> None:
     """Draw one verification plot onto matplotlib axes (for the SVG of the page and the PDF)."""
+    if plot.image is not None:          # a map over (r, z): z along x, r along y
+        data, (r0, r1, z0, z1) = plot.image
+        im = ax.imshow(np.asarray(data), extent=(z0, z1, r0, r1), origin="lower", aspect="equal", cmap="viridis")
+        ax.figure.colorbar(im, ax=ax, shrink=0.8, label="dB")
     for s in plot.series:
         x, y = np.asarray(s.x, float), np.asarray(s.y, float)
         if s.style == "fill":

@@ -28,10 +28,12 @@ import numpy as np
 
 from antenna_cad.fabrication.layup import LayupPlan
 from antenna_cad.fabrication.section import fabricated_section, stepped_section
+from antenna_cad.fullwave.verify import fast_model, full_wave_study
+from antenna_cad.kinds.asbuilt_fullwave import modelled_stats, revolved
 from antenna_cad.raytrace.collimator import ApertureTrace
 from antenna_cad.raytrace.trace2d import Interface, Slabs, Trace2D, aim_at_face, trace, trace_slabs, \
     transmitted_amplitude
-from antenna_cad.spec.common import TolerancesSpec
+from antenna_cad.spec.common import TolerancesSpec, VerificationSpec
 from antenna_cad.synthesis.checks import Check, DesignError
 from antenna_cad.synthesis.collimator import step_phase_error_deg
 from antenna_cad.verification import Plot, Series, Table, Verification, detrended
@@ -154,11 +156,13 @@ class Candidate:
     estimate_deg: float | None      # k0(n−1)Δd
     meets: bool
     note: str = ""
+    model: Stats | None = None      # the fast sub-wavelength model (issue 10): what ``meets`` follows
 
 
 def stock_study(sheets: Callable[[float], LayupPlan], lens_for: Callable[[LayupPlan], Lens],
-                stocks: tuple[float, ...]) -> tuple[Candidate, ...]:
-    """Every stock thickness laid up and traced unsanded (stepped stack as cut) at the nominal feed."""
+                stocks: tuple[float, ...], settings: VerificationSpec = VerificationSpec()) -> tuple[Candidate, ...]:
+    """Every stock thickness laid up and judged unsanded (stepped stack as cut) at the nominal feed:
+    GO trace (for reference) and the fast sub-wavelength model, whose p-p decides (issue 10)."""
     out = []
     for t in stocks:
         try:
@@ -168,7 +172,9 @@ def stock_study(sheets: Callable[[float], LayupPlan], lens_for: Callable[[LayupP
             continue
         lens = lens_for(layup)
         st = aperture_stats(lens, *trace_lens(lens, stepped_section(layup, lens.n), lens.feed))
-        out.append(Candidate(t, layup, st, step_estimate_deg(lens, layup), st.p2p_deg <= lens.budget_deg))
+        model = modelled_stats(lens, fast_model(revolved(lens, layup), settings), "stepped", lens.feed)
+        out.append(Candidate(t, layup, st, step_estimate_deg(lens, layup), model.p2p_deg <= lens.budget_deg,
+                             model=model))
     return tuple(out)
 
 
@@ -205,10 +211,11 @@ def _r(x: float) -> float:
 
 
 def verify_lens(lens: Lens, feeds: tuple[tuple[str, float, float], ...], tolerances: TolerancesSpec,
-                layup: LayupPlan | None = None, fab=None,
-                study: tuple[Candidate, ...] = ()) -> Verification:
+                layup: LayupPlan | None = None, fab=None, study: tuple[Candidate, ...] = (),
+                settings: VerificationSpec = VerificationSpec()) -> Verification:
     """Figures, checks, tables and plots of the as-built lens. ``feeds``: (name, z, y), the first at
-    the nominal feed; ``study``: the stock candidates (layups)."""
+    the nominal feed; ``study``: the stock candidates (layups); ``settings``: the full-wave stage
+    (issue 10), whose phase model the sanding check and the tolerance budget follow."""
     n = lens.n
     variants: list[tuple[str, Medium]] = [("ideal", lens.faces(n))]
     section = None
@@ -217,7 +224,7 @@ def verify_lens(lens: Lens, feeds: tuple[tuple[str, float, float], ...], toleran
         variants += [("stepped", stepped_section(layup, n)), ("fabricated", section)]
     as_built = variants[-1][1]
     figures: dict[str, float] = {}
-    rows, plots = [], []
+    rows, plots, go = [], [], {}
     for name, z, y in feeds:
         series = []
         for variant, medium in variants:
@@ -227,6 +234,8 @@ def verify_lens(lens: Lens, feeds: tuple[tuple[str, float, float], ...], toleran
             ap = ApertureTrace.from_trace(tr, lens.wavelength_mm, keep)
             order = np.argsort(ap.y_mm)
             series.append(Series(variant, ap.y_mm[order], ap.detrended_phase_deg()[order]))
+            if y == 0.0:
+                go[variant] = (ap.y_mm[order], ap.detrended_phase_deg()[order])
             rows.append((name, variant, _r(st.p2p_deg), _r(st.rms_deg), _r(st.taper_db), _r(st.gain_loss_db)))
         shift, refocused = focus_shift(lens, as_built, (z, y))
         figures |= {f"{name}_feed_z_mm": z, f"{name}_feed_y_mm": y, f"{name}_focus_shift_mm": shift,
@@ -236,23 +245,29 @@ def verify_lens(lens: Lens, feeds: tuple[tuple[str, float, float], ...], toleran
                           tuple(series), caption="ideal lens, stepped stack as cut, stack as fabricated"))
     tables = [Table("aperture", "Aperture phase and amplitude per feed",
                     ("feed", "lens", "p-p deg", "RMS deg", "taper dB", "gain loss dB"), tuple(rows))]
-    checks = []
+    fw = full_wave_study(revolved(lens, layup, fab), settings, go)
+    figures |= fw.figures
+    checks = list(fw.checks)
     nominal = feeds[0][0]
+    model = None
     if layup is not None:
         tables.append(_layer_table(lens, layup, fab))
         plots.append(_profile_plot(lens, layup))
-        pp, sanded = figures[f"fabricated_{nominal}_p2p_deg"], figures[f"ideal_{nominal}_p2p_deg"]
+        model = modelled_stats(lens, fw.model, "fabricated", feeds[0][1:])
+        pp, sanded = model.p2p_deg, figures[f"ideal_{nominal}_p2p_deg"]
+        figures |= {f"model_fabricated_{nominal}_p2p_deg": pp, f"model_fabricated_{nominal}_rms_deg": model.rms_deg}
         checks.append(Check("unsanded_step_phase_error", "warn" if pp > lens.budget_deg else "pass", pp,
                             lens.budget_deg, "deg",
                             f"as fabricated, unsanded ({layup.sheet_thickness_mm:g} mm sheets): {pp:.1f}° "
-                            f"p-p vs budget {lens.budget_deg:g}°" + ("; sanding required: it brings the "
+                            f"p-p vs budget {lens.budget_deg:g}° ({fw.model.name}; GO alone "
+                            f"{figures[f'fabricated_{nominal}_p2p_deg']:.1f}°)" + ("; sanding required: it brings the "
                             f"error to {sanded:.1f}° (the ideal lens)" if pp > lens.budget_deg else "")))
     if study:
         tables.append(_candidates_table(study, layup))
-    sens_table, sens_plot, sens_figures, sens_check = _sensitivity(lens, section, tolerances, layup)
+    sens_table, sens_plot, sens_figures, sens_check = _sensitivity(lens, section, tolerances, layup, model)
     figures |= sens_figures
     return Verification(figures, tuple(checks + [sens_check]), tuple(tables + [sens_table]),
-                        tuple(plots + [_fan_plot(lens, as_built, section), sens_plot]))
+                        tuple(plots + [_fan_plot(lens, as_built, section), sens_plot]) + fw.plots, fw.files)
 
 
 def _layer_table(lens: Lens, layup: LayupPlan, fab) -> Table:
@@ -266,20 +281,23 @@ def _layer_table(lens: Lens, layup: LayupPlan, fab) -> Table:
 
 
 def _candidates_table(study: tuple[Candidate, ...], layup: LayupPlan | None) -> Table:
-    rows = tuple((c.thickness_mm, c.layup.count, _r(c.stats.p2p_deg), _r(c.stats.rms_deg),
-                  _r(c.stats.gain_loss_db), _r(c.estimate_deg), "yes" if c.meets else "no")
-                 if c.layup is not None else (c.thickness_mm, None, None, None, None, None, f"no: {c.note}")
+    rows = tuple((c.thickness_mm, c.layup.count, _r(c.stats.p2p_deg), _r(c.stats.rms_deg), _r(c.model.p2p_deg),
+                  _r(c.model.rms_deg), _r(c.model.gain_loss_db), _r(c.estimate_deg), "yes" if c.meets else "no")
+                 if c.layup is not None else (c.thickness_mm, None, None, None, None, None, None, None, f"no: {c.note}")
                  for c in study)
     chosen = f"; chosen: {layup.sheet_thickness_mm:g} mm" if layup is not None else ""
     return Table("stock-candidates", "Stock sheet thickness, unsanded stack at the nominal feed",
-                 ("thickness mm", "sheets", "p-p deg", "RMS deg", "gain loss dB", "k0(n-1)Δd deg",
-                  "meets budget"), rows, caption=f"exact trace of the stack as cut; k0(n−1)Δd the stair-step "
-                 f"estimate of seed-000 §7.3{chosen}")
+                 ("thickness mm", "sheets", "GO p-p deg", "GO RMS deg", "model p-p deg", "model RMS deg",
+                  "gain loss dB", "k0(n-1)Δd deg", "meets budget"), rows,
+                 caption=f"GO: exact trace of the stack as cut (blind to sub-wavelength zones); model: the fast "
+                 f"sub-wavelength model, which decides; k0(n−1)Δd the thin screen of seed-000 §7.3{chosen}")
 
 
-def _sensitivity(lens: Lens, section: Slabs | None, tol: TolerancesSpec, layup: LayupPlan | None):
+def _sensitivity(lens: Lens, section: Slabs | None, tol: TolerancesSpec, layup: LayupPlan | None,
+                 model: Stats | None = None):
     """Phase error against εr spread, sheet (or lens) thickness and feed position, each at ± its
-    tolerance; the added errors combined by root-sum-square against the budget."""
+    tolerance (GO: the changes are smooth); the added errors combined by root-sum-square with the
+    nominal as-built error, which is ``model``'s (full-wave or fast model, issue 10) when given."""
     t_ref = layup.sheet_thickness_mm if layup is not None else float(lens.back_z(0.0) - lens.front_z(0.0))
     z0, y0 = lens.feed
     nominal = _as_built(lens, section, lens.eps_r, 1.0)
@@ -306,8 +324,9 @@ def _sensitivity(lens: Lens, section: Slabs | None, tol: TolerancesSpec, layup: 
                  for sign, s in zip("−+", ends)]
         added[name] = tuple(max(0.0, max(getattr(s, k) ** 2 for s in ends) - getattr(base, k) ** 2)
                             for k in ("p2p_deg", "rms_deg"))
-    p2p = float(np.sqrt(base.p2p_deg ** 2 + sum(a[0] for a in added.values())))
-    rms = float(np.sqrt(base.rms_deg ** 2 + sum(a[1] for a in added.values())))
+    nominal_stats = model or base
+    p2p = float(np.sqrt(nominal_stats.p2p_deg ** 2 + sum(a[0] for a in added.values())))
+    rms = float(np.sqrt(nominal_stats.rms_deg ** 2 + sum(a[1] for a in added.values())))
     dominant = max(added, key=lambda k: added[k][1])
     figures = {"tolerance_rss_p2p_deg": p2p, "tolerance_rss_rms_deg": rms,
                "tolerance_rss_gain_loss_db": ruze_loss_db(rms),

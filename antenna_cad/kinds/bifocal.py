@@ -65,7 +65,8 @@ def _lens(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None) -> 
 def plan(spec: BifocalSpec, design: BifocalDesign):
     """(LayupPlan, box panels) for a sheet layup, the sheet thickness resolved; (None, ()) for a
     machined lens."""
-    return plan_layup_and_box(spec.fabrication, _sheets(spec, design), partial(_lens, spec, design))
+    return plan_layup_and_box(spec.fabrication, _sheets(spec, design), partial(_lens, spec, design),
+                              spec.verification)
 
 
 def model(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None, panels):
@@ -134,11 +135,12 @@ def verify(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None, fa
     the same aperture and focal distance."""
     budget = spec.design.phase_error_budget_deg
     st = defocus_study(design, budget_deg=budget, frequency_ghz=spec.frequency_ghz)
-    study = (stock_study(_sheets(spec, design), partial(_lens, spec, design), spec.fabrication.stock_thicknesses_mm)
+    study = (stock_study(_sheets(spec, design), partial(_lens, spec, design), spec.fabrication.stock_thicknesses_mm,
+                         spec.verification)
              if layup is not None else ())
     v = verify_lens(_lens(spec, design, layup), (("focus", 0.0, design.focus_offset_mm),
                                                  ("edge", 0.0, st.usable_half_range_mm)),
-                    spec.tolerances, layup, fab, study)
+                    spec.tolerances, layup, fab, study, spec.verification)
     scan = {"usable_feed_half_range_mm": st.usable_half_range_mm, "usable_half_angle_deg": st.usable_half_angle_deg,
             "usable_feed_inner_mm": st.usable_inner_mm,
             "single_surface_usable_feed_half_range_mm": st.single_usable_half_range_mm,

@@ -56,7 +56,8 @@ def _lens(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | Non
 def plan(spec: CollimatorSpec, design: CollimatorDesign):
     """(LayupPlan, box panels) for a sheet layup, the sheet thickness resolved; (None, ()) for a
     machined lens."""
-    return plan_layup_and_box(spec.fabrication, _sheets(spec, design), partial(_lens, spec, design))
+    return plan_layup_and_box(spec.fabrication, _sheets(spec, design), partial(_lens, spec, design),
+                              spec.verification)
 
 
 def model(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | None, panels):
@@ -104,9 +105,10 @@ def verify(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | No
     _, edge = usable_half_range_mm(
         lambda y: single_surface_p2p_deg(f, D, design.eps_r, y, gap, design.wavelength_mm),
         f * SCAN_GRID, design.phase_error_budget_deg)
-    study = (stock_study(_sheets(spec, design), partial(_lens, spec, design), spec.fabrication.stock_thicknesses_mm)
+    study = (stock_study(_sheets(spec, design), partial(_lens, spec, design), spec.fabrication.stock_thicknesses_mm,
+                         spec.verification)
              if layup is not None else ())
     v = verify_lens(_lens(spec, design, layup), (("on_axis", -f, 0.0), ("edge", -f, edge)),
-                    spec.tolerances, layup, fab, study)
+                    spec.tolerances, layup, fab, study, spec.verification)
     return replace(v, figures={"scan_half_range_mm": edge,
                                "scan_half_angle_deg": float(np.degrees(np.arctan2(edge, f)))} | v.figures)

@@ -9,7 +9,7 @@ from antenna_cad.fabrication.layup import LayupPlan, plan_layup
 from antenna_cad.fabrication.outline import added_in_aperture_mm2
 from antenna_cad.kinds.asbuilt import choose_stock, stock_study
 from antenna_cad.materials import Material
-from antenna_cad.spec.common import SheetLayupSpec, resolve_material
+from antenna_cad.spec.common import SheetLayupSpec, VerificationSpec, resolve_material
 from antenna_cad.synthesis.checks import Check, DesignError
 
 
@@ -31,14 +31,15 @@ def plan_sheets(fab: SheetLayupSpec, sheet_thickness_mm: float, *, lens_radius_m
         raise DesignError(field, message) from None
 
 
-def plan_layup_and_box(fab, sheets, lens_for):
+def plan_layup_and_box(fab, sheets, lens_for, settings: VerificationSpec = VerificationSpec()):
     """(LayupPlan, box panels) for a sheet layup; (None, ()) for a machined lens. ``sheets(t)`` plans
-    t mm boards; with ``sheet_thickness_mm: auto`` the stock study (issue 6) picks t, tracing each
-    candidate as ``lens_for(layup)``."""
+    t mm boards; with ``sheet_thickness_mm: auto`` the stock study (issue 6) picks t, judging each
+    candidate ``lens_for(layup)`` by the fast sub-wavelength model (issue 10; ``settings``: the spec's
+    ``verification`` block)."""
     if not isinstance(fab, SheetLayupSpec):
         return None, ()
     if fab.sheet_thickness_mm == "auto":
-        layup = choose_stock(stock_study(sheets, lens_for, fab.stock_thicknesses_mm)).layup
+        layup = choose_stock(stock_study(sheets, lens_for, fab.stock_thicknesses_mm, settings)).layup
     else:
         layup = sheets(fab.sheet_thickness_mm)
     b = fab.box

@@ -10,7 +10,7 @@ from typing import Annotated, Literal, Union
 from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, field_validator
 
 from antenna_cad.materials import LIBRARY, Material
-from antenna_cad.spec.bounds import MAX_LIST, MIN_GHZ, MIN_SHEET_MM, TINY
+from antenna_cad.spec.bounds import MAX_LIST, MIN_GHZ, MIN_RATIO, MIN_SHEET_MM, TINY
 
 
 class StrictModel(BaseModel):
@@ -145,6 +145,19 @@ class TolerancesSpec(StrictModel):
                                               description="± feed placement error, axial and transverse")
 
 
+class VerificationSpec(StrictModel):
+    """Full-wave check of the as-built lens (issue 10): Meep in cylindrical coordinates, on-axis feed."""
+    full_wave: Literal["auto", "on", "off"] = Field(
+        "auto", description="auto: run when Meep is installed and the estimated time fits budget_s (the "
+        "report says why not otherwise); on: always (error without Meep); off: the fast model only")
+    resolution_px_per_lambda: float = Field(16.0, ge=6, le=64, description="grid cells per free-space wavelength")
+    plane_offset_lambda: float = Field(2.0, ge=2, le=20, description="aperture plane behind the back face (λ)")
+    budget_s: float = Field(120.0, ge=1, le=86400, description="largest estimated full-wave time for auto")
+    feed_pattern: Literal["dipole", "cos_q"] = Field(
+        "dipole", description="feed far field: short dipole (E-plane cos θ, H-plane 1) or cos^q θ")
+    feed_q: float = Field(1.0, ge=MIN_RATIO, le=50, description="q of the cos_q feed pattern")
+
+
 class SpecBase(StrictModel):
     name: str = Field(pattern=r"^[a-z0-9][a-z0-9._-]*$", max_length=100)
     frequency_ghz: float = Field(ge=MIN_GHZ, le=1000)
@@ -152,6 +165,7 @@ class SpecBase(StrictModel):
     fabrication: Fabrication
     outputs: OutputsSpec = OutputsSpec()
     tolerances: TolerancesSpec = TolerancesSpec()
+    verification: VerificationSpec = VerificationSpec()
 
     @field_validator("material")
     @classmethod

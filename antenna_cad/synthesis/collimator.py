@@ -115,6 +115,29 @@ def rim_incidence_deg(diameter_mm: float, focal_length_mm: float, n: float, d_mm
     return float(abs(np.degrees(np.arctan((t1 + t2) / (t1 * t2 - 1)))))
 
 
+def rim_reachable(diameter_mm: float, focal_length_mm: float, n: float, d_mm: float) -> bool:
+    """Whether the feed sees the rim (d, D/2) from outside the lens: the ray from the focus meets the
+    face there on its feed side (direction · inward normal > 0), not after passing through the lens."""
+    u = np.array([d_mm + focal_length_mm, diameter_mm / 2])
+    return float(u @ surface_normal(d_mm, diameter_mm / 2, focal_length_mm, n)) > 0.0
+
+
+def internal_rim_angle_deg(rim_incidence: float, n: float) -> float:
+    """Refraction angle inside the lens at the rim, arcsin(sin θi / n): always below the critical angle
+    arcsin(1/n), so the front face cannot totally reflect (the hyperbolic face then sends the ray
+    along the axis to the flat face at normal incidence)."""
+    return float(np.degrees(np.arcsin(np.sin(np.radians(rim_incidence)) / n)))
+
+
+def rim_reflection_loss_db(rim_incidence: float, n: float) -> float:
+    """Fresnel reflection loss of the rim ray at the front face, −10·log10(1 − |r⊥|²) (the
+    perpendicular polarization, the larger)."""
+    ci = np.cos(np.radians(rim_incidence))
+    ct = np.sqrt(1.0 - (np.sin(np.radians(rim_incidence)) / n) ** 2)
+    r = (ci - n * ct) / (ci + n * ct)
+    return float(-10 * np.log10(1.0 - r * r))
+
+
 def tir_angle_deg(n: float) -> float:
     """Critical angle arcsin(1/n) at the dielectric→air face, seed-000 §2.1 eq. (2.23)
     (the text calls it a Brewster angle: it is the TIR angle)."""
@@ -185,6 +208,16 @@ class CollimatorDesign:
         }.items()}
 
 
+def _rim_check(rim: float, tir: float, n: float) -> Check:
+    """Grazing incidence at the rim: a warning within TIR_WARN_MARGIN_DEG of the seed's critical angle
+    (2.23) and beyond it, with the reflection loss; the internal angle shows there is no TIR."""
+    status = "warn" if rim > tir - TIR_WARN_MARGIN_DEG else "pass"
+    return Check("rim_incidence_vs_tir", status, rim, tir, "deg",
+                 f"rim incidence (2.24): {rim:.2f}° vs critical {tir:.2f}° (2.23); inside the lens "
+                 f"{internal_rim_angle_deg(rim, n):.2f}° (no total reflection); rim reflection loss "
+                 f"{rim_reflection_loss_db(rim, n):.2f} dB" + ("; grazing incidence" if rim >= tir else ""))
+
+
 def synthesize_collimator(*, diameter_mm: float, focal_length_mm: float, eps_r: float,
                           tan_delta: float, frequency_ghz: float,
                           phase_error_budget_deg: float = 22.5,
@@ -192,7 +225,9 @@ def synthesize_collimator(*, diameter_mm: float, focal_length_mm: float, eps_r: 
                           antenna_distance_mm: float | None = None) -> CollimatorDesign:
     """Synthesize the lens of seed-000 §2.1 and evaluate §2.2 figures and §7.3 checks.
 
-    Raises DesignError when the rim ray is totally internally reflected (2.24 ≥ 2.23); an antenna
+    Raises DesignError when the feed cannot reach the rim (the face there turns away from it). A rim
+    incidence (2.24) beyond the seed's critical angle (2.23) is grazing, not total reflection: the
+    internal angle stays below it; it is a warning with the rim ray's reflection loss. An antenna
     under test larger than the lens minus the GO edge margin (2.1) is a warning.
     """
     if eps_r <= 1.0:
@@ -204,13 +239,10 @@ def synthesize_collimator(*, diameter_mm: float, focal_length_mm: float, eps_r: 
     dn = index_tolerance(lam, d, budget)
     rim = rim_incidence_deg(diameter_mm, focal_length_mm, n, d)
     tir = tir_angle_deg(n)
-    checks = [Check.upper("rim_incidence_vs_tir", rim, tir, "deg",
-                          "rim incidence (2.24) vs total internal reflection (2.23)",
-                          warn_margin=TIR_WARN_MARGIN_DEG)]
-    if checks[0].status == "fail":
-        raise DesignError("design.focal_length_mm",
-                          f"rim ray is totally internally reflected: incidence {rim:.2f}° ≥ "
-                          f"critical {tir:.2f}° (seed-000 eq. 2.23/2.24); lengthen f or reduce D")
+    if not rim_reachable(diameter_mm, focal_length_mm, n, d):
+        raise DesignError("design.focal_length_mm", f"the feed cannot reach the rim: the face at r = "
+                          f"{diameter_mm / 2:g} mm turns away from the focus; lengthen f or reduce D")
+    checks = [_rim_check(rim, tir, n)]
     if antenna_aperture_mm is not None:
         g = edge_margin_mm(lam, antenna_distance_mm or 0.0)
         need = antenna_aperture_mm + 2 * g

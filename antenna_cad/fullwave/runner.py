@@ -1,0 +1,171 @@
+"""Meep runner: one body-of-revolution FDTD run, JSON in, npz out (issue 10).
+
+Executed by the interpreter that has Debian's ``python3-meep`` (built against Debian's numpy, so never
+imported by the pipeline itself): ``python3 -m antenna_cad.fullwave.runner deck.json result.npz`` or
+``python3 runner.py deck.json result.npz``. It imports only numpy, matplotlib (for the point-in-polygon
+test) and meep; nothing else of the package.
+
+Set-up (measured, DESIGN.md "Verification models"): ``dimensions=CYLINDRICAL`` with azimuthal order
+``m`` (+1 carries the co-polar field of a linearly polarized on-axis feed), unit length = λ0 so the
+resolution is in px/λ. The lens is ε(r, z) from the deck's (r, z) polygons, one per part, rasterized
+with 5×5 sub-samples per pixel (area-weighted ε: subpixel smoothing) into a ``MaterialGrid``. The feed
+enters through a Huygens current sheet (J = ẑ×H, M = −ẑ×E of the analytic feed field) on the plane
+``sheet_z_mm``, extended through the radial PML; empty space between the feed and the lens is not
+meshed. Gaussian pulse, DFT at f0. Output: Er, Eφ at f0 on the plane ``plane_z_mm`` (r_i = i/res,
+Meep 1.25's metadata being wrong in cylindrical coordinates) and |E| over the (r, z) cell, decimated.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+import time
+
+import numpy as np
+
+C_MM_GHZ = 299.792458          # speed of light, mm·GHz
+SUBSAMPLES = 5
+MAP_MAX_PX = 240               # field map decimated to at most this many pixels a side
+EXTRA_PERIODS = 30.0           # after the pulse has crossed the cell (≤ 0.03° change past 30, fullwave-notes)
+FWIDTH = 0.5                   # Gaussian pulse bandwidth, units of f0
+
+
+def feed_pattern(theta: np.ndarray, pattern: str, q: float) -> tuple[np.ndarray, np.ndarray]:
+    """(E-plane, H-plane) far-field amplitude of the feed: a short dipole along the polarization
+    (cos θ, 1) or a cos^q horn (cos^q θ in both planes)."""
+    c = np.cos(theta)
+    if pattern == "dipole":
+        return c, np.ones_like(c)
+    cq = np.clip(c, 0.0, None) ** q
+    return cq, cq
+
+
+def feed_fields(r: np.ndarray, dz: np.ndarray, k: float, pattern: str, q: float):
+    """m = +1 parts of the feed's (Er, Eφ, Hr, Hφ) at radius r, axial distance dz > 0 from the feed
+    (η0 = 1, time e^{−iωt}): E = g·(cos φ F_E θ̂ − sin φ F_H φ̂), H = r̂ × E; cos φ → 1, sin φ → −i
+    (common factor ½ dropped)."""
+    R = np.hypot(r, dz)
+    theta = np.arctan2(r, dz)
+    fe, fh = feed_pattern(theta, pattern, q)
+    g = np.exp(1j * k * R) / R
+    ct = np.cos(theta)
+    return fe * ct * g, 1j * fh * g, -1j * fh * ct * g, fe * g
+
+
+def fill_fraction(parts, r_edges: np.ndarray, z_edges: np.ndarray) -> np.ndarray:
+    """ε of each cell [r_i, r_i+1] × [z_j, z_j+1] (shape (Nr, Nz)): 1 + Σ (εr − 1)·(area fraction of
+    the part's polygon), from SUBSAMPLES² points per cell."""
+    from matplotlib.path import Path
+    nr, nz = len(r_edges) - 1, len(z_edges) - 1
+    s = (np.arange(SUBSAMPLES) + 0.5) / SUBSAMPLES
+    rs = (r_edges[:-1, None] + np.diff(r_edges)[:, None] * s).ravel()
+    zs = (z_edges[:-1, None] + np.diff(z_edges)[:, None] * s).ravel()
+    eps = np.ones((nr, nz))
+    for part in parts:
+        poly = np.asarray(part["polygon"], float)
+        i0, i1 = np.searchsorted(rs, [poly[:, 0].min(), poly[:, 0].max()])
+        j0, j1 = np.searchsorted(zs, [poly[:, 1].min(), poly[:, 1].max()])
+        i0, j0 = (i0 // SUBSAMPLES) * SUBSAMPLES, (j0 // SUBSAMPLES) * SUBSAMPLES
+        i1 = min(len(rs), -(-i1 // SUBSAMPLES) * SUBSAMPLES)
+        j1 = min(len(zs), -(-j1 // SUBSAMPLES) * SUBSAMPLES)
+        if i1 <= i0 or j1 <= j0:
+            continue
+        rr, zz = np.meshgrid(rs[i0:i1], zs[j0:j1], indexing="ij")
+        inside = Path(poly).contains_points(np.column_stack([rr.ravel(), zz.ravel()])).reshape(rr.shape)
+        frac = inside.reshape((i1 - i0) // SUBSAMPLES, SUBSAMPLES, (j1 - j0) // SUBSAMPLES, SUBSAMPLES).mean(axis=(1, 3))
+        eps[i0 // SUBSAMPLES:i1 // SUBSAMPLES, j0 // SUBSAMPLES:j1 // SUBSAMPLES] += (part["eps_r"] - 1.0) * frac
+    return eps
+
+
+def domain(deck: dict) -> dict:
+    """The cell in units of λ0: radial size ``sr`` and axial ``sz`` with the PML (whole pixels),
+    its centre ``zc`` (meep z = z/λ − zc), pixel counts and the run time in periods."""
+    lam = C_MM_GHZ / deck["frequency_ghz"]
+    res = float(deck["resolution_px_per_lambda"])
+    r_in = deck["r_max_mm"] / lam
+    z0, z1 = deck["z_min_mm"] / lam, deck["z_max_mm"] / lam
+    nr = int(np.ceil((r_in + deck["pml_r_lambda"]) * res))
+    nz = int(np.ceil((z1 - z0 + 2 * deck["pml_z_lambda"]) * res))
+    sr, sz = nr / res, nz / res
+    n_max = np.sqrt(max([p["eps_r"] for p in deck["parts"]] + [1.0]))
+    after = n_max * np.hypot(sz, sr) + EXTRA_PERIODS
+    return dict(lam=lam, res=res, r_in=r_in, z0=z0, z1=z1, sr=sr, sz=sz, zc=0.5 * (z0 + z1), nr=nr, nz=nz,
+                after=after, periods=after + 2 * 5.0 / FWIDTH)
+
+
+def cell_updates(deck: dict) -> float:
+    """Cells × time steps (Courant 0.5) of the run: what its cost scales with."""
+    d = domain(deck)
+    return d["nr"] * d["nz"] * 2 * d["res"] * d["periods"]
+
+
+def run(deck: dict) -> dict:
+    import meep as mp
+    d = domain(deck)
+    lam, res, r_in, z0, z1, sr, sz, zc, nr, nz = (d[k] for k in ("lam", "res", "r_in", "z0", "z1", "sr", "sz",
+                                                                   "zc", "nr", "nz"))
+    pml_r, pml_z = deck["pml_r_lambda"], deck["pml_z_lambda"]
+    r_edges = np.linspace(0.0, sr, nr + 1)
+    z_edges = np.linspace(-sz / 2, sz / 2, nz + 1)
+    parts = [dict(p, polygon=[(r / lam, z / lam - zc) for r, z in p["polygon"]]) for p in deck["parts"]]
+    eps = fill_fraction(parts, r_edges, z_edges)
+    eps_max = max([p["eps_r"] for p in parts] + [1.0 + 1e-6])
+    grid = mp.MaterialGrid(mp.Vector3(nr, 1, nz), mp.air, mp.Medium(epsilon=eps_max),
+                           weights=((eps - 1.0) / (eps_max - 1.0))[:, None, :], do_averaging=False)
+    geometry = [mp.Block(size=mp.Vector3(sr, 0, sz), center=mp.Vector3(sr / 2, 0, 0), material=grid)]
+
+    feed = deck["feed"]
+    k = 2 * np.pi
+    zs = deck["sheet_z_mm"] / lam - zc
+    dz = (deck["sheet_z_mm"] - feed["z_mm"]) / lam
+    m_scale = 1.0 / np.cos(np.pi / res)     # M sits half a cell from J: balance the pair (back lobe ≈ −26 dB)
+    src = mp.GaussianSource(1.0, fwidth=FWIDTH)
+
+    def amp(index):
+        def f(p):
+            er, ep, hr, hp = feed_fields(np.array(p.x + sr / 2), np.array(dz), k, feed["pattern"], feed.get("q", 1.0))
+            return complex((-hp, hr, m_scale * ep, -m_scale * er)[index])   # J_r, J_φ, M_r, M_φ
+        return f
+
+    line = dict(center=mp.Vector3(sr / 2, 0, zs), size=mp.Vector3(sr, 0, 0))
+    sources = [mp.Source(src, component=c, amp_func=amp(i), **line)
+               for i, c in enumerate((mp.Er, mp.Ep, mp.Hr, mp.Hp))]
+    sim = mp.Simulation(cell_size=mp.Vector3(sr, 0, sz), dimensions=mp.CYLINDRICAL, m=deck.get("m", 1),
+                        resolution=res, geometry=geometry, sources=sources, force_complex_fields=True,
+                        boundary_layers=[mp.PML(pml_r, direction=mp.R), mp.PML(pml_z, direction=mp.Z)])
+    zp = deck["plane_z_mm"] / lam - zc
+    plane = sim.add_dft_fields([mp.Er, mp.Ep], 1.0, 0, 1, center=mp.Vector3(sr / 2, 0, zp),
+                               size=mp.Vector3(sr, 0, 0))
+    whole = (sim.add_dft_fields([mp.Er, mp.Ep, mp.Ez], 1.0, 0, 1, center=mp.Vector3(r_in / 2, 0, 0),
+                                size=mp.Vector3(r_in, 0, z1 - z0)) if deck.get("field_map", True) else None)
+    t0 = time.perf_counter()
+    sim.run(until_after_sources=d["after"])
+    seconds = time.perf_counter() - t0
+    out = {"er": np.asarray(sim.get_dft_array(plane, mp.Er, 0)),
+           "ep": np.asarray(sim.get_dft_array(plane, mp.Ep, 0)),
+           "seconds": seconds, "cells": nr * nz, "lambda_mm": lam}
+    out["r_mm"] = np.arange(len(out["er"])) / res * lam
+    if whole is not None:
+        e = sum(np.abs(np.asarray(sim.get_dft_array(whole, c, 0))) ** 2 for c in (mp.Er, mp.Ep, mp.Ez)) ** 0.5
+        if abs(e.shape[0] - r_in * res) > abs(e.shape[0] - (z1 - z0) * res):
+            e = e.T                                   # stored as [r, z]
+        step = max(1, int(np.ceil(max(e.shape) / MAP_MAX_PX)))
+        out["map_abs"] = e[::step, ::step]
+        out["map_extent_mm"] = np.array([0.0, r_in * lam, z0 * lam, z1 * lam])
+    return out
+
+
+def main(argv: list[str]) -> int:
+    deck_path, out_path = argv
+    with open(deck_path, encoding="utf-8") as fh:
+        deck = json.load(fh)
+    import meep as mp
+    mp.verbosity(0)
+    result = run(deck)
+    result["meep_version"] = np.array(mp.__version__)
+    np.savez_compressed(out_path, **result)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

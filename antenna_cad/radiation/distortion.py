@@ -1,0 +1,128 @@
+"""The seed's pattern-distortion criterion: the antenna under test (AUT) in the collimator's field,
+its sum and difference patterns and their integral errors (seed-000 §4.5, (1.19)–(1.24)).
+
+    F(θ) = ∫ Ȧ(y) e^{jβ y sin θ} dy                                   (1.19)
+    Δ_Σ = ∫ (F_A − F_0)² dθ / ∫ F_0² dθ,   θ ∈ [−90°, 90°]             (1.20)
+    Δ_main over the reference main lobe, Δ_side the rest; Δ_Σ = Δ_main + Δ_side   (1.21)–(1.23)
+    AUT taper A(y) = cos^k(π y / L)                                     (1.24)
+
+The seed leaves the conventions open; we use the digest's (seed-000 §5.3 [OURS]): |F| normalised
+to its own maximum (a shape error, not a gain error), θ over ±90°, the main lobe bounded by the
+first nulls of F_0 (for the difference pattern: the nulls outside its two peaks), and odd
+excitation sign(y) for the difference pattern. A 2-D AUT (circle or rectangle) is reduced to the
+principal cut along y by integrating the excitation over x. The threshold is the same error for a
+22.5° quadratic phase error across the AUT (Tables 1.6/1.7 recipe, computed, not copied: the
+printed tables are about 1.4× ours and not regression targets, §7.4).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from antenna_cad.radiation.aperture import Cut, trapezoid_weights
+
+THETA_SAMPLES_PER_BEAMWIDTH = 64
+QUADRATIC_THRESHOLD_DEG = 22.5          # seed-000 §4.1: ΔΦ_m = π/8
+FLANK_DB = 10.0                         # main-lobe bound of a difference flank without a null
+
+
+@dataclass(frozen=True)
+class Aut:
+    """Antenna under test: a circle (``height_mm`` = its diameter, ``width_mm`` equal) or a
+    ``width_mm`` × ``height_mm`` rectangle (x × y); the cut is in the y (vertical) plane."""
+    width_mm: float
+    height_mm: float
+    circular: bool
+    taper_k: int = 0
+
+    def grid(self, wavelength_mm: float) -> tuple[np.ndarray, np.ndarray]:
+        """x and y sample points over the AUT, ≤ λ/8 apart."""
+        def axis(size):
+            n = 2 * int(4 * size / wavelength_mm) + 33
+            return np.linspace(-size / 2, size / 2, n)
+        return axis(self.width_mm), axis(self.height_mm)
+
+    def excitation(self, x_mm: np.ndarray, y_mm: np.ndarray) -> np.ndarray:
+        """Taper (1.24) on the grid [iy, ix], zero outside a circular AUT."""
+        X, Y = np.meshgrid(x_mm, y_mm)
+        if self.circular:
+            rho = np.hypot(X, Y) / self.height_mm
+            return np.where(rho <= 0.5 + 1e-12, np.cos(np.pi * np.minimum(rho, 0.5)) ** self.taper_k, 0.0)
+        return (np.cos(np.pi * X / self.width_mm) * np.cos(np.pi * Y / self.height_mm)) ** self.taper_k
+
+
+def aut_cuts(aut: Aut, x_mm: np.ndarray, y_mm: np.ndarray, field2d: np.ndarray,
+             wavelength_mm: float) -> tuple[Cut, Cut]:
+    """Sum and difference cuts (y plane) of the AUT receiving ``field2d[iy, ix]`` on its grid."""
+    line = (aut.excitation(x_mm, y_mm) * np.asarray(field2d, complex)) @ trapezoid_weights(x_mm)
+    c = line * trapezoid_weights(y_mm)
+    return Cut(y_mm, c, wavelength_mm), Cut(y_mm, c * np.sign(y_mm), wavelength_mm)
+
+
+@dataclass(frozen=True)
+class IntegralErrors:
+    total: float
+    main: float
+    side: float
+
+
+def _main_lobe(o: np.ndarray, difference: bool) -> tuple[int, int]:
+    """Indices bounding the reference main lobe: the first minima outside the peak(s). An odd
+    excitation with a taper (k ≥ 2) steps at the centre and its flank decays without a null;
+    there the bound is where it falls ``FLANK_DB`` below the peak."""
+    n = len(o)
+    c = n // 2
+    if difference:
+        left, right = int(np.argmax(o[:c])), c + int(np.argmax(o[c:]))
+    else:
+        left = right = int(np.argmax(o))
+    return _walk(o, left, -1), _walk(o, right, 1)
+
+
+def _walk(o: np.ndarray, i: int, step: int) -> int:
+    """From ``i`` down the flank to the first minimum; without one, to the −FLANK_DB point."""
+    j = i
+    while 0 <= j + step < len(o) and o[j + step] <= o[j]:
+        j += step
+    if 0 < j < len(o) - 1:
+        return j
+    j = i
+    while 0 <= j + step < len(o) and o[j + step] > 10 ** (-FLANK_DB / 20) * o[i]:
+        j += step
+    return j
+
+
+def integral_errors(actual: Cut, ideal: Cut, difference: bool = False) -> IntegralErrors:
+    """Δ_Σ, Δ_main, Δ_side of (1.20)–(1.23) between two cuts (module docstring conventions)."""
+    n = int(THETA_SAMPLES_PER_BEAMWIDTH * ideal.extent_mm / ideal.wavelength_mm) + 2001
+    theta = np.linspace(-math.pi / 2, math.pi / 2, 2 * (n // 2) + 1)
+    u = np.sin(theta)
+    a, o = np.abs(actual(u)), np.abs(ideal(u))
+    a, o = a / a.max(), o / o.max()
+    w = trapezoid_weights(theta)
+    err = (a - o) ** 2 * w
+    ref = float(np.sum(o**2 * w))
+    lo, hi = _main_lobe(o, difference)
+    main = float(np.sum(err[lo:hi + 1])) / ref
+    total = float(np.sum(err)) / ref
+    return IntegralErrors(total, main, total - main)
+
+
+def quadratic_phase(aut: Aut, x_mm: np.ndarray, y_mm: np.ndarray, edge_deg: float) -> np.ndarray:
+    """e^{jφ}, φ = edge·(2ρ/L)² (circle) or edge·(2y/L)² (rectangle, the seed's 1-D error)."""
+    X, Y = np.meshgrid(x_mm, y_mm)
+    s = 2 * (np.hypot(X, Y) if aut.circular else np.abs(Y)) / aut.height_mm
+    return np.exp(1j * math.radians(edge_deg) * s**2)
+
+
+def thresholds(aut: Aut, wavelength_mm: float,
+               edge_deg: float = QUADRATIC_THRESHOLD_DEG) -> tuple[IntegralErrors, IntegralErrors]:
+    """Sum and difference integral errors of a ``edge_deg`` quadratic phase error over the AUT:
+    the thresholds of Tables 1.6/1.7 recomputed for this AUT."""
+    x, y = aut.grid(wavelength_mm)
+    ideal = aut_cuts(aut, x, y, np.ones((len(y), len(x))), wavelength_mm)
+    bad = aut_cuts(aut, x, y, quadratic_phase(aut, x, y, edge_deg), wavelength_mm)
+    return (integral_errors(bad[0], ideal[0]), integral_errors(bad[1], ideal[1], difference=True))

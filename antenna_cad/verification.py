@@ -56,6 +56,11 @@ class Verification:
     tables: tuple[Table, ...] = ()
     plots: tuple[Plot, ...] = ()
 
+    def merged(self, other: "Verification") -> "Verification":
+        """This verification with ``other``'s figures, checks, tables and plots added."""
+        return Verification(self.figures | other.figures, self.checks + other.checks, self.tables + other.tables,
+                            self.plots + other.plots)
+
 
 def detrended(y: np.ndarray, phase_deg: np.ndarray) -> np.ndarray:
     """Aperture phase with the least-squares linear tilt removed (seed-000 §4.1, (2.16))."""

@@ -9,11 +9,20 @@ so no spillover), phase k·(optical path), zero outside the rim. A feed on the a
 revolution gives a body of revolution E(r) (Hankel transform, exact); any other feed is the
 meridional cut E(y) taken constant across x (the sagittal aberration is not traced).
 
-Test zone and AUT: that field propagated to the AUT plane by the angular spectrum (Hankel form on
-the axis, the 2-D form otherwise); the AUT's sum and difference cuts against the same AUT in a
-uniform plane wave, the linear phase tilt over the AUT removed (it only points the beam), give
-Δ_Σ, Δ_main, Δ_side of seed-000 (1.20)–(1.23), compared with the threshold the same AUT gets from a
-22.5° quadratic phase error (the recipe of Tables 1.6/1.7, recomputed).
+Test zone and AUT: that field propagated to the AUT plane by the angular spectrum. The figures
+use the 2-D form on the meridional cut (the seed's own, meridional, model), since an exactly symmetric
+hard-edged aperture also focuses its edge wave onto the axis (an Arago-type caustic, ±1–3 dB
+within a few λ of it at the seed's 10 cm), which measured ranges do not show (seed-000 §5.10:
+"amplitude almost uniform") because no feed, edge or alignment is that symmetric; the exact
+body-of-revolution result is reported beside it (``test_zone_diameter_bor_mm``). The AUT sees the
+exact body-of-revolution field on the axis (the caustic covers too little area to matter in its
+integrals) and the meridional cut taken constant across x for other feeds (an approximation that
+overstates the rim ripple, which then spans whole chords). The AUT's sum
+and difference cuts against the same AUT in a uniform plane wave, the linear phase tilt over the
+AUT removed (it only points the beam), give Δ_Σ, Δ_main, Δ_side of seed-000 (1.20)–(1.23),
+compared with the threshold the same AUT gets from a 22.5° quadratic phase error (the recipe of
+Tables 1.6/1.7, recomputed). For reference the AUT is also put in the feed's spherical wave
+without the lens (seed-000 Table 4.1 measured both).
 """
 
 from __future__ import annotations
@@ -26,8 +35,10 @@ from antenna_cad.kinds.asbuilt import Lens, Medium, trace_lens
 from antenna_cad.radiation.aperture import PatternFigures, bor_aperture, grid_aperture, pattern_figures
 from antenna_cad.radiation.distortion import Aut, IntegralErrors, aut_cuts, integral_errors, thresholds
 from antenna_cad.radiation.testzone import TestZone, propagate_bor, propagate_line, test_zone
+from antenna_cad.raytrace.collimator import axial_defocus_limits, trace_collimator, usable_half_range_mm
 from antenna_cad.raytrace.trace2d import transmitted_amplitude
 from antenna_cad.synthesis.checks import Check
+from antenna_cad.synthesis.collimator import path_difference_approx_mm, path_difference_mm
 from antenna_cad.verification import Plot, Series, Table, Verification
 
 SAMPLES_PER_WAVELENGTH = 20      # aperture and AUT-plane cuts
@@ -44,6 +55,18 @@ class Criteria:
     aut: Aut | None = None
     difference: bool = True
     distance_mm: float | None = None     # AUT plane behind z_ref; None: the lens's antenna plane
+
+
+def criteria_from(aut_spec, test_zone_spec) -> Criteria:
+    """The spec's ``aut`` and ``test_zone`` blocks (:mod:`antenna_cad.spec.common`) as criteria."""
+    aut = None
+    if aut_spec is not None:
+        if aut_spec.diameter_mm is not None:
+            aut = Aut(aut_spec.diameter_mm, aut_spec.diameter_mm, True, aut_spec.taper)
+        else:
+            aut = Aut(aut_spec.width_mm, aut_spec.height_mm, False, aut_spec.taper)
+    return Criteria(test_zone_spec.amplitude_db, test_zone_spec.phase_deg, aut,
+                    aut_spec is None or aut_spec.pattern == "sum_and_difference")
 
 
 @dataclass(frozen=True)
@@ -103,19 +126,24 @@ def _detilted(x: np.ndarray, y: np.ndarray, e: np.ndarray, weight: np.ndarray) -
     return e * np.exp(-1j * (coef[0] + coef[1] * X + coef[2] * Y))
 
 
-def aut_errors(lens: Lens, ef: ExitField, on_axis: bool, distance_mm: float,
-               aut: Aut) -> tuple[IntegralErrors, IntegralErrors, tuple]:
-    """Sum and difference integral errors of the AUT in the propagated field, and the cuts."""
+def aut_field(lens: Lens, ef: ExitField, on_axis: bool, distance_mm: float):
+    """The propagated field on the AUT plane as a function of (X, Y) grids: E(ρ) of the body of
+    revolution on the axis, else the meridional cut E(y) taken constant across x."""
+    def on_grid(X, Y):
+        if not on_axis:
+            return np.broadcast_to(_at_aut(lens, ef, False, distance_mm, Y[:, 0])[:, None], X.shape)
+        rho = np.linspace(0.0, float(np.hypot(X, Y).max()), 2 * X.shape[0] + 1)
+        e = _at_aut(lens, ef, True, distance_mm, rho)
+        return np.interp(np.hypot(X, Y), rho, e.real) + 1j * np.interp(np.hypot(X, Y), rho, e.imag)
+    return on_grid
+
+
+def aut_errors(lens: Lens, field_on_grid, aut: Aut) -> tuple[IntegralErrors, IntegralErrors, tuple]:
+    """Sum and difference integral errors of the AUT in the field ``field_on_grid(X, Y)`` on the
+    AUT plane, and the cuts."""
     lam = lens.wavelength_mm
     x, y = aut.grid(lam)
-    X, Y = np.meshgrid(x, y)
-    if on_axis:
-        rho = np.linspace(0.0, float(np.hypot(x.max(), y.max())), len(y))
-        e = np.interp(np.hypot(X, Y), rho, _at_aut(lens, ef, True, distance_mm, rho).real) + \
-            1j * np.interp(np.hypot(X, Y), rho, _at_aut(lens, ef, True, distance_mm, rho).imag)
-    else:
-        e = np.broadcast_to(_at_aut(lens, ef, False, distance_mm, y)[:, None], X.shape)
-    e = _detilted(x, y, e, aut.excitation(x, y))
+    e = _detilted(x, y, field_on_grid(*np.meshgrid(x, y)), aut.excitation(x, y))
     actual = aut_cuts(aut, x, y, e, lam)
     ideal = aut_cuts(aut, x, y, np.ones_like(e), lam)
     return (integral_errors(actual[0], ideal[0]), integral_errors(actual[1], ideal[1], difference=True),
@@ -180,7 +208,7 @@ def lens_patterns(lens: Lens, variants: list[tuple[str, Medium]], feeds, criteri
     plots += tz_p
     tables.append(tz_table)
     aut = criteria.aut or Aut(zone, zone, True, 0)
-    a_tab, a_plot, a_fig, checks = _aut(lens, variants, feeds, fields, distance, aut, criteria)
+    a_tab, a_plot, a_fig, checks = _aut(lens, variants, feeds, fields, z_ref, distance, aut, criteria)
     figures |= a_fig
     return Verification(figures, tuple(checks), tuple(tables + [a_tab]), tuple(plots + [a_plot]))
 
@@ -191,17 +219,23 @@ def _test_zone(lens: Lens, variants, fields, nominal: str, distance: float, crit
                     2 * int(SAMPLES_PER_WAVELENGTH / 2 * TEST_ZONE_RANGE * R / lam) + 1)
     zones: dict[str, TestZone] = {}
     for variant, _ in variants:
-        ef, on_axis = fields[(variant, nominal)]
-        zones[variant] = test_zone(y, _at_aut(lens, ef, on_axis, distance, y), criteria.amplitude_db,
+        ef, _ = fields[(variant, nominal)]
+        zones[variant] = test_zone(y, _at_aut(lens, ef, False, distance, y), criteria.amplitude_db,
                                    criteria.phase_deg)
     built = variants[-1][0]
     figures = {f"test_zone_diameter_mm_{v}": z.diameter_mm for v, z in zones.items()}
     figures |= {"test_zone_diameter_mm": zones[built].diameter_mm, "test_zone_distance_mm": distance}
+    ef, on_axis = fields[(built, nominal)]
+    if on_axis:
+        bor = test_zone(y, _at_aut(lens, ef, True, distance, y), criteria.amplitude_db, criteria.phase_deg)
+        figures["test_zone_diameter_bor_mm"] = bor.diameter_mm
+        zones[f"{built}, exact body of revolution"] = bor
     amp = Plot("test-zone-amplitude", f"Test zone: amplitude {distance:.0f} mm behind the lens",
                "y on the AUT plane (mm)", "amplitude to the centre (dB)",
                tuple(Series(f"{v} (zone Ø{z.diameter_mm:.0f} mm)", z.y_mm, z.amplitude_db, "line" if i == 0 else "dashed")
                      for i, (v, z) in enumerate(zones.items())),
-               caption="angular-spectrum propagation of the GO exit field (edge diffraction included); "
+               caption="angular-spectrum propagation of the GO exit field (edge diffraction included), 2-D on "
+                       "the meridional cut; the body of revolution adds the axial caustic of its hard edge; "
                        f"criterion ±{criteria.amplitude_db:g} dB", hlines=(("+", criteria.amplitude_db),
                                                                            ("−", -criteria.amplitude_db)))
     pha = Plot("test-zone-phase", f"Test zone: phase {distance:.0f} mm behind the lens",
@@ -217,7 +251,7 @@ def _test_zone(lens: Lens, variants, fields, nominal: str, distance: float, crit
     return zones, (amp, pha), figures, zones[built].diameter_mm, table
 
 
-def _aut(lens: Lens, variants, feeds, fields, distance: float, aut: Aut, criteria: Criteria):
+def _aut(lens: Lens, variants, feeds, fields, z_ref: float, distance: float, aut: Aut, criteria: Criteria):
     lam = lens.wavelength_mm
     th_sum, th_diff = thresholds(aut, lam)
     rows = [("threshold (22.5° quadratic)", "", _e(th_sum.total), _e(th_sum.main), _e(th_sum.side),
@@ -225,10 +259,16 @@ def _aut(lens: Lens, variants, feeds, fields, distance: float, aut: Aut, criteri
     figures = {"aut_sum_threshold": th_sum.total, "aut_difference_threshold": th_diff.total}
     built, nominal = variants[-1][0], feeds[0][0]
     cuts = None
+    fz, fy = feeds[0][1], feeds[0][2]
+    z_aut = z_ref + distance
+    k = 2 * np.pi / lam
+    s, d, _ = aut_errors(lens, lambda X, Y: np.exp(1j * k * np.sqrt((z_aut - fz) ** 2 + X**2 + (Y - fy) ** 2)), aut)
+    rows.append((nominal, "no lens (feed's spherical wave)", _e(s.total), _e(s.main), _e(s.side), _e(d.total),
+                 _e(d.main), _e(d.side)))
+    figures |= {"aut_sum_integral_error_no_lens": s.total, "aut_difference_integral_error_no_lens": d.total}
     for feed, _, _ in feeds:
         for variant, _ in variants:
-            ef, on_axis = fields[(variant, feed)]
-            s, d, c = aut_errors(lens, ef, on_axis, distance, aut)
+            s, d, c = aut_errors(lens, aut_field(lens, *fields[(variant, feed)], distance), aut)
             rows.append((feed, variant, _e(s.total), _e(s.main), _e(s.side), _e(d.total), _e(d.main), _e(d.side)))
             tag = "" if (variant, feed) == (built, nominal) else f"_{variant}_{feed}"
             figures |= {f"aut_sum_integral_error{tag}": s.total, f"aut_difference_integral_error{tag}": d.total}
@@ -271,3 +311,49 @@ def _aut(lens: Lens, variants, feeds, fields, distance: float, aut: Aut, criteri
 
 def _e(v: float) -> str:
     return f"{v:.3e}"
+
+
+# ------------------------------------------------------------------ collimator feed-displacement limits
+
+def _integral_error(design, gap_mm: float, aut: Aut, feed_y_mm: float, difference: bool) -> float:
+    """Δ_Σ of a 1-D AUT (seed-000 (1.19), as Table 2.4) in the GO field of the ideal lens with the
+    feed at (−f, y), on the plane ``gap_mm`` behind the flat face; linear tilt removed."""
+    lam = design.wavelength_mm
+    ap = trace_collimator(focal_length_mm=design.focal_length_mm, n=design.n, diameter_mm=design.diameter_mm,
+                          back_z_mm=design.thickness_mm, antenna_z_mm=design.thickness_mm + gap_mm,
+                          wavelength_mm=lam, feed_zy_mm=(-design.focal_length_mm, feed_y_mm), rays=401, margin=0.999)
+    x, y = aut.grid(lam)
+    o = np.argsort(ap.y_mm)
+    e = np.exp(1j * 2 * np.pi / lam * np.interp(y, ap.y_mm[o], ap.path_mm[o]))
+    grid = _detilted(x, y, np.broadcast_to(e[:, None], (len(y), len(x))), aut.excitation(x, y))
+    actual = aut_cuts(aut, x, y, grid, lam)
+    ideal = aut_cuts(aut, x, y, np.ones_like(grid), lam)
+    k = 1 if difference else 0
+    return integral_errors(actual[k], ideal[k], difference).total
+
+
+def collimator_feed_limits(design, gap_mm: float, aut_height_mm: float, taper_k: int, difference: bool,
+                           scan_grid: np.ndarray) -> Verification:
+    """Feed-displacement limits of the single-surface lens (seed-000 §5.5–§5.7): along the axis by
+    the phase rule (Table 2.1, σ < 1 and σ > 1), across it by the integral rule (Table 2.4: the
+    transverse feed angle where the AUT's Δ_Σ reaches its 22.5° quadratic threshold, 1-D AUT of the
+    AUT's height, GO field), and the path difference Δl (2.14)/(2.15)."""
+    f, D, lam = design.focal_length_mm, design.diameter_mm, design.wavelength_mm
+    lo, hi = axial_defocus_limits(f, D, design.eps_r, gap_mm, lam, design.phase_error_budget_deg)
+    aut = Aut(lam, min(aut_height_mm, D), False, taper_k)
+    th = thresholds(aut, lam)
+    figures = {"path_difference_mm": path_difference_mm(D, f), "path_difference_approx_mm": path_difference_approx_mm(D, f),
+               "axial_feed_limit_sigma_near": lo, "axial_feed_limit_sigma_far": np.nan if hi is None else hi}
+    rows = [("Δl (2.14) / (2.15)", f"{figures['path_difference_mm']:.3f} / {figures['path_difference_approx_mm']:.3f} mm"),
+            ("axial feed limit σ < 1 (phase rule)", f"{lo:.3f} (feed at {lo * f:.0f} mm)"),
+            ("axial feed limit σ > 1 (phase rule)", "none up to σ = 20" if hi is None else f"{hi:.3f} (feed at {hi * f:.0f} mm)")]
+    for name, diff in (("sum", False), ("difference", True))[:2 if difference else 1]:
+        _, edge = usable_half_range_mm(lambda y: _integral_error(design, gap_mm, aut, y, diff), f * scan_grid,
+                                       th[diff].total)
+        angle = float(np.degrees(np.arctan2(edge, f)))
+        figures[f"scan_half_angle_integral_{name}_deg"] = angle
+        rows.append((f"transverse feed angle, integral rule ({name}, Δ_Σ ≤ {th[diff].total:.3g})", f"±{angle:.2f}°"))
+    table = Table("feed-limits", "Feed-displacement limits (ideal lens, seed-000 Tables 2.1 and 2.4)", ("limit", "value"),
+                  tuple(rows), caption=f"σ = feed distance / f; 1-D AUT {aut.height_mm:g} mm, cos^{taper_k} taper, "
+                  f"{gap_mm:g} mm behind the flat face; phase rule {design.phase_error_budget_deg:g}° p-p")
+    return Verification(figures, (), (table,), ())

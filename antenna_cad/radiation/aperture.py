@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import optimize, special
 
-SAMPLES_PER_BEAMWIDTH = 64       # u-grid density: samples per λ/extent
+SAMPLES_PER_BEAMWIDTH = 16       # u-grid density: samples per λ/extent (peaks and edges are refined)
 
 
 def trapezoid_weights(s: np.ndarray) -> np.ndarray:

@@ -24,7 +24,7 @@ import numpy as np
 
 from antenna_cad.radiation.aperture import Cut, trapezoid_weights
 
-THETA_SAMPLES_PER_BEAMWIDTH = 64
+THETA_SAMPLES_PER_BEAMWIDTH = 32      # θ samples per λ/L: the main-lobe bound to ≈ 1 %
 QUADRATIC_THRESHOLD_DEG = 22.5          # seed-000 §4.1: ΔΦ_m = π/8
 FLANK_DB = 10.0                         # main-lobe bound of a difference flank without a null
 

@@ -30,12 +30,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.optimize import brentq
 
 from antenna_cad.kinds.asbuilt import Lens, Medium, trace_lens
 from antenna_cad.radiation.aperture import PatternFigures, bor_aperture, grid_aperture, pattern_figures
-from antenna_cad.radiation.distortion import Aut, IntegralErrors, aut_cuts, integral_errors, thresholds
+from antenna_cad.radiation.distortion import Aut, ErrorMeter, IntegralErrors, aut_cuts, integral_errors, thresholds
 from antenna_cad.radiation.testzone import TestZone, propagate_bor, propagate_line, test_zone
-from antenna_cad.raytrace.collimator import axial_defocus_limits, trace_collimator, usable_half_range_mm
+from antenna_cad.raytrace.collimator import axial_defocus_limits, trace_collimator
 from antenna_cad.raytrace.trace2d import transmitted_amplitude
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.collimator import path_difference_approx_mm, path_difference_mm
@@ -236,14 +237,15 @@ def _test_zone(lens: Lens, variants, fields, nominal: str, distance: float, crit
                      for i, (v, z) in enumerate(zones.items())),
                caption="angular-spectrum propagation of the GO exit field (edge diffraction included), 2-D on "
                        "the meridional cut; the body of revolution adds the axial caustic of its hard edge; "
-                       f"criterion ±{criteria.amplitude_db:g} dB", hlines=(("+", criteria.amplitude_db),
-                                                                           ("−", -criteria.amplitude_db)))
+                       f"criterion ±{criteria.amplitude_db:g} dB",
+               hlines=((f"+{criteria.amplitude_db:g} dB", criteria.amplitude_db),
+                       (f"−{criteria.amplitude_db:g} dB", -criteria.amplitude_db)))
     pha = Plot("test-zone-phase", f"Test zone: phase {distance:.0f} mm behind the lens",
                "y on the AUT plane (mm)", "phase, zone tilt removed (deg)",
-               tuple(Series(v, z.y_mm, np.clip(z.phase_deg, -180, 180), "line" if i == 0 else "dashed")
+               tuple(Series(v, z.y_mm, np.where(z.amplitude_db > -10, z.phase_deg, np.nan), "line" if i == 0 else "dashed")
                      for i, (v, z) in enumerate(zones.items())),
-               caption=f"criterion ±{criteria.phase_deg:g}°", hlines=(("+", criteria.phase_deg),
-                                                                      ("−", -criteria.phase_deg)))
+               caption=f"criterion ±{criteria.phase_deg:g}°; drawn where the amplitude is above −10 dB",
+               hlines=((f"+{criteria.phase_deg:g}°", criteria.phase_deg), (f"−{criteria.phase_deg:g}°", -criteria.phase_deg)))
     table = Table("test-zone", "Test zone on the AUT plane (nominal feed)", ("lens", "diameter mm", "distance mm"),
                   tuple((v, _r(z.diameter_mm, 1), _r(distance, 1)) for v, z in zones.items()),
                   caption=f"largest centred zone within ±{criteria.amplitude_db:g} dB and ±{criteria.phase_deg:g}° "
@@ -315,7 +317,7 @@ def _e(v: float) -> str:
 
 # ------------------------------------------------------------------ collimator feed-displacement limits
 
-def _integral_error(design, gap_mm: float, aut: Aut, feed_y_mm: float, difference: bool) -> float:
+def _integral_error(design, gap_mm: float, aut: Aut, meter: ErrorMeter, feed_y_mm: float, difference: bool) -> float:
     """Δ_Σ of a 1-D AUT (seed-000 (1.19), as Table 2.4) in the GO field of the ideal lens with the
     feed at (−f, y), on the plane ``gap_mm`` behind the flat face; linear tilt removed."""
     lam = design.wavelength_mm
@@ -326,10 +328,20 @@ def _integral_error(design, gap_mm: float, aut: Aut, feed_y_mm: float, differenc
     o = np.argsort(ap.y_mm)
     e = np.exp(1j * 2 * np.pi / lam * np.interp(y, ap.y_mm[o], ap.path_mm[o]))
     grid = _detilted(x, y, np.broadcast_to(e[:, None], (len(y), len(x))), aut.excitation(x, y))
-    actual = aut_cuts(aut, x, y, grid, lam)
-    ideal = aut_cuts(aut, x, y, np.ones_like(grid), lam)
-    k = 1 if difference else 0
-    return integral_errors(actual[k], ideal[k], difference).total
+    return meter(aut_cuts(aut, x, y, grid, lam)[1 if difference else 0]).total
+
+
+def _first_crossing(fun, grid: np.ndarray, level: float) -> float:
+    """First point of the increasing ``grid`` where ``fun`` reaches ``level`` (brentq to 1e-4 of
+    the grid span between samples; the grid's end when it never does, 0 at once)."""
+    prev = grid[0]
+    if fun(prev) >= level:
+        return float(prev)
+    for x in grid[1:]:
+        if fun(x) >= level:
+            return float(brentq(lambda t: fun(t) - level, prev, x, xtol=1e-4 * float(np.ptp(grid))))
+        prev = x
+    return float(grid[-1])
 
 
 def collimator_feed_limits(design, gap_mm: float, aut_height_mm: float, taper_k: int, difference: bool,
@@ -342,14 +354,17 @@ def collimator_feed_limits(design, gap_mm: float, aut_height_mm: float, taper_k:
     lo, hi = axial_defocus_limits(f, D, design.eps_r, gap_mm, lam, design.phase_error_budget_deg)
     aut = Aut(lam, min(aut_height_mm, D), False, taper_k)
     th = thresholds(aut, lam)
+    x, y = aut.grid(lam)
+    ideal = aut_cuts(aut, x, y, np.ones((len(y), len(x))), lam)
     figures = {"path_difference_mm": path_difference_mm(D, f), "path_difference_approx_mm": path_difference_approx_mm(D, f),
                "axial_feed_limit_sigma_near": lo, "axial_feed_limit_sigma_far": np.nan if hi is None else hi}
     rows = [("Δl (2.14) / (2.15)", f"{figures['path_difference_mm']:.3f} / {figures['path_difference_approx_mm']:.3f} mm"),
             ("axial feed limit σ < 1 (phase rule)", f"{lo:.3f} (feed at {lo * f:.0f} mm)"),
             ("axial feed limit σ > 1 (phase rule)", "none up to σ = 20" if hi is None else f"{hi:.3f} (feed at {hi * f:.0f} mm)")]
     for name, diff in (("sum", False), ("difference", True))[:2 if difference else 1]:
-        _, edge = usable_half_range_mm(lambda y: _integral_error(design, gap_mm, aut, y, diff), f * scan_grid,
-                                       th[diff].total)
+        meter = ErrorMeter(ideal[diff], diff)
+        edge = _first_crossing(lambda y: _integral_error(design, gap_mm, aut, meter, y, diff), f * scan_grid,
+                               th[diff].total)
         angle = float(np.degrees(np.arctan2(edge, f)))
         figures[f"scan_half_angle_integral_{name}_deg"] = angle
         rows.append((f"transverse feed angle, integral rule ({name}, Δ_Σ ≤ {th[diff].total:.3g})", f"±{angle:.2f}°"))

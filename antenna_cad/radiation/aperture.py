@@ -58,11 +58,12 @@ class Cut:
         n = int(SAMPLES_PER_BEAMWIDTH * self.extent_mm / self.wavelength_mm) + 801
         return np.linspace(-1.0, 1.0, 2 * (n // 2) + 1)
 
-    def db(self, theta_deg: np.ndarray, peak: float | None = None) -> np.ndarray:
-        """|F|² in dB at ``theta_deg`` relative to ``peak`` (default: the largest sample)."""
+    def db(self, theta_deg: np.ndarray, peak: float | None = None, floor_db: float = -60.0) -> np.ndarray:
+        """|F|² in dB at ``theta_deg`` relative to ``peak`` (default: the largest sample), not
+        below ``floor_db`` (plots)."""
         p = np.abs(self(np.sin(np.radians(theta_deg)))) ** 2
         ref = p.max() if peak is None else peak ** 2
-        return 10 * np.log10(np.maximum(p / ref, 1e-12))
+        return np.maximum(10 * np.log10(np.maximum(p / ref, 1e-300)), floor_db)
 
 
 def line_cut(y_mm, field, wavelength_mm: float) -> Cut:

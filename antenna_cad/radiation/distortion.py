@@ -95,20 +95,35 @@ def _walk(o: np.ndarray, i: int, step: int) -> int:
     return j
 
 
+class ErrorMeter:
+    """Integral errors against one reference cut: the θ grid, its kernel and the reference's main
+    lobe are computed once, so many actual cuts on the same samples are cheap."""
+
+    def __init__(self, ideal: Cut, difference: bool = False):
+        n = int(THETA_SAMPLES_PER_BEAMWIDTH * ideal.extent_mm / ideal.wavelength_mm) + 2001
+        theta = np.linspace(-math.pi / 2, math.pi / 2, 2 * (n // 2) + 1)
+        self.s_mm = ideal.s_mm
+        self.kernel = np.exp(-1j * (2 * math.pi / ideal.wavelength_mm) * np.outer(np.sin(theta), ideal.s_mm))
+        o = np.abs(self.kernel @ ideal.c)
+        self.o = o / o.max()
+        self.w = trapezoid_weights(theta)
+        self.ref = float(np.sum(self.o**2 * self.w))
+        self.lo, self.hi = _main_lobe(self.o, difference)
+
+    def __call__(self, actual: Cut) -> IntegralErrors:
+        if actual.s_mm.shape != self.s_mm.shape or not np.allclose(actual.s_mm, self.s_mm):
+            raise ValueError("actual and reference cuts must share their samples")
+        a = np.abs(self.kernel @ actual.c)
+        err = (a / a.max() - self.o) ** 2 * self.w
+        main = float(np.sum(err[self.lo:self.hi + 1])) / self.ref
+        total = float(np.sum(err)) / self.ref
+        return IntegralErrors(total, main, total - main)
+
+
 def integral_errors(actual: Cut, ideal: Cut, difference: bool = False) -> IntegralErrors:
-    """Δ_Σ, Δ_main, Δ_side of (1.20)–(1.23) between two cuts (module docstring conventions)."""
-    n = int(THETA_SAMPLES_PER_BEAMWIDTH * ideal.extent_mm / ideal.wavelength_mm) + 2001
-    theta = np.linspace(-math.pi / 2, math.pi / 2, 2 * (n // 2) + 1)
-    u = np.sin(theta)
-    a, o = np.abs(actual(u)), np.abs(ideal(u))
-    a, o = a / a.max(), o / o.max()
-    w = trapezoid_weights(theta)
-    err = (a - o) ** 2 * w
-    ref = float(np.sum(o**2 * w))
-    lo, hi = _main_lobe(o, difference)
-    main = float(np.sum(err[lo:hi + 1])) / ref
-    total = float(np.sum(err)) / ref
-    return IntegralErrors(total, main, total - main)
+    """Δ_Σ, Δ_main, Δ_side of (1.20)–(1.23) between two cuts on the same samples (module
+    docstring conventions)."""
+    return ErrorMeter(ideal, difference)(actual)
 
 
 def quadratic_phase(aut: Aut, x_mm: np.ndarray, y_mm: np.ndarray, edge_deg: float) -> np.ndarray:

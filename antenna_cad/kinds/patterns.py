@@ -35,11 +35,11 @@ from scipy.optimize import brentq
 from antenna_cad.kinds.asbuilt import Lens, Medium, trace_lens
 from antenna_cad.radiation.aperture import PatternFigures, bor_aperture, grid_aperture, pattern_figures
 from antenna_cad.radiation.distortion import Aut, ErrorMeter, IntegralErrors, aut_cuts, integral_errors, thresholds
-from antenna_cad.radiation.testzone import TestZone, propagate_bor, propagate_line, test_zone
+from antenna_cad.radiation.testzone import TestZone, largest_test_zone, propagate_bor, propagate_line
 from antenna_cad.raytrace.collimator import axial_defocus_limits, trace_collimator
 from antenna_cad.raytrace.trace2d import transmitted_amplitude
 from antenna_cad.synthesis.checks import Check
-from antenna_cad.synthesis.collimator import path_difference_approx_mm, path_difference_mm
+from antenna_cad.synthesis.collimator import edge_margin_mm, path_difference_approx_mm, path_difference_mm
 from antenna_cad.verification import Plot, Series, Table, Verification
 
 SAMPLES_PER_WAVELENGTH = 20      # aperture and AUT-plane cuts
@@ -50,7 +50,7 @@ TEST_ZONE_RANGE = 1.25           # test-zone cut out to this × the lens radius
 
 @dataclass(frozen=True)
 class Criteria:
-    """``test_zone`` of the spec, and the AUT (None: one the size of the ideal lens's test zone)."""
+    """``test_zone`` of the spec, and the AUT (None: :func:`_default_aut`)."""
     amplitude_db: float = 1.0
     phase_deg: float = 11.25
     aut: Aut | None = None
@@ -208,7 +208,7 @@ def lens_patterns(lens: Lens, variants: list[tuple[str, Medium]], feeds, criteri
     figures |= tz_f
     plots += tz_p
     tables.append(tz_table)
-    aut = criteria.aut or Aut(zone, zone, True, 0)
+    aut = criteria.aut or _default_aut(lens, zone, distance)
     a_tab, a_plot, a_fig, checks = _aut(lens, variants, feeds, fields, z_ref, distance, aut, criteria)
     figures |= a_fig
     return Verification(figures, tuple(checks), tuple(tables + [a_tab]), tuple(plots + [a_plot]))
@@ -221,14 +221,14 @@ def _test_zone(lens: Lens, variants, fields, nominal: str, distance: float, crit
     zones: dict[str, TestZone] = {}
     for variant, _ in variants:
         ef, _ = fields[(variant, nominal)]
-        zones[variant] = test_zone(y, _at_aut(lens, ef, False, distance, y), criteria.amplitude_db,
+        zones[variant] = largest_test_zone(y, _at_aut(lens, ef, False, distance, y), criteria.amplitude_db,
                                    criteria.phase_deg)
     built = variants[-1][0]
     figures = {f"test_zone_diameter_mm_{v}": z.diameter_mm for v, z in zones.items()}
     figures |= {"test_zone_diameter_mm": zones[built].diameter_mm, "test_zone_distance_mm": distance}
     ef, on_axis = fields[(built, nominal)]
     if on_axis:
-        bor = test_zone(y, _at_aut(lens, ef, True, distance, y), criteria.amplitude_db, criteria.phase_deg)
+        bor = largest_test_zone(y, _at_aut(lens, ef, True, distance, y), criteria.amplitude_db, criteria.phase_deg)
         figures["test_zone_diameter_bor_mm"] = bor.diameter_mm
         zones[f"{built}, exact body of revolution"] = bor
     amp = Plot("test-zone-amplitude", f"Test zone: amplitude {distance:.0f} mm behind the lens",
@@ -251,6 +251,14 @@ def _test_zone(lens: Lens, variants, fields, nominal: str, distance: float, crit
                   caption=f"largest centred zone within ±{criteria.amplitude_db:g} dB and ±{criteria.phase_deg:g}° "
                           "(linear tilt removed); angular spectrum of plane waves (not Fresnel)")
     return zones, (amp, pha), figures, zones[built].diameter_mm, table
+
+
+def _default_aut(lens: Lens, zone_mm: float, distance_mm: float) -> Aut:
+    """A circular AUT when the spec names none: the lens less the GO edge margin of seed-000 §4.6
+    (2.1) on each side, or the test zone, whichever is larger, and at least 2λ."""
+    lam = lens.wavelength_mm
+    size = max(2 * lens.radius_mm - 2 * edge_margin_mm(lam, distance_mm), zone_mm, 2 * lam)
+    return Aut(size, size, True, 0)
 
 
 def _aut(lens: Lens, variants, feeds, fields, z_ref: float, distance: float, aut: Aut, criteria: Criteria):
@@ -278,7 +286,7 @@ def _aut(lens: Lens, variants, feeds, fields, z_ref: float, distance: float, aut
                 figures |= {"aut_sum_main_error": s.main, "aut_sum_side_error": s.side,
                             "aut_difference_main_error": d.main, "aut_difference_side_error": d.side}
                 cuts = c
-    size = f"Ø{aut.height_mm:g} mm" if aut.circular else f"{aut.width_mm:g} × {aut.height_mm:g} mm"
+    size = f"Ø{aut.height_mm:.0f} mm" if aut.circular else f"{aut.width_mm:.0f} × {aut.height_mm:.0f} mm"
     cols = ("feed", "lens", "ΔΣ sum", "Δmain sum", "Δside sum", "ΔΣ diff", "Δmain diff", "Δside diff")
     if not criteria.difference:
         rows = [r[:5] for r in rows]

@@ -84,7 +84,7 @@ class TestZone:
     __test__ = False                # not a pytest class
 
 
-def test_zone(y_mm, field, amplitude_db: float = 1.0, phase_deg: float = 11.25) -> TestZone:
+def largest_test_zone(y_mm, field, amplitude_db: float = 1.0, phase_deg: float = 11.25) -> TestZone:
     """The largest diameter 2ρ such that over |y| ≤ ρ the amplitude and the phase (best-fit linear
     tilt removed) stay within ±amplitude_db and ±phase_deg of their mid-range (module docstring).
     ``y_mm``: a cut through the centre, increasing; the zone is centred on y = 0."""

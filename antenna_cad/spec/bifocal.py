@@ -39,7 +39,8 @@ class BifocalDesignSpec(StrictModel):
     kinber: KinberSpec | None = Field(None, description="construction: kinber only — its parameters")
     phase_error_budget_deg: float = Field(22.5, gt=0, le=180, description="budget of the scan-range study")
     aut: AutSpec | None = Field(None, description="antenna under test on the antenna_x_mm plane (its "
-                                "distance_mm is that plane); default: a circle the size of the test zone")
+                                "distance_mm is that plane); default: a circle, the lens less the GO edge "
+                                "margin or the test zone if larger")
     test_zone: TestZoneSpec = TestZoneSpec()
 
     @model_validator(mode="after")

@@ -14,8 +14,8 @@ class CollimatorDesign(StrictModel):
     focal_length_mm: float = Field(gt=0, le=200000, description="feed to lens vertex")
     phase_error_budget_deg: float = Field(22.5, gt=0, le=180)
     aut: AutSpec | None = Field(None, description="antenna under test behind the flat face: edge margin "
-                                "(seed-000 §4.6) and pattern distortion (§4.5); default: a circle the size of "
-                                "the test zone, 100 mm behind")
+                                "(seed-000 §4.6) and pattern distortion (§4.5); default: a circle, the lens less "
+                                "the GO edge margin (2.1) or the test zone if larger, 100 mm behind")
     test_zone: TestZoneSpec = TestZoneSpec()
 
 

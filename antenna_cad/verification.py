@@ -62,6 +62,11 @@ class Verification:
                             self.plots + other.plots)
 
 
+def finite_figures(figures: dict) -> dict[str, float]:
+    """``figures`` as plain floats, undefined ones (NaN: e.g. no sidelobe within ±90°) left out."""
+    return {k: float(v) for k, v in figures.items() if np.isfinite(v)}
+
+
 def detrended(y: np.ndarray, phase_deg: np.ndarray) -> np.ndarray:
     """Aperture phase with the least-squares linear tilt removed (seed-000 §4.1, (2.16))."""
     return phase_deg - np.polyval(np.polyfit(y, phase_deg, 1), y)

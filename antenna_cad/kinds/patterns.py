@@ -34,13 +34,13 @@ from scipy.optimize import brentq
 
 from antenna_cad.kinds.asbuilt import Lens, Medium, trace_lens
 from antenna_cad.radiation.aperture import PatternFigures, bor_aperture, grid_aperture, pattern_figures
-from antenna_cad.radiation.distortion import Aut, ErrorMeter, IntegralErrors, aut_cuts, integral_errors, thresholds
+from antenna_cad.radiation.distortion import Aut, AutMeter, IntegralErrors
 from antenna_cad.radiation.testzone import TestZone, largest_test_zone, propagate_bor, propagate_line
 from antenna_cad.raytrace.collimator import axial_defocus_limits, trace_collimator
 from antenna_cad.raytrace.trace2d import transmitted_amplitude
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.collimator import edge_margin_mm, path_difference_approx_mm, path_difference_mm
-from antenna_cad.verification import Plot, Series, Table, Verification
+from antenna_cad.verification import Plot, Series, Table, Verification, finite_figures
 
 SAMPLES_PER_WAVELENGTH = 20      # aperture and AUT-plane cuts
 GRID_PER_WAVELENGTH = 4          # 2-D aperture grid (patterns of off-axis feeds)
@@ -139,16 +139,11 @@ def aut_field(lens: Lens, ef: ExitField, on_axis: bool, distance_mm: float):
     return on_grid
 
 
-def aut_errors(lens: Lens, field_on_grid, aut: Aut) -> tuple[IntegralErrors, IntegralErrors, tuple]:
+def aut_errors(meter: AutMeter, field_on_grid) -> tuple[IntegralErrors, IntegralErrors, tuple]:
     """Sum and difference integral errors of the AUT in the field ``field_on_grid(X, Y)`` on the
-    AUT plane, and the cuts."""
-    lam = lens.wavelength_mm
-    x, y = aut.grid(lam)
-    e = _detilted(x, y, field_on_grid(*np.meshgrid(x, y)), aut.excitation(x, y))
-    actual = aut_cuts(aut, x, y, e, lam)
-    ideal = aut_cuts(aut, x, y, np.ones_like(e), lam)
-    return (integral_errors(actual[0], ideal[0]), integral_errors(actual[1], ideal[1], difference=True),
-            (actual, ideal))
+    AUT plane, its linear tilt removed, and the cuts."""
+    x, y = meter.x, meter.y
+    return meter.errors(_detilted(x, y, field_on_grid(*np.meshgrid(x, y)), meter.excitation))
 
 
 def _r(v: float, nd: int = 3):
@@ -211,7 +206,7 @@ def lens_patterns(lens: Lens, variants: list[tuple[str, Medium]], feeds, criteri
     aut = criteria.aut or _default_aut(lens, zone, distance)
     a_tab, a_plot, a_fig, checks = _aut(lens, variants, feeds, fields, z_ref, distance, aut, criteria)
     figures |= a_fig
-    return Verification(figures, tuple(checks), tuple(tables + [a_tab]), tuple(plots + [a_plot]))
+    return Verification(finite_figures(figures), tuple(checks), tuple(tables + [a_tab]), tuple(plots + [a_plot]))
 
 
 def _test_zone(lens: Lens, variants, fields, nominal: str, distance: float, criteria: Criteria):
@@ -263,7 +258,8 @@ def _default_aut(lens: Lens, zone_mm: float, distance_mm: float) -> Aut:
 
 def _aut(lens: Lens, variants, feeds, fields, z_ref: float, distance: float, aut: Aut, criteria: Criteria):
     lam = lens.wavelength_mm
-    th_sum, th_diff = thresholds(aut, lam)
+    meter = AutMeter(aut, lam)
+    th_sum, th_diff = meter.thresholds()
     rows = [("threshold (22.5° quadratic)", "", _e(th_sum.total), _e(th_sum.main), _e(th_sum.side),
              _e(th_diff.total), _e(th_diff.main), _e(th_diff.side))]
     figures = {"aut_sum_threshold": th_sum.total, "aut_difference_threshold": th_diff.total}
@@ -272,13 +268,13 @@ def _aut(lens: Lens, variants, feeds, fields, z_ref: float, distance: float, aut
     fz, fy = feeds[0][1], feeds[0][2]
     z_aut = z_ref + distance
     k = 2 * np.pi / lam
-    s, d, _ = aut_errors(lens, lambda X, Y: np.exp(1j * k * np.sqrt((z_aut - fz) ** 2 + X**2 + (Y - fy) ** 2)), aut)
+    s, d, _ = aut_errors(meter, lambda X, Y: np.exp(1j * k * np.sqrt((z_aut - fz) ** 2 + X**2 + (Y - fy) ** 2)))
     rows.append((nominal, "no lens (feed's spherical wave)", _e(s.total), _e(s.main), _e(s.side), _e(d.total),
                  _e(d.main), _e(d.side)))
     figures |= {"aut_sum_integral_error_no_lens": s.total, "aut_difference_integral_error_no_lens": d.total}
     for feed, _, _ in feeds:
         for variant, _ in variants:
-            s, d, c = aut_errors(lens, aut_field(lens, *fields[(variant, feed)], distance), aut)
+            s, d, c = aut_errors(meter, aut_field(lens, *fields[(variant, feed)], distance))
             rows.append((feed, variant, _e(s.total), _e(s.main), _e(s.side), _e(d.total), _e(d.main), _e(d.side)))
             tag = "" if (variant, feed) == (built, nominal) else f"_{variant}_{feed}"
             figures |= {f"aut_sum_integral_error{tag}": s.total, f"aut_difference_integral_error{tag}": d.total}
@@ -296,7 +292,7 @@ def _aut(lens: Lens, variants, feeds, fields, z_ref: float, distance: float, aut
                   caption="integral errors of seed-000 (1.20)–(1.23): |F| to its own peak, θ ±90°, main lobe to "
                           "the reference's first nulls, odd excitation for the difference pattern; the AUT in the "
                           "propagated field vs a plane wave, linear tilt removed")
-    (a_sum, a_diff), (i_sum, i_diff) = cuts
+    (a_sum, a_diff), (i_sum, i_diff) = cuts, meter.ideal
     span = np.degrees(8 * lam / aut.height_mm)
     th = np.linspace(-span, span, 801)
     series = [Series("sum, plane wave", th, i_sum.db(th), "line"), Series("sum, in the lens field", th, a_sum.db(th), "dashed")]
@@ -325,18 +321,16 @@ def _e(v: float) -> str:
 
 # ------------------------------------------------------------------ collimator feed-displacement limits
 
-def _integral_error(design, gap_mm: float, aut: Aut, meter: ErrorMeter, feed_y_mm: float, difference: bool) -> float:
+def _integral_error(design, gap_mm: float, meter: AutMeter, feed_y_mm: float, difference: bool) -> float:
     """Δ_Σ of a 1-D AUT (seed-000 (1.19), as Table 2.4) in the GO field of the ideal lens with the
     feed at (−f, y), on the plane ``gap_mm`` behind the flat face; linear tilt removed."""
     lam = design.wavelength_mm
     ap = trace_collimator(focal_length_mm=design.focal_length_mm, n=design.n, diameter_mm=design.diameter_mm,
                           back_z_mm=design.thickness_mm, antenna_z_mm=design.thickness_mm + gap_mm,
                           wavelength_mm=lam, feed_zy_mm=(-design.focal_length_mm, feed_y_mm), rays=401, margin=0.999)
-    x, y = aut.grid(lam)
     o = np.argsort(ap.y_mm)
-    e = np.exp(1j * 2 * np.pi / lam * np.interp(y, ap.y_mm[o], ap.path_mm[o]))
-    grid = _detilted(x, y, np.broadcast_to(e[:, None], (len(y), len(x))), aut.excitation(x, y))
-    return meter(aut_cuts(aut, x, y, grid, lam)[1 if difference else 0]).total
+    path = lambda X, Y: np.interp(Y, ap.y_mm[o], ap.path_mm[o])          # noqa: E731
+    return aut_errors(meter, lambda X, Y: np.exp(1j * 2 * np.pi / lam * path(X, Y)))[1 if difference else 0].total
 
 
 def _first_crossing(fun, grid: np.ndarray, level: float) -> float:
@@ -361,17 +355,15 @@ def collimator_feed_limits(design, gap_mm: float, aut_height_mm: float, taper_k:
     f, D, lam = design.focal_length_mm, design.diameter_mm, design.wavelength_mm
     lo, hi = axial_defocus_limits(f, D, design.eps_r, gap_mm, lam, design.phase_error_budget_deg)
     aut = Aut(lam, min(aut_height_mm, D), False, taper_k)
-    th = thresholds(aut, lam)
-    x, y = aut.grid(lam)
-    ideal = aut_cuts(aut, x, y, np.ones((len(y), len(x))), lam)
+    meter = AutMeter(aut, lam)
+    th = meter.thresholds()
     figures = {"path_difference_mm": path_difference_mm(D, f), "path_difference_approx_mm": path_difference_approx_mm(D, f),
-               "axial_feed_limit_sigma_near": lo, "axial_feed_limit_sigma_far": np.nan if hi is None else hi}
+               "axial_feed_limit_sigma_near": lo, "axial_feed_limit_sigma_far": np.nan if hi is None else hi}   # NaN: none
     rows = [("Δl (2.14) / (2.15)", f"{figures['path_difference_mm']:.3f} / {figures['path_difference_approx_mm']:.3f} mm"),
             ("axial feed limit σ < 1 (phase rule)", f"{lo:.3f} (feed at {lo * f:.0f} mm)"),
             ("axial feed limit σ > 1 (phase rule)", "none up to σ = 20" if hi is None else f"{hi:.3f} (feed at {hi * f:.0f} mm)")]
     for name, diff in (("sum", False), ("difference", True))[:2 if difference else 1]:
-        meter = ErrorMeter(ideal[diff], diff)
-        edge = _first_crossing(lambda y: _integral_error(design, gap_mm, aut, meter, y, diff), f * scan_grid,
+        edge = _first_crossing(lambda y: _integral_error(design, gap_mm, meter, y, diff), f * scan_grid,
                                th[diff].total)
         angle = float(np.degrees(np.arctan2(edge, f)))
         figures[f"scan_half_angle_integral_{name}_deg"] = angle
@@ -379,4 +371,4 @@ def collimator_feed_limits(design, gap_mm: float, aut_height_mm: float, taper_k:
     table = Table("feed-limits", "Feed-displacement limits (ideal lens, seed-000 Tables 2.1 and 2.4)", ("limit", "value"),
                   tuple(rows), caption=f"σ = feed distance / f; 1-D AUT {aut.height_mm:g} mm, cos^{taper_k} taper, "
                   f"{gap_mm:g} mm behind the flat face; phase rule {design.phase_error_budget_deg:g}° p-p")
-    return Verification(figures, (), (table,), ())
+    return Verification(finite_figures(figures), (), (table,), ())

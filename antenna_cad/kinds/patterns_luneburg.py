@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from antenna_cad.radiation.aperture import ApertureField, bor_aperture, grid_aperture, pattern_figures
-from antenna_cad.verification import Plot, Series, Table, Verification
+from antenna_cad.verification import Plot, Series, Table, Verification, finite_figures
 
 LENS_NAMES = {"ideal": "ideal", "stepped": "stepped", "as_built": "fabricated"}
 RAYS_PER_BIN = 8
@@ -94,7 +94,7 @@ def luneburg_patterns(design, fans: dict) -> Verification:
         "η spillover", "η dissipative", "aperture efficiency"), tuple(rows),
         caption="D = (4πS/λ²)·η_taper·η_phase; gain adds spillover (cos^q feed, rays lost) and the axial-ray "
                 "dielectric loss (seed-002 §2.5–§2.7)")
-    return Verification(figures, (), (table,), plots)
+    return Verification(finite_figures(figures), (), (table,), plots)
 
 
 def _differs(curves: dict, feed: str, nominal: str) -> bool:

@@ -24,7 +24,7 @@ import numpy as np
 from antenna_cad.radiation.aperture import points_aperture, pattern_figures
 from antenna_cad.raytrace.slot_array import cell_phase_rad, fit_beam
 from antenna_cad.synthesis.slot_array import taper_alpha_np_per_m, traced_eikonal_mm, wavenumber_per_mm
-from antenna_cad.verification import Plot, Series, Table, Verification
+from antenna_cad.verification import Plot, Series, Table, Verification, finite_figures
 
 KA_CELL_FIT = (0.0078, 2.01)       # α(L1) = a0·exp(b0·L1), Np/m and 1/mm (seed-003 §3.2)
 
@@ -114,4 +114,4 @@ def slot_patterns(spec, design, lenses, slots_csv: str, f_ghz: np.ndarray, i_des
                   tuple(gain_series), caption="aperture-formula directivity at the traced beam × radiated fraction"),
              Plot("beam-vs-frequency", "Beam elevation against frequency (frequency scan), every feed",
                   "frequency GHz", "elevation from broadside (deg)", tuple(beam_series)))
-    return Verification(figures, (), (table,), plots)
+    return Verification(finite_figures(figures), (), (table,), plots)

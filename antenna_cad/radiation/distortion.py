@@ -133,11 +133,29 @@ def quadratic_phase(aut: Aut, x_mm: np.ndarray, y_mm: np.ndarray, edge_deg: floa
     return np.exp(1j * math.radians(edge_deg) * s**2)
 
 
+class AutMeter:
+    """One AUT on its grid: excitation, plane-wave reference cuts and their error meters, so the
+    AUT can be put in many fields cheaply."""
+
+    def __init__(self, aut: Aut, wavelength_mm: float):
+        self.aut, self.wavelength_mm = aut, wavelength_mm
+        self.x, self.y = aut.grid(wavelength_mm)
+        self.excitation = aut.excitation(self.x, self.y)
+        self.ideal = aut_cuts(aut, self.x, self.y, np.ones_like(self.excitation), wavelength_mm)
+        self.meters = (ErrorMeter(self.ideal[0]), ErrorMeter(self.ideal[1], difference=True))
+
+    def errors(self, field2d: np.ndarray) -> tuple[IntegralErrors, IntegralErrors, tuple[Cut, Cut]]:
+        """Sum and difference integral errors in ``field2d[iy, ix]`` on the AUT grid, and its cuts."""
+        cuts = aut_cuts(self.aut, self.x, self.y, field2d, self.wavelength_mm)
+        return self.meters[0](cuts[0]), self.meters[1](cuts[1]), cuts
+
+    def thresholds(self, edge_deg: float = QUADRATIC_THRESHOLD_DEG) -> tuple[IntegralErrors, IntegralErrors]:
+        """Errors of a ``edge_deg`` quadratic phase error over the AUT: the thresholds of Tables
+        1.6/1.7 recomputed for this AUT."""
+        return self.errors(quadratic_phase(self.aut, self.x, self.y, edge_deg))[:2]
+
+
 def thresholds(aut: Aut, wavelength_mm: float,
                edge_deg: float = QUADRATIC_THRESHOLD_DEG) -> tuple[IntegralErrors, IntegralErrors]:
-    """Sum and difference integral errors of a ``edge_deg`` quadratic phase error over the AUT:
-    the thresholds of Tables 1.6/1.7 recomputed for this AUT."""
-    x, y = aut.grid(wavelength_mm)
-    ideal = aut_cuts(aut, x, y, np.ones((len(y), len(x))), wavelength_mm)
-    bad = aut_cuts(aut, x, y, quadratic_phase(aut, x, y, edge_deg), wavelength_mm)
-    return (integral_errors(bad[0], ideal[0]), integral_errors(bad[1], ideal[1], difference=True))
+    """Sum and difference thresholds of :meth:`AutMeter.thresholds`."""
+    return AutMeter(aut, wavelength_mm).thresholds(edge_deg)

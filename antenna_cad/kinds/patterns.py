@@ -165,6 +165,7 @@ def lens_patterns(lens: Lens, variants: list[tuple[str, Medium]], feeds, criteri
     rows, plots, fields = [], [], {}
     for feed, z, y in feeds:
         on_axis = height_mm is None and y == 0.0
+        chief = float(np.degrees(np.arctan2(-y, float(lens.front_z(0.0)) - z)))    # the ray through the vertex
         series, theta0 = [], None
         for variant, medium in variants:
             ef = exit_field(lens, medium, (z, y), z_ref)
@@ -175,9 +176,11 @@ def lens_patterns(lens: Lens, variants: list[tuple[str, Medium]], feeds, criteri
             eff = pf.efficiency
             figures |= {f"{key}_directivity_dbi": pf.directivity_dbi, f"{key}_hpbw_deg": pf.beam.hpbw_deg,
                         f"{key}_sll_db": pf.beam.sll_db, f"{key}_efficiency": eff.total,
-                        f"{key}_beam_deg": pf.beam.theta_deg, f"{key}_efficiency_taper": eff.taper,
+                        f"{key}_beam_deg": pf.beam.theta_deg, f"{key}_squint_deg": pf.beam.theta_deg - chief,
+                        f"{key}_efficiency_taper": eff.taper,
                         f"{key}_efficiency_phase": eff.phase, f"{key}_efficiency_dissipative": eff.dissipative}
-            rows.append((feed, variant, _r(pf.beam.theta_deg, 4), _r(pf.directivity_dbi), _r(pf.beam.hpbw_deg, 4),
+            rows.append((feed, variant, _r(pf.beam.theta_deg, 4), _r(pf.beam.theta_deg - chief, 4),
+                         _r(pf.directivity_dbi), _r(pf.beam.hpbw_deg, 4),
                          _r(pf.beam.sll_db, 2), _r(eff.taper, 4), _r(eff.phase, 4), _r(eff.dissipative, 4),
                          _r(eff.total, 4)))
             theta0 = pf.beam.theta_deg if theta0 is None else theta0
@@ -195,10 +198,12 @@ def lens_patterns(lens: Lens, variants: list[tuple[str, Medium]], feeds, criteri
         figures[f"pattern_{variant}_{edge}_scan_loss_db"] = (figures[f"pattern_{variant}_{nominal}_directivity_dbi"]
                                                             - figures[f"pattern_{variant}_{edge}_directivity_dbi"])
     tables = [Table("patterns", "Far-field patterns per lens and feed",
-                    ("feed", "lens", "beam deg", "directivity dBi", "HPBW deg", "first sidelobe dB", "η taper",
+                    ("feed", "lens", "beam deg", "squint deg", "directivity dBi", "HPBW deg", "first sidelobe dB", "η taper",
                      "η phase", "η dissipative", "aperture efficiency"), tuple(rows),
                     caption="GO aperture field (Fresnel + dielectric loss, seed-000 §4.4; isotropic feed: no "
-                            "spillover); D = (4πS/λ²)·η_taper·η_phase, efficiency = η_taper·η_phase·η_dissipative")]
+                            "spillover); squint: beam minus the feed's ray through the lens vertex; "
+                            "D = (4πS/λ²)·η_taper·η_phase, efficiency = η_taper·η_phase·η_dissipative; scan loss: "
+                            "nominal minus edge directivity")]
     tz_v, tz_p, tz_f, zone, tz_table = _test_zone(lens, variants, fields, nominal, distance, criteria)
     figures |= tz_f
     plots += tz_p

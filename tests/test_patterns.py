@@ -4,8 +4,12 @@ verification (issue 12)."""
 from __future__ import annotations
 
 import math
+from pathlib import Path
+from types import SimpleNamespace
 
+import numpy as np
 import pytest
+import yaml
 
 from antenna_cad.raytrace.collimator import axial_defocus_limits
 from antenna_cad.spec import parse_spec
@@ -96,3 +100,34 @@ def test_collimator_verification_carries_the_pattern_figures():
     assert "aut_difference_integral_error" not in v.figures                       # pattern: sum
     assert v.figures["axial_feed_limit_sigma_near"] < 1 < v.figures["axial_feed_limit_sigma_far"]
     assert {p.name for p in v.plots} >= {"pattern-on-axis", "pattern-edge", "test-zone-amplitude", "aut-patterns"}
+
+
+def test_luneburg_fan_aperture_reproduces_the_design_taper():
+    """The ideal lens's binned GO power density gives the design's taper efficiency (seed-002 §2.5)."""
+    from antenna_cad.kinds import luneburg as K
+    from antenna_cad.kinds.luneburg_verify import N_RAYS, _lenses
+    from antenna_cad.kinds.patterns_luneburg import fan_aperture
+    from antenna_cad.radiation.aperture import pattern_figures
+    spec = parse_spec(yaml.safe_load((Path(__file__).parents[1] / "recipes" / "luneburg-classic-5.yaml").read_text()))
+    design = K.synthesize(spec)
+    ideal = _lenses(spec, design, None, np.array([L.eps_r for L in design.layers]))["ideal"]
+    assert N_RAYS >= 256
+    pf = pattern_figures(fan_aperture(ideal.fan(0.0), design))
+    assert pf.efficiency.taper == pytest.approx(design.efficiency_taper, abs=0.01)
+    assert pf.efficiency.phase > 0.999
+
+
+def test_slot_cells_radiate_the_taper_laws_fraction():
+    """Cells driven by the taper law (1.1) radiate the fraction η it was designed for (seed-003 §3.2)."""
+    from antenna_cad.kinds.patterns_slots import cell_amplitudes
+    from antenna_cad.raytrace.slot_array import Cells
+    M, p = 40, 12.0
+    cells = Cells(np.arange(4) * 10.0, np.tile(np.arange(M) * p, (4, 1)), np.full(4, 7.0), np.full(4, 1.0))
+    for law, eta in (("sin", 0.9), ("uniform", 0.8), ("cos_pedestal", 0.95)):
+        spec = SimpleNamespace(slots=SimpleNamespace(layout="longitudinal_pair",
+                                                     taper=SimpleNamespace(law=law, eta=eta, pedestal=0.3, a0=None, b0=None)),
+                               array=SimpleNamespace(length_mm=M * p))
+        amp, radiated = cell_amplitudes(spec, cells, "")
+        assert radiated == pytest.approx(eta, abs=0.01)
+        if law == "sin":
+            assert np.argmax(amp[0]) in range(M // 2 - 3, M // 2 + 3)     # |A|² = sin(πy/L): peak mid-guide

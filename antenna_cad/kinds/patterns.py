@@ -55,7 +55,6 @@ class Criteria:
     phase_deg: float = 11.25
     aut: Aut | None = None
     difference: bool = True
-    distance_mm: float | None = None     # AUT plane behind z_ref; None: the lens's antenna plane
 
 
 def criteria_from(aut_spec, test_zone_spec) -> Criteria:
@@ -160,7 +159,7 @@ def lens_patterns(lens: Lens, variants: list[tuple[str, Medium]], feeds, criteri
     for _, medium in variants:
         if hasattr(medium, "z_edges"):
             z_ref = max(z_ref, float(medium.z_edges[-1]))
-    distance = lens.antenna_z_mm - z_ref if criteria.distance_mm is None else criteria.distance_mm
+    distance = lens.antenna_z_mm - z_ref
     figures: dict[str, float] = {}
     rows, plots, fields = [], [], {}
     for feed, z, y in feeds:
@@ -204,7 +203,7 @@ def lens_patterns(lens: Lens, variants: list[tuple[str, Medium]], feeds, criteri
                             "spillover); squint: beam minus the feed's ray through the lens vertex; "
                             "D = (4πS/λ²)·η_taper·η_phase, efficiency = η_taper·η_phase·η_dissipative; scan loss: "
                             "nominal minus edge directivity")]
-    tz_v, tz_p, tz_f, zone, tz_table = _test_zone(lens, variants, fields, nominal, distance, criteria)
+    tz_p, tz_f, zone, tz_table = _test_zone(lens, variants, fields, nominal, distance, criteria)
     figures |= tz_f
     plots += tz_p
     tables.append(tz_table)
@@ -250,7 +249,7 @@ def _test_zone(lens: Lens, variants, fields, nominal: str, distance: float, crit
                   tuple((v, _r(z.diameter_mm, 1), _r(distance, 1)) for v, z in zones.items()),
                   caption=f"largest centred zone within ±{criteria.amplitude_db:g} dB and ±{criteria.phase_deg:g}° "
                           "(linear tilt removed); angular spectrum of plane waves (not Fresnel)")
-    return zones, (amp, pha), figures, zones[built].diameter_mm, table
+    return (amp, pha), figures, zones[built].diameter_mm, table
 
 
 def _default_aut(lens: Lens, zone_mm: float, distance_mm: float) -> Aut:

@@ -11,7 +11,9 @@ out. Across the guides the excitation is uniform (the mirror's edge illumination
 not given by the thesis). Element pattern √cos θ (3.9). Directivity by the aperture formula with
 each cell's area pitch × period, times the element's cos θ toward the beam (the projected
 aperture: scan loss); gain = directivity × the radiated fraction (the rest is
-absorbed by the load). The thesis's measured gain/beam curves are documentation only (R11).
+absorbed by the load). The frequency-scan sector is the elevation range over the band where the
+aperture efficiency (gain / (4πS/λ²)) stays ≥ 0.5, the thesis's definition; its full-wave sectors
+(two-mirror > 60°, single-mirror ≈ 30°, seed-003 §4) are documentation only (R11).
 """
 
 from __future__ import annotations
@@ -27,6 +29,7 @@ from antenna_cad.synthesis.slot_array import taper_alpha_np_per_m, traced_eikona
 from antenna_cad.verification import Plot, Series, Table, Verification, finite_figures
 
 KA_CELL_FIT = (0.0078, 2.01)       # α(L1) = a0·exp(b0·L1), Np/m and 1/mm (seed-003 §3.2)
+KIP_SECTOR = 0.5                   # the thesis's frequency-scan sector: where КИП ≥ 0.5 (seed-003 §4)
 
 
 def cell_amplitudes(spec, cells, slots_csv: str) -> tuple[np.ndarray, float]:
@@ -100,14 +103,19 @@ def slot_patterns(spec, design, lenses, slots_csv: str, f_ghz: np.ndarray, i_des
                 cuts.append(Series(f"{name}, {feed}", th, ap.cut("y", float(ux[i_design])).db(th, pf.beam.peak),
                                    "line" if name == "ideal" else "dashed"))
                 elev = np.degrees(fit.elevation_rad)
+                kip = 10 ** (gain / 10) / (4 * np.pi * area * amp.size / lam**2)      # КИП over the band
+                good = elev[np.isfinite(elev) & (kip >= KIP_SECTOR)]
                 figures |= {f"scan_sector_min_deg_{name}": float(np.nanmin(elev)),
-                            f"scan_sector_max_deg_{name}": float(np.nanmax(elev))}
+                            f"scan_sector_max_deg_{name}": float(np.nanmax(elev)),
+                            f"frequency_scan_sector_deg_{name}": float(np.ptp(good)) if good.size else 0.0}
     f_d = float(f_ghz[i_design])
     table = Table("slot-patterns", f"Array patterns per feed at {f_d:g} GHz", (
         "lens", "feed", "elevation deg", "azimuth deg", "directivity dBi", "gain dBi", "HPBW deg (elevation)",
         "first sidelobe dB", "η taper", "η phase", "radiated fraction"), tuple(rows),
         caption="array factor of the slot table as written (cells, lengths → taper), √cos θ element; gain = "
-                "directivity × radiated fraction (seed-003 §3.9)")
+                "directivity × radiated fraction (seed-003 §3.9); frequency-scan sector of the centre feed where the "
+                "aperture efficiency stays ≥ 0.5: " + ", ".join(f"{n} {figures[f'frequency_scan_sector_deg_{n}']:.1f}°"
+                                                                for n, _, _ in lenses))
     plots = (Plot("pattern-elevation", f"Elevation pattern, centre feed, {f_d:g} GHz", "θ from broadside (deg)",
                   "relative power (dB)", tuple(cuts), caption="cut along the guides through the beam's azimuth"),
              Plot("gain-vs-frequency", "Gain against frequency, every feed", "frequency GHz", "gain (dBi)",

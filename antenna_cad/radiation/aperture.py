@@ -26,6 +26,12 @@ from scipy import optimize, special
 SAMPLES_PER_BEAMWIDTH = 16       # u-grid density: samples per λ/extent (peaks and edges are refined)
 
 
+def matvec(a: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """a @ x without BLAS threads (einsum): on a small shared machine threaded BLAS made these
+    matrix-vector products 10–50× slower (measured 58 vs 1.2 ms for 2535 × 165)."""
+    return np.einsum("ij,j->i", a, x)
+
+
 def trapezoid_weights(s: np.ndarray) -> np.ndarray:
     """Trapezoid-rule weights of the increasing samples ``s``."""
     s = np.asarray(s, float)
@@ -48,7 +54,7 @@ class Cut:
         u = np.atleast_1d(np.asarray(u, float))
         arg = (2 * np.pi / self.wavelength_mm) * np.outer(u, self.s_mm)
         kernel = special.j0(arg) if self.bessel else np.exp(-1j * arg)
-        return kernel @ self.c
+        return matvec(kernel, self.c)
 
     @property
     def extent_mm(self) -> float:

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from antenna_cad.radiation.aperture import Cut, trapezoid_weights
+from antenna_cad.radiation.aperture import Cut, matvec, trapezoid_weights
 
 THETA_SAMPLES_PER_BEAMWIDTH = 32      # θ samples per λ/L: the main-lobe bound to ≈ 1 %
 QUADRATIC_THRESHOLD_DEG = 22.5          # seed-000 §4.1: ΔΦ_m = π/8
@@ -57,7 +57,7 @@ class Aut:
 def aut_cuts(aut: Aut, x_mm: np.ndarray, y_mm: np.ndarray, field2d: np.ndarray,
              wavelength_mm: float) -> tuple[Cut, Cut]:
     """Sum and difference cuts (y plane) of the AUT receiving ``field2d[iy, ix]`` on its grid."""
-    line = (aut.excitation(x_mm, y_mm) * np.asarray(field2d, complex)) @ trapezoid_weights(x_mm)
+    line = matvec(aut.excitation(x_mm, y_mm) * np.asarray(field2d, complex), trapezoid_weights(x_mm))
     c = line * trapezoid_weights(y_mm)
     return Cut(y_mm, c, wavelength_mm), Cut(y_mm, c * np.sign(y_mm), wavelength_mm)
 
@@ -104,7 +104,7 @@ class ErrorMeter:
         theta = np.linspace(-math.pi / 2, math.pi / 2, 2 * (n // 2) + 1)
         self.s_mm = ideal.s_mm
         self.kernel = np.exp(-1j * (2 * math.pi / ideal.wavelength_mm) * np.outer(np.sin(theta), ideal.s_mm))
-        o = np.abs(self.kernel @ ideal.c)
+        o = np.abs(matvec(self.kernel, ideal.c))
         self.o = o / o.max()
         self.w = trapezoid_weights(theta)
         self.ref = float(np.sum(self.o**2 * self.w))
@@ -113,7 +113,7 @@ class ErrorMeter:
     def __call__(self, actual: Cut) -> IntegralErrors:
         if actual.s_mm.shape != self.s_mm.shape or not np.allclose(actual.s_mm, self.s_mm):
             raise ValueError("actual and reference cuts must share their samples")
-        a = np.abs(self.kernel @ actual.c)
+        a = np.abs(matvec(self.kernel, actual.c))
         err = (a / a.max() - self.o) ** 2 * self.w
         main = float(np.sum(err[self.lo:self.hi + 1])) / self.ref
         total = float(np.sum(err)) / self.ref

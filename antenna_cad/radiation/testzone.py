@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import special
 
-from antenna_cad.radiation.aperture import trapezoid_weights
+from antenna_cad.radiation.aperture import matvec, trapezoid_weights
 
 EVANESCENT_NEPERS = 14.0
 KAPPA_SAMPLES = 48      # κ step π/(48·extent): the on-axis field of a hard-edged disc (its edge wave
@@ -48,9 +48,9 @@ def propagate_bor(r_mm, field, wavelength_mm: float, distance_mm: float, rho_mm)
     """E(ρ, z = distance) of the axisymmetric aperture field E(r) (module docstring)."""
     r, rho = np.asarray(r_mm, float), np.asarray(rho_mm, float)
     kappa = _spectrum_axis(wavelength_mm, distance_mm, r.max() + rho.max(), False)
-    spec = special.j0(np.outer(kappa, r)) @ (np.asarray(field, complex) * r * trapezoid_weights(r))
+    spec = matvec(special.j0(np.outer(kappa, r)), np.asarray(field, complex) * r * trapezoid_weights(r))
     spec *= np.exp(1j * _kz(kappa, wavelength_mm) * distance_mm) * kappa * trapezoid_weights(kappa)
-    return special.j0(np.outer(rho, kappa)) @ spec
+    return matvec(special.j0(np.outer(rho, kappa)), spec)
 
 
 def propagate_line(y_mm, field, wavelength_mm: float, distance_mm: float, y_out_mm) -> np.ndarray:

@@ -146,7 +146,7 @@ def aut_errors(meter: AutMeter, field_on_grid) -> tuple[IntegralErrors, Integral
 
 
 def _r(v: float, nd: int = 3):
-    return round(float(v), nd) if np.isfinite(v) else None
+    return round(float(v), nd) + 0.0 if np.isfinite(v) else None        # + 0.0: no "-0" in the tables
 
 
 def lens_patterns(lens: Lens, variants: list[tuple[str, Medium]], feeds, criteria: Criteria,
@@ -199,7 +199,7 @@ def lens_patterns(lens: Lens, variants: list[tuple[str, Medium]], feeds, criteri
         figures[f"pattern_{variant}_{edge}_scan_loss_db"] = same_model[(variant, nominal)] - same_model[(variant, edge)]
     tables = [Table("patterns", "Far-field patterns per lens and feed",
                     ("feed", "lens", "beam deg", "squint deg", "directivity dBi", "HPBW deg", "first sidelobe dB", "η taper",
-                     "η phase", "η dissipative", "aperture efficiency"), tuple(rows),
+                     "η phase", "η dissipative", "efficiency"), tuple(rows),
                     caption="GO aperture field (Fresnel + dielectric loss, seed-000 §4.4; isotropic feed: no "
                             "spillover); squint: beam minus the feed's ray through the lens vertex; "
                             "D = (4πS/λ²)·η_taper·η_phase, efficiency = η_taper·η_phase·η_dissipative; scan loss: "

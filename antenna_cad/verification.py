@@ -58,6 +58,16 @@ class Verification:
     plots: tuple[Plot, ...] = ()
     files: dict[str, str] = field(default_factory=dict)    # output path → text (the full-wave deck)
 
+    def merged(self, other: "Verification") -> "Verification":
+        """This verification with ``other``'s figures, checks, tables, plots and files added."""
+        return Verification(self.figures | other.figures, self.checks + other.checks, self.tables + other.tables,
+                            self.plots + other.plots, self.files | other.files)
+
+
+def finite_figures(figures: dict) -> dict[str, float]:
+    """``figures`` as plain floats, undefined ones (NaN: e.g. no sidelobe within ±90°) left out."""
+    return {k: float(v) for k, v in figures.items() if np.isfinite(v)}
+
 
 def detrended(y: np.ndarray, phase_deg: np.ndarray) -> np.ndarray:
     """Aperture phase with the least-squares linear tilt removed (seed-000 §4.1, (2.16))."""

@@ -243,7 +243,7 @@ def test_layup_verification_traces_the_staircase_when_scanned():
     assert "stepped_go_facets_axis_phase_rms_deg" in f                                  # 10 mm < √(λR) = 39 mm
     checks = {c.name: c for c in v.checks}
     assert checks["ideal_lens_focus"].status == "pass" and "staircase_model" in checks
-    assert {t.name for t in v.tables} == {"layers", "grades", "aperture", "sensitivity"}
+    assert {t.name for t in v.tables} == {"layers", "grades", "aperture", "sensitivity", "patterns"}
     grades = next(t for t in v.tables if t.name == "grades")
     assert sum(r[grades.columns.index("rings")] for r in grades.rows) == len(layup.rings)
     fan = next(p for p in v.plots if p.name == "ray-fan")
@@ -259,4 +259,8 @@ def test_verification_figures_reach_the_manifest(tmp_path):
                 "as_built_scan90_focus_shift_mm", "sens_eps_r_gain_loss_db", "sens_total_gain_loss_db"):
         assert key in figures and math.isfinite(figures[key])
     assert figures == pytest.approx(result.verified)
-    assert {t["name"] for t in manifest["verification"]["tables"]} == {"layers", "grades", "aperture", "sensitivity"}
+    assert {t["name"] for t in manifest["verification"]["tables"]} == {"layers", "grades", "aperture", "sensitivity",
+                                                                       "patterns"}
+    for key in ("pattern_ideal_axis_directivity_dbi", "pattern_fabricated_scan90_hpbw_deg",
+                "pattern_stepped_axis_sll_db", "pattern_fabricated_axis_efficiency"):
+        assert math.isfinite(figures[key]), key

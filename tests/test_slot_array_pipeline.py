@@ -253,8 +253,11 @@ def test_verification_figures_reach_the_manifest(x_build):
         "tolerance_loss_db_fill_eps_r_all_guides", "tolerance_loss_db_guide_width_all_guides",
         "tolerance_loss_db_feed_position_along_the_axis"}
     tables = {t["name"]: t for t in manifest["verification"]["tables"]}
-    assert set(tables) == {"feeds", "slots", "sensitivity", "fov-sigma"}
+    assert set(tables) == {"feeds", "slots", "sensitivity", "fov-sigma", "slot-patterns"}
     assert len(tables["fov-sigma"]["rows"]) == 5 and 0 < fig["sigma_fov80_design"] < 5.6e-4 * 2
+    assert len(tables["slot-patterns"]["rows"]) == 2 * 5                   # ideal and as written, every horn
+    assert 20 < fig["frequency_scan_sector_deg_fabricated"] < 40           # thesis (FEM): single mirror ≈ 30°
+    assert fig["pattern_fabricated_horn3_gain_dbi"] < fig["pattern_fabricated_horn3_directivity_dbi"]
     assert len(tables["feeds"]["rows"]) == 5
     assert [r[-1] for r in tables["sensitivity"]["rows"]].count("dominant") == 1
     assert {c.name for c in result.checks} >= {"as_built_phase_rms", "slot_table_period", "tolerance_budget"}
@@ -266,7 +269,8 @@ def test_verification_plots_are_complete(x_model):
     fab = kind.fabricate(spec, design, None, ())
     v = adapter(spec.kind).verify(spec, design, None, fab)
     plots = {p.name: p for p in v.plots}
-    assert set(plots) == {"scan-curves", "beamformer-rays", "slot-phase", "sensitivity", "fov-sigma"}
+    assert set(plots) == {"scan-curves", "beamformer-rays", "slot-phase", "sensitivity", "fov-sigma",
+                          "pattern-elevation", "gain-vs-frequency", "beam-vs-frequency"}
     assert plots["beamformer-rays"].equal_aspect
     for p in v.plots:
         for s in p.series:

@@ -98,9 +98,9 @@ def test_merge_keys_may_override(tmp_path):
 
 @pytest.mark.parametrize("path,value,expected", [
     ("fabrication.method", "sheet-layup", "fabrication.method: must be one of 'sheet_layup', 'solid' (got 'sheet-layup')"),
-    ("design.antenna.aperture_mm", float("inf"), "design.antenna.aperture_mm: must be a finite number"),
+    ("design.aut.diameter_mm", float("inf"), "design.aut.diameter_mm: must be a finite number"),
     ("design.diameter_mm", float("nan"), "design.diameter_mm: must be a finite number"),
-    ("design.antenna", {"aperture_mm": "x" * 500}, "(got 'xxxxxxxx"),
+    ("design.aut", {"diameter_mm": "x" * 500}, "(got 'xxxxxxxx"),
 ])
 def test_enum_and_non_finite_errors_are_short(path, value, expected):
     with pytest.raises(SpecError) as err:

@@ -17,7 +17,8 @@ from typing import BinaryIO
 
 PT_PER_MM = 72.0 / 25.4
 _SPELLED = {"ε": "e", "λ": "lambda", "Δ": "d", "ρ": "rho", "↑": "^", "↓": "v", "→": "->", "≤": "<=", "≥": ">=",
-            "≈": "~", "√": "sqrt", "∅": "O", "−": "-", "’": "'"}
+            "≈": "~", "√": "sqrt", "∅": "O", "−": "-", "’": "'", "η": "eta", "σ": "sigma", "Σ": "S",
+            "θ": "theta", "π": "pi", "φ": "phi"}
 
 
 def spelled(text: str) -> str:

@@ -210,6 +210,15 @@ def _r(x: float) -> float:
     return round(float(x), 3)
 
 
+def lens_variants(lens: Lens, layup: LayupPlan | None, fab) -> list[tuple[str, Medium]]:
+    """(name, medium): the ideal lens, and for a layup the stepped stack as cut and as fabricated."""
+    n = lens.n
+    if layup is None:
+        return [("ideal", lens.faces(n))]
+    return [("ideal", lens.faces(n)), ("stepped", stepped_section(layup, n)),
+            ("fabricated", fabricated_section(layup, fab, n))]
+
+
 def verify_lens(lens: Lens, feeds: tuple[tuple[str, float, float], ...], tolerances: TolerancesSpec,
                 layup: LayupPlan | None = None, fab=None, study: tuple[Candidate, ...] = (),
                 settings: VerificationSpec = VerificationSpec()) -> Verification:
@@ -217,11 +226,8 @@ def verify_lens(lens: Lens, feeds: tuple[tuple[str, float, float], ...], toleran
     the nominal feed; ``study``: the stock candidates (layups); ``settings``: the full-wave stage
     (issue 10), whose phase model the sanding check and the tolerance budget follow."""
     n = lens.n
-    variants: list[tuple[str, Medium]] = [("ideal", lens.faces(n))]
-    section = None
-    if layup is not None:
-        section = fabricated_section(layup, fab, n)
-        variants += [("stepped", stepped_section(layup, n)), ("fabricated", section)]
+    variants = lens_variants(lens, layup, fab)
+    section = variants[-1][1] if layup is not None else None
     as_built = variants[-1][1]
     figures: dict[str, float] = {}
     rows, plots, go = [], [], {}

@@ -16,8 +16,9 @@ from functools import partial
 import numpy as np
 
 from antenna_cad.fabrication.layup import LayupPlan
-from antenna_cad.kinds.asbuilt import Lens, stock_study, verify_lens
+from antenna_cad.kinds.asbuilt import Lens, lens_variants, stock_study, verify_lens
 from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks, plan_layup_and_box, plan_sheets
+from antenna_cad.kinds.patterns import criteria_from, lens_patterns
 from antenna_cad.spec.bifocal import BifocalSpec
 from antenna_cad.spec.common import resolve_material
 from antenna_cad.synthesis.bifocal import (BifocalDesign, defocus_study, lens_volume_mm3, max_radius_in,
@@ -138,9 +139,11 @@ def verify(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None, fa
     study = (stock_study(_sheets(spec, design), partial(_lens, spec, design), spec.fabrication.stock_thicknesses_mm,
                          spec.verification)
              if layup is not None else ())
-    v = verify_lens(_lens(spec, design, layup), (("focus", 0.0, design.focus_offset_mm),
-                                                 ("edge", 0.0, st.usable_half_range_mm)),
-                    spec.tolerances, layup, fab, study, spec.verification)
+    lens, feeds = _lens(spec, design, layup), (("focus", 0.0, design.focus_offset_mm),
+                                               ("edge", 0.0, st.usable_half_range_mm))
+    v = verify_lens(lens, feeds, spec.tolerances, layup, fab, study, spec.verification)
+    v = v.merged(lens_patterns(lens, lens_variants(lens, layup, fab), feeds,
+                               criteria_from(spec.design.aut, spec.design.test_zone), _height(spec)))
     scan = {"usable_feed_half_range_mm": st.usable_half_range_mm, "usable_half_angle_deg": st.usable_half_angle_deg,
             "usable_feed_inner_mm": st.usable_inner_mm,
             "single_surface_usable_feed_half_range_mm": st.single_usable_half_range_mm,

@@ -8,8 +8,9 @@ from functools import partial
 import numpy as np
 
 from antenna_cad.fabrication.layup import LayupPlan
-from antenna_cad.kinds.asbuilt import Lens, stock_study, verify_lens
+from antenna_cad.kinds.asbuilt import Lens, lens_variants, stock_study, verify_lens
 from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks, plan_layup_and_box, plan_sheets
+from antenna_cad.kinds.patterns import collimator_feed_limits, criteria_from, lens_patterns
 from antenna_cad.raytrace.collimator import front_face, single_surface_p2p_deg, usable_half_range_mm
 from antenna_cad.raytrace.trace2d import Interface
 from antenna_cad.spec.collimator import CollimatorSpec
@@ -24,13 +25,13 @@ SCAN_GRID = np.linspace(0.0, 1.0, 41)   # transverse feed displacement / f searc
 
 def synthesize(spec: CollimatorSpec) -> CollimatorDesign:
     m = resolve_material(spec.material)
-    antenna = spec.design.antenna
+    aut = spec.design.aut
     return synthesize_collimator(
         diameter_mm=spec.design.diameter_mm, focal_length_mm=spec.design.focal_length_mm,
         eps_r=m.eps_r, tan_delta=m.tan_delta, frequency_ghz=spec.frequency_ghz,
         phase_error_budget_deg=spec.design.phase_error_budget_deg,
-        antenna_aperture_mm=antenna.aperture_mm if antenna else None,
-        antenna_distance_mm=antenna.distance_mm if antenna else None)
+        antenna_aperture_mm=aut.span_mm if aut else None,
+        antenna_distance_mm=_antenna_gap_mm(spec) if aut else None)
 
 
 def _sheets(spec: CollimatorSpec, design: CollimatorDesign):
@@ -39,7 +40,8 @@ def _sheets(spec: CollimatorSpec, design: CollimatorDesign):
 
 
 def _antenna_gap_mm(spec: CollimatorSpec) -> float:
-    return spec.design.antenna.distance_mm if spec.design.antenna else DEFAULT_ANTENNA_GAP_MM
+    aut = spec.design.aut
+    return aut.distance_mm if aut is not None and aut.distance_mm is not None else DEFAULT_ANTENNA_GAP_MM
 
 
 def _lens(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | None) -> Lens:
@@ -108,7 +110,11 @@ def verify(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | No
     study = (stock_study(_sheets(spec, design), partial(_lens, spec, design), spec.fabrication.stock_thicknesses_mm,
                          spec.verification)
              if layup is not None else ())
-    v = verify_lens(_lens(spec, design, layup), (("on_axis", -f, 0.0), ("edge", -f, edge)),
-                    spec.tolerances, layup, fab, study, spec.verification)
+    lens, feeds = _lens(spec, design, layup), (("on_axis", -f, 0.0), ("edge", -f, edge))
+    v = verify_lens(lens, feeds, spec.tolerances, layup, fab, study, spec.verification)
+    crit = criteria_from(spec.design.aut, spec.design.test_zone)
+    v = v.merged(lens_patterns(lens, lens_variants(lens, layup, fab), feeds, crit)).merged(
+        collimator_feed_limits(design, gap, crit.aut.height_mm if crit.aut else D, crit.aut.taper_k if crit.aut else 0,
+                               crit.difference, SCAN_GRID))
     return replace(v, figures={"scan_half_range_mm": edge,
                                "scan_half_angle_deg": float(np.degrees(np.arctan2(edge, f)))} | v.figures)

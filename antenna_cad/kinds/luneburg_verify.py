@@ -38,6 +38,7 @@ from dataclasses import replace
 import numpy as np
 
 from antenna_cad.fabrication.rings import RingLayupPlan, ring_radii
+from antenna_cad.kinds.patterns_luneburg import luneburg_patterns
 from antenna_cad.raytrace.graded import trace_graded
 from antenna_cad.raytrace.luneburg import (RUZE_DB_PER_RAD2, Fan, added_phase_rms, fan_figures, feed_fan,
                                            feed_move_opl, first_order_opl, focus_shift)
@@ -196,7 +197,7 @@ def verify_luneburg(spec, design: LuneburgDesign, layup: RingLayupPlan | None, f
                if stair and staircase_as_facets(design, layup) else []),
              _phase_plot(results, stair), _eps_plot(design), sens_plot)
     checks = _checks(design, layup, results, dominant, sens_figs["sens_total_gain_loss_db"])
-    return Verification(figures, tuple(checks), tables, plots)
+    return Verification(figures, tuple(checks), tables, plots).merged(luneburg_patterns(design, fans))
 
 
 def _trace_with_focus(lens: _Lens, angle: float, figs) -> tuple[Fan, tuple]:

@@ -12,6 +12,7 @@ import numpy as np
 
 from antenna_cad.geometry.slot_layout import PartSizes, clip_curve
 from antenna_cad.kinds.slot_array_fov import fov_block
+from antenna_cad.kinds.patterns_slots import slot_patterns
 from antenna_cad.materials import Material
 from antenna_cad.raytrace.slot_array import Cells, cells_from_slot_table, tolerance_effects, trace_beam
 from antenna_cad.spec.common import resolve_material
@@ -155,10 +156,12 @@ def verify(spec: SlotArraySpec, design: SlotArrayDesign, layup, fab) -> Verifica
               + f" costs {dominant.loss_db:.2f} dB toward the nominal beam"),
     )
     fov_plot, fov_table, fov_figures = fov_block(design)
-    return Verification(figures | fov_figures, checks, (_feed_table(design, ideal, built, i_d), _slot_table(design, cells),
-                                                        _tolerance_table(at_spec, dominant), fov_table),
-                        (_scan_plot(design, cells, f, built[centre], spec), _ray_plot(design, built_bf),
-                         _phase_plot(design, ideal, built, i_d), _sensitivity_plot(effects), fov_plot))
+    v = Verification(figures | fov_figures, checks, (_feed_table(design, ideal, built, i_d), _slot_table(design, cells),
+                                                     _tolerance_table(at_spec, dominant), fov_table),
+                     (_scan_plot(design, cells, f, built[centre], spec), _ray_plot(design, built_bf),
+                      _phase_plot(design, ideal, built, i_d), _sensitivity_plot(effects), fov_plot))
+    return v.merged(slot_patterns(spec, design, (("ideal", bf, ideal_cells), ("fabricated", built_bf, cells)),
+                                  fab.files["slots.csv"], f, i_d))
 
 
 def _slug(name: str) -> str:

@@ -88,6 +88,37 @@ def single_surface_p2p_deg(focal_length_mm: float, diameter_mm: float, eps_r: fl
                             feed_zy_mm=(-focal_length_mm, feed_y_mm), rays=rays, margin=0.999).peak_to_peak_deg()
 
 
+def axial_p2p_deg(focal_length_mm: float, diameter_mm: float, eps_r: float, sigma: float, back_mm: float,
+                  wavelength_mm: float, rays: int = 201) -> float:
+    """Peak-to-peak aperture phase with the feed on the axis at σ·f from the vertex (σ < 1: toward
+    the lens), seed-000 §5.5."""
+    n = float(np.sqrt(eps_r))
+    d = thickness_mm(diameter_mm, focal_length_mm, n)
+    return trace_collimator(focal_length_mm=focal_length_mm, n=n, diameter_mm=diameter_mm, back_z_mm=d,
+                            antenna_z_mm=d + back_mm, wavelength_mm=wavelength_mm,
+                            feed_zy_mm=(-sigma * focal_length_mm, 0.0), rays=rays, margin=0.999).peak_to_peak_deg()
+
+
+def axial_defocus_limits(focal_length_mm: float, diameter_mm: float, eps_r: float, back_mm: float,
+                         wavelength_mm: float, budget_deg: float,
+                         sigma_max: float = 20.0) -> tuple[float, float | None]:
+    """Feed-displacement limits along the axis by the phase rule (seed-000 Table 2.1, σ < 1 and
+    σ > 1): the σ = (feed distance)/f where the p-p phase reaches ``budget_deg`` moving toward the
+    lens and away from it (None when it never does up to ``sigma_max``: the table's "−")."""
+    def p2p(sigma):
+        return axial_p2p_deg(focal_length_mm, diameter_mm, eps_r, sigma, back_mm, wavelength_mm)
+
+    near = np.linspace(1.0, 0.02, 50)
+    vals = np.array([p2p(s) for s in near])
+    i = int(np.argmax(vals > budget_deg))
+    lo = float(brentq(lambda s: p2p(s) - budget_deg, near[i], near[i - 1], xtol=1e-6)) if vals[i] > budget_deg else 0.0
+    far = np.geomspace(1.0, sigma_max, 60)
+    vals = np.array([p2p(s) for s in far])
+    j = int(np.argmax(vals > budget_deg))
+    hi = float(brentq(lambda s: p2p(s) - budget_deg, far[j - 1], far[j], xtol=1e-6)) if vals[j] > budget_deg else None
+    return lo, hi
+
+
 def usable_half_range_mm(p2p_deg, feed_y_mm: np.ndarray, budget_deg: float) -> tuple[np.ndarray, float]:
     """Feed-scan study (seed-000 §5.5): ``p2p_deg(y)`` on the grid ``feed_y_mm`` (increasing from 0)
     and the first displacement where it reaches the budget (brentq between grid points; the last

@@ -9,7 +9,7 @@ from typing import Literal
 from pydantic import Field, model_validator
 
 from antenna_cad.spec.bounds import MIN_DEG, MIN_MM, MIN_RATIO
-from antenna_cad.spec.common import SheetLayupSpec, SpecBase, StrictModel
+from antenna_cad.spec.common import AutSpec, SheetLayupSpec, SpecBase, StrictModel, TestZoneSpec
 
 
 COEF = 10.0      # |normalised coefficient| (D = 1): beyond it the lens is not a lens
@@ -44,9 +44,15 @@ class BifocalDesignSpec(StrictModel):
     construction: Literal["nikulina", "kinber"] = "nikulina"
     kinber: KinberSpec | None = Field(None, description="construction: kinber only — its parameters")
     phase_error_budget_deg: float = Field(22.5, ge=MIN_DEG, le=180, description="budget of the scan-range study")
+    aut: AutSpec | None = Field(None, description="antenna under test on the antenna_x_mm plane (its "
+                                "distance_mm is that plane); default: a circle, the lens less the GO edge "
+                                "margin or the test zone if larger")
+    test_zone: TestZoneSpec = TestZoneSpec()
 
     @model_validator(mode="after")
     def _consistent(self):
+        if self.aut is not None and self.aut.distance_mm is not None:
+            raise ValueError("design.aut.distance_mm: the bifocal AUT plane is design.antenna_x_mm")
         if self.construction == "kinber":
             given = [k for k in ("edge_x_mm", "focus_offset_mm", "beam_tilt_deg") if getattr(self, k) is not None]
             if self.kinber is None:

@@ -5,9 +5,10 @@ Units are in the field names. Models are frozen and forbid unknown keys; bounds 
 
 from __future__ import annotations
 
+import math
 from typing import Annotated, Literal, Union
 
-from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, field_validator
+from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, field_validator, model_validator
 
 from antenna_cad.materials import LIBRARY, Material
 from antenna_cad.spec.bounds import MAX_LIST, MIN_GHZ, MIN_RATIO, MIN_SHEET_MM, TINY
@@ -156,6 +157,42 @@ class VerificationSpec(StrictModel):
     feed_pattern: Literal["dipole", "cos_q"] = Field(
         "dipole", description="feed far field: short dipole (E-plane cos θ, H-plane 1) or cos^q θ")
     feed_q: float = Field(1.0, ge=MIN_RATIO, le=50, description="q of the cos_q feed pattern")
+
+
+class AutSpec(StrictModel):
+    """Antenna under test in the collimator's field (seed-000 §4.5, §4.6): a circle (diameter_mm)
+    or a width_mm × height_mm rectangle (x × y, the cut in the vertical y plane)."""
+    diameter_mm: float | None = Field(None, ge=1, le=20000)
+    width_mm: float | None = Field(None, ge=1, le=20000)
+    height_mm: float | None = Field(None, ge=1, le=20000)
+    distance_mm: float | None = Field(None, ge=0, le=100000, description="lens back face to the AUT "
+                                      "aperture, l_ant (collimator; default 100 mm, the seed's)")
+    pattern: Literal["sum", "sum_and_difference"] = Field(
+        "sum_and_difference", description="patterns whose integral errors are computed (difference: odd excitation)")
+    taper: int = Field(0, ge=0, le=3, description="k of the AUT amplitude cos^k(π y / L), seed-000 (1.24)")
+
+    @model_validator(mode="after")
+    def _one_shape(self):
+        rect = (self.width_mm is not None, self.height_mm is not None)
+        if self.diameter_mm is not None and any(rect):
+            raise ValueError("design.aut: give diameter_mm or width_mm × height_mm, not both")
+        if self.diameter_mm is None and not all(rect):
+            raise ValueError("design.aut: give diameter_mm, or both width_mm and height_mm")
+        return self
+
+    @property
+    def span_mm(self) -> float:
+        """The lens diameter the AUT needs at least: its diameter or its diagonal."""
+        return self.diameter_mm if self.diameter_mm is not None else float(math.hypot(self.width_mm, self.height_mm))
+
+
+class TestZoneSpec(StrictModel):
+    """Test-zone criteria on the AUT plane: ± amplitude ripple and ± phase deviation (linear tilt
+    removed) about their mid-range; defaults ±1 dB and ±22.5°/2 (seed-000 §4.1)."""
+    amplitude_db: float = Field(1.0, ge=0.01, le=20)
+    phase_deg: float = Field(11.25, ge=0.01, le=180)
+
+    __test__ = False
 
 
 class SpecBase(StrictModel):

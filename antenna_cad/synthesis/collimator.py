@@ -102,6 +102,24 @@ def scan_limit_deg(wavelength: float, diameter_mm: float, focal_length_mm: float
     return float(np.degrees(wavelength / diameter_mm * (focal_length_mm + n * d_mm) / (2 * n * d_mm)))
 
 
+def path_difference_mm(diameter_mm: float, focal_length_mm: float) -> float:
+    """Path difference Δl the lens corrects (edge vs centre ray from the focus), seed-000 §4.3
+    (2.14): Δl·sqrt(1 + 2f/Δl) = D/2, i.e. Δl = sqrt(f² + D²/4) − f."""
+    f = focal_length_mm
+    return float(np.sqrt(f * f + diameter_mm**2 / 4) - f)
+
+
+def path_difference_approx_mm(diameter_mm: float, focal_length_mm: float) -> float:
+    """Δl ≈ D²/(8f), seed-000 §4.3 (2.15)."""
+    return diameter_mm**2 / (8 * focal_length_mm)
+
+
+def diameter_for_path_difference_mm(path_difference_mm: float, focal_length_mm: float) -> float:
+    """D = 2·sqrt(Δl² + 2fΔl), (2.14) solved for D (the rows of seed-000 Tables 2.1–2.4)."""
+    dl = path_difference_mm
+    return float(2 * np.sqrt(dl * dl + 2 * focal_length_mm * dl))
+
+
 def far_field_distance_mm(diameter_mm: float, wavelength: float) -> float:
     """Far-field distance 2D²/λ the collimator replaces, seed-000 §0 (L66)."""
     return 2 * diameter_mm**2 / wavelength

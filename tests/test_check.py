@@ -152,3 +152,18 @@ def test_check_command_on_a_build_and_on_tampered_copies(ptfe_build, tmp_path):
     result = runner.invoke(app, ["check", str(bad)])
     assert result.exit_code == 2 and "not strict JSON" in result.output
     assert runner.invoke(app, ["check", str(tmp_path)]).exit_code == 2
+
+
+@pytest.mark.parametrize("angle", [0.0, 0.3, 1.2, -2.0])
+def test_slot_round_ends_are_true_half_circles(angle):
+    from antenna_cad.fabrication.templates import bulge_bounds
+    from antenna_cad.geometry.slot_layout import slot_bulges, slot_outline
+    from shapely.geometry import Polygon
+    path = slot_bulges(3.0, 4.0, 10.0, 2.0, angle)
+    assert [b for _, _, b in path] == [1.0, 0.0, 1.0, 0.0]
+    outline = Polygon(slot_outline(3.0, 4.0, 10.0, 2.0, angle))           # circumscribed, ≤ 0.002 mm out
+    assert bulge_bounds(path) == pytest.approx(outline.bounds, abs=0.0025)
+    u = np.array([math.sin(angle), math.cos(angle)])
+    ends = [np.array([3.0, 4.0]) + k * 4.0 * u for k in (1, -1)]
+    for (x, y, _), c in zip(path, [ends[0], ends[0], ends[1], ends[1]]):
+        assert math.hypot(x - c[0], y - c[1]) == pytest.approx(1.0, abs=1e-12)

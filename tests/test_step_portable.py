@@ -56,7 +56,7 @@ def _model(recipe: str):
 
 def _surface_points(path: Path, label: str) -> np.ndarray:
     """Points gmsh evaluates on the curved (non-plane, non-cylinder) faces of solid ``label``."""
-    gmsh.initialize(["-noenv"], readConfigFiles=False)
+    gmsh.initialize(["-noenv"], readConfigFiles=False, interruptible=False)
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.model.occ.importShapes(str(path))

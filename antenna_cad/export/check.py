@@ -5,7 +5,7 @@ STEP: gmsh's OpenCASCADE 7.x (solid count, names, volumes ≤ 1e-6 relative). ST
 file parsed here with numpy (triangle count, watertight as claimed with vertices merged by
 position, volume within area × chord tolerance). DXF: the group codes parsed here (CUT outline
 with its bulge arcs within 0.01 mm of the manifest) beside ezdxf's audit. SVG: its mm size. PDF:
-PDFium (page size, every character inside the page and never across a template tile's window
+PDFium (page size, every text run inside the page and never across a template tile's window
 edge, the 100 mm check bar measured in a render of each template page). Manifest: strict JSON,
 sizes and sha256 of every file, no unlisted file.
 """
@@ -268,14 +268,12 @@ def _pdf(folder: Path, name: str, templates: bool) -> Iterator[Finding]:
             if abs(w - a4[0]) > PAGE_TOL_PT or abs(h - a4[1]) > PAGE_TOL_PT:
                 bad_size.append(k + 1)
             text = page.get_textpage()
-            for i in range(text.count_chars()):
-                box = text.get_charbox(i)
-                if box[0] < -PAGE_TOL_PT or box[1] < -PAGE_TOL_PT or box[2] > w + PAGE_TOL_PT or box[3] > h + PAGE_TOL_PT:
-                    outside.append(k + 1)
-                    break
-                if templates and _straddles(box, _window_pt()):
-                    across.append(k + 1)
-                    break
+            boxes = [text.get_rect(i) for i in range(text.count_rects())]      # runs of text, as laid out
+            if any(b[0] < -PAGE_TOL_PT or b[1] < -PAGE_TOL_PT or b[2] > w + PAGE_TOL_PT or b[3] > h + PAGE_TOL_PT
+                   for b in boxes):
+                outside.append(k + 1)
+            if templates and any(_straddles(b, _window_pt()) for b in boxes):
+                across.append(k + 1)
             if templates:
                 bars.append(check_bar_mm(page))
         pages = len(pdf)
@@ -283,9 +281,9 @@ def _pdf(folder: Path, name: str, templates: bool) -> Iterator[Finding]:
         pdf.close()
     yield Finding(name, "pdf page size", not bad_size, f"{pages} A4 pages" + (f"; not A4: pages {bad_size[:5]}" if bad_size else ""))
     yield Finding(name, "pdf text inside page", not outside,
-                  "every character inside its page" if not outside else f"text past the page edge on pages {outside[:5]}")
+                  "every text run inside its page" if not outside else f"text past the page edge on pages {outside[:5]}")
     if templates:
-        yield Finding(name, "pdf text unclipped", not across, "no character across a tile window edge"
+        yield Finding(name, "pdf text unclipped", not across, "no text run across a tile window edge"
                       if not across else f"text across the tile window edge on pages {across[:5]}")
         worst = max(bars, key=lambda b: abs(b - CHECK_BAR_MM)) if bars else math.nan
         yield Finding(name, "pdf check bar", abs(worst - CHECK_BAR_MM) <= BAR_TOL_MM,
@@ -294,7 +292,7 @@ def _pdf(folder: Path, name: str, templates: bool) -> Iterator[Finding]:
 
 
 def _straddles(box, window) -> bool:
-    """A character box crossing one of the window's edges (partly inside, partly outside)."""
+    """A text run crossing one of the window's edges (partly inside, partly outside)."""
     l, b, r, t = box
     wl, wb, wr, wt = window
     if r <= wl or l >= wr or t <= wb or b >= wt:

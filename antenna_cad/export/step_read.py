@@ -15,7 +15,7 @@ def gmsh_solids(path: Path) -> dict[str, list[float]]:
     """label → volumes (mm³) of the solids gmsh reads under that product name (``sheet-01.2``,
     the 2nd solid of part ``sheet-01``, counts under ``sheet-01``)."""
     import gmsh
-    gmsh.initialize(["-noenv"], readConfigFiles=False)
+    gmsh.initialize(["-noenv"], readConfigFiles=False, interruptible=False)
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.model.occ.importShapes(str(path))

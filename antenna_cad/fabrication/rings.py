@@ -47,7 +47,8 @@ from shapely.geometry import Polygon
 from antenna_cad.fabrication.cutlist import CutRow, cutlist_csv
 from antenna_cad.fabrication.layup import Cradle
 from antenna_cad.fabrication.nesting import Placement, nest
-from antenna_cad.fabrication.outline import CHORD_TOL_MM, NEST_SPACING_MM, circle_polygon, fits_board, foot_polygon
+from antenna_cad.fabrication.outline import (CHORD_TOL_MM, NEST_SPACING_MM, Circle, arc_paths, circle_polygon, fits_board,
+                                             foot_polygon)
 from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, BulgePath, Drawing
 from antenna_cad.materials import Material
 from antenna_cad.synthesis.checks import Check
@@ -694,7 +695,9 @@ def _piece_drawing(plan: RingLayupPlan, sheet: RingSheet, piece, title: str) -> 
     bisector."""
     d = Drawing(piece.label)
     if isinstance(piece, FootPiece):
-        d.add_polygon(piece.cut_path(plan.kerf_mm))
+        path = piece.cut_path(plan.kerf_mm)                   # the cradle follows the lens circle
+        d.add_polygon(path, arc_paths(path, [Circle(0.0, 0.0, plan.lens_radius_mm - plan.kerf_mm / 2,
+                                                    CHORD_TOL_MM, plan.lens_radius_mm)]))
         _mark_holes(d, piece.holes, 0.0)
         d.add_cross(0.0, 0.0, 10.0)
         _title(d, [f"{title}  {piece.label}: stand foot of {sheet.label} (z {sheet.z_min_mm:g} to "

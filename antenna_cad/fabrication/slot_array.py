@@ -15,7 +15,7 @@ from antenna_cad.fabrication.sheets import FabPlan
 from antenna_cad.fabrication.templates import Drawing
 from antenna_cad.geometry.slot_layout import (GuideExtent, PartSizes, band_ring, core_and_load_rings, coupling_edge,
                                               guide_extent, horn_outlines, layer_indices, mirror_back_sign,
-                                              plate_polygon, slot_outline)
+                                              plate_polygon, slot_bulges, slot_outline)
 from antenna_cad.materials import Material
 from antenna_cad.synthesis.slot_array import SlotArrayDesign, offset_curve
 
@@ -65,8 +65,10 @@ def _guide_pieces(design: SlotArrayDesign, g: int, ext: GuideExtent, t: float, m
     d = Drawing(f"top-{g:02d}")
     d.cut.append(_ring([(-half, 0), (half, 0), (half, L), (-half, L)]))
     for i in sel:
-        d.cut.append(_ring(slot_outline(float(s.x_mm[i] - gx), float(s.y_mm[i]) - y0, float(s.length_mm[i]),
-                                        float(s.width_mm[i]), float(s.angle_rad[i]))))
+        slot = (float(s.x_mm[i] - gx), float(s.y_mm[i]) - y0, float(s.length_mm[i]), float(s.width_mm[i]),
+                float(s.angle_rad[i]))
+        d.arcs[len(d.cut)] = slot_bulges(*slot)                         # DXF: true round ends
+        d.cut.append(_ring(slot_outline(*slot)))
         d.texts.append((f"{int(s.cell_index[i]):02d}.{int(s.slot_in_cell[i])}", half + 1.0,
                         float(s.y_mm[i]) - y0 - text_h / 2, text_h))
     d.marks.append([(0.0, -3.0), (0.0, L + 3.0)])                      # guide axis

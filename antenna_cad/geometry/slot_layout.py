@@ -18,6 +18,20 @@ from antenna_cad.synthesis.slot_array import Curve, SlotArrayDesign, offset_curv
 END_WEB_MM = 0.2      # metal left between the body start and the first slot
 
 
+def slot_bulges(x: float, y: float, length: float, width: float, angle: float) -> list[tuple[float, float, float]]:
+    """The same slot with true round ends: a closed DXF bulge path (x, y, bulge to the next vertex),
+    counter-clockwise, each end one half circle (bulge 1), the sides straight."""
+    u = np.array([np.sin(angle), np.cos(angle)])
+    nrm = np.array([-u[1], u[0]])
+    r, s = width / 2, max(length / 2 - width / 2, 0.0)
+    path = []
+    for sign in (1.0, -1.0):
+        centre = np.array([x, y]) + sign * s * u
+        start, end = centre - sign * r * nrm, centre + sign * r * nrm
+        path += [(float(start[0]), float(start[1]), 1.0)] + ([(float(end[0]), float(end[1]), 0.0)] if s > 0 else [])
+    return path
+
+
 @dataclass(frozen=True)
 class Stack:
     """z extents (mm) of the layers and plates; layer N is the guide layer."""

@@ -128,7 +128,7 @@ def _alarm(*_):
     raise Hang()
 
 
-LINE = re.compile(r"^(line \d+(, column \d+)?|[A-Za-z_<'\"].*?|larger than .*|cannot read.*): \S")
+LINE = re.compile(r"^[^\s:][^\n]*?: \S")          # where (a field, "line N, column M", "file size"): what
 
 
 def outcome(args: list[str], spec_path: Path, timeout_s: int = TIMEOUT_S) -> tuple[str, str]:

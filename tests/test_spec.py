@@ -79,7 +79,8 @@ BILLION_LAUGHS = "".join(f"{c}: &{c} [{', '.join([f'*{p}'] * 9) if p else '1, 1,
     (b"name: ok\nmaterial: \xe9\n", "line 2: not UTF-8 text (byte 0xe9)"),
     ("kind: [a, b]\n", f"kind: must be one of {', '.join(sorted(SPEC_MODELS))} (got ['a', 'b'])"),
     ("a: [" + "1, " * 2500 + "1]\n", "line 1, column 4: more than 2000 items"),
-    ("#" * 300_000, "larger than 256 KiB"),
+    ("#" * 300_000, "file size: more than 256 KiB"),
+    ("name: a\x01b\n", "line 1: control character #x0001 is not allowed in YAML"),
 ])
 def test_hostile_yaml_one_clean_line(tmp_path, text, expected):
     bad = tmp_path / "bad.yaml"

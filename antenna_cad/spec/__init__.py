@@ -55,7 +55,8 @@ def _got(value: object) -> str:
 
 
 def _format(source: str, err: dict) -> str:
-    loc = ".".join(str(p) for p in err["loc"] if p not in UNION_TAGS)
+    loc = ".".join(p if isinstance(p, str) and p.isidentifier() else repr(p) if isinstance(p, str) else str(p)
+                   for p in err["loc"] if p not in UNION_TAGS)      # odd keys quoted: one line, unambiguous
     msg = err["msg"].removeprefix("Value error, ")
     for long, short in _WORDING:
         msg = msg.replace(long, short)

@@ -46,7 +46,15 @@ MaterialRef = Annotated[
     Union[Annotated[str, Tag("library")], Annotated[InlineMaterial, Tag("inline")]],
     Discriminator(lambda v: "library" if isinstance(v, str) else "inline"),
     Field(description="a library material name, or inline {eps_r, tan_delta, density_kg_m3}")]
-UNION_TAGS = {"library", "inline", "sheet_layup", "solid", "shells", "sheet_mm", "sheet_auto"}   # stripped from error paths
+UNION_TAGS = {"library", "inline", "sheet_layup", "solid", "shells", "number", "auto"}
+# (tags are stripped from error paths)
+
+
+def or_auto(number) -> object:
+    """The type ``number`` (with its bounds) or the literal ``"auto"``; a bad value gets one error,
+    against the number, instead of one per union member."""
+    return Annotated[Union[Annotated[number, Tag("number")], Annotated[Literal["auto"], Tag("auto")]],
+                     Discriminator(lambda v: "auto" if v == "auto" else "number")]
 
 
 def resolve_material(ref: str | InlineMaterial) -> Material:
@@ -84,8 +92,7 @@ class SheetLayupSpec(StrictModel):
     """Stepped layup of stock sheets with a pedestal clamped in a box (seed-000 §6)."""
     method: Literal["sheet_layup"]
     sheet_thickness_mm: Annotated[
-        Union[Annotated[SheetThickness, Tag("sheet_mm")], Annotated[Literal["auto"], Tag("sheet_auto")]],
-        Discriminator(lambda v: "sheet_auto" if v == "auto" else "sheet_mm"),
+        or_auto(SheetThickness),
         Field(description="stock board thickness, or auto: the thickest of stock_thicknesses_mm whose "
               "unsanded stack meets the phase budget (the thinnest, with a sanding warning, when none does)")]
     stock_thicknesses_mm: tuple[SheetThickness, ...] = Field(

@@ -11,7 +11,7 @@ from typing import Annotated, Literal, Union
 from pydantic import Field, model_validator
 
 from antenna_cad.spec.bounds import MAX_LIST, MIN_RATIO, MIN_SHEET_MM
-from antenna_cad.spec.common import BoardSpec, SpecBase, StrictModel
+from antenna_cad.spec.common import BoardSpec, SpecBase, StrictModel, or_auto
 
 
 MAX_LAYERS = 100      # shells of a multilayer lens (seed-002 designs use 3–20)
@@ -28,7 +28,7 @@ class LadderSpec(StrictModel):
 
 
 class LayersSpec(StrictModel):
-    count: Annotated[int, Field(ge=1, le=MAX_LAYERS)] | Literal["auto"] = "auto"
+    count: or_auto(Annotated[int, Field(ge=1, le=MAX_LAYERS)]) = "auto"
     split: Literal["equal_eps", "equal_n", "equal_thickness", "ladder"] = "equal_eps"
     ladder: LadderSpec | None = None
 

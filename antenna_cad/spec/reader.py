@@ -108,9 +108,9 @@ def read_yaml(path: Path) -> object:
         with path.open("rb") as fh:
             raw = fh.read(MAX_BYTES + 1)
     except OSError as exc:
-        raise ReadError(f"cannot read: {exc.strerror or exc}") from None
+        raise ReadError(f"file: cannot read it ({exc.strerror or exc})") from None
     if len(raw) > MAX_BYTES:
-        raise ReadError(f"larger than {MAX_BYTES // 1024} KiB; a spec is a short text file")
+        raise ReadError(f"file size: more than {MAX_BYTES // 1024} KiB (a spec is a short text file)")
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:
@@ -118,7 +118,11 @@ def read_yaml(path: Path) -> object:
         raise ReadError(f"line {line}: not UTF-8 text (byte 0x{raw[exc.start]:02x}); save the file as UTF-8") from None
     if "\x00" in text:
         raise ReadError(f"line {text.count(chr(10), 0, text.index(chr(0))) + 1}: NUL character; not a text file")
-    loader = _Loader(text)
+    try:
+        loader = _Loader(text)
+    except yaml.reader.ReaderError as exc:          # control characters, checked on construction
+        line = text.count("\n", 0, exc.position) + 1
+        raise ReadError(f"line {line}: control character #x{exc.character:04x} is not allowed in YAML") from None
     try:
         root = loader.get_single_node()
         if root is None:

@@ -14,7 +14,7 @@ from typing import Annotated, Literal
 from pydantic import Field, field_validator, model_validator
 
 from antenna_cad.spec.bounds import MAX_LIST, MIN_GHZ, MIN_MM, MIN_RATIO
-from antenna_cad.spec.common import (InlineMaterial, MaterialRef, SpecBase, StrictModel, _library_name,
+from antenna_cad.spec.common import (InlineMaterial, MaterialRef, SpecBase, StrictModel, _library_name, or_auto,
                                      resolve_material)
 
 ABSORBER = InlineMaterial(name="absorber", eps_r=4.0, tan_delta=0.3, density_kg_m3=1600.0)
@@ -68,7 +68,7 @@ class TaperSpec(StrictModel):
 class SlotsSpec(StrictModel):
     layout: Literal["longitudinal_4", "longitudinal_pair", "transverse_3"]
     width_mm: float = Field(ge=MIN_MM, le=100)
-    period_mm: Annotated[float, Field(ge=0.1, le=1000)] | Literal["auto"] = "auto"
+    period_mm: or_auto(Annotated[float, Field(ge=0.1, le=1000)]) = "auto"
     design_angle_deg: float | None = Field(
         None, ge=-80, le=80, description="−1st-harmonic beam angle from broadside at band.design_ghz "
         "(+ toward the guides' far end); sets period_mm: auto (default 0: broadside, p = λg)")

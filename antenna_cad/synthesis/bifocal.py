@@ -317,10 +317,12 @@ class BifocalDesign:
 # Nikulina chain (seed-000 §3.2 with the digest's §2.7 completion)
 # --------------------------------------------------------------------------------------------------
 
-def _nikulina_chain(rho1: float, o: _Optics, max_steps: int = 4000):
+def _nikulina_chain(rho1: float, o: _Optics, max_steps: int = 1500):
     """C = (ρ1, 0) → G → mirror → B → mirror → H → … (digest §2.7 steps 1–4), run until a step fails
     (no root, TIR, or the faces would cross) or stalls at the rim. Returns (illuminated points,
-    normals, shadow points, normals) as the chain produced them (alternating signs of y)."""
+    normals, shadow points, normals) as the chain produced them (alternating signs of y). The links
+    shrink with the foci's separation; a chain longer than ``max_steps`` (the recipes need ≤ 250) is
+    refused rather than solved for minutes."""
     C = np.array([[rho1, 0.0]])
     NC = np.array([[-1.0, 0.0]])
     ill_p, ill_n = [C[0]], [NC[0]]
@@ -340,6 +342,10 @@ def _nikulina_chain(rho1: float, o: _Optics, max_steps: int = 4000):
                 break
             sh_p.append(G[0])
             sh_n.append(NG[0])
+        else:
+            raise DesignError("design.beam_tilt_deg", f"the Nikulina construction needs more than {max_steps} "
+                              "face segments (the foci are too close for this aperture); increase "
+                              "beam_tilt_deg or focus_offset_mm")
     return (np.array(ill_p), np.array(ill_n), np.array(sh_p).reshape(-1, 2), np.array(sh_n).reshape(-1, 2))
 
 

@@ -1,0 +1,149 @@
+"""Build promises (issue 11): output-folder problems are one line and exit 2 before synthesis;
+leftovers of killed runs are cleaned; SIGKILL at any moment leaves the previous build complete under
+its own name; Ctrl-C exits 130 at once; two builds into one folder are serialised."""
+
+import fcntl
+import hashlib
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from antenna_cad.cli import app
+
+ROOT = Path(__file__).resolve().parents[1]
+SPEC = ROOT / "recipes" / "ptfe-lens-120mm.yaml"       # the quickest full build (STEP, STL, templates, report)
+NAME = "ptfe-lens-120mm"
+EXE = shutil.which("make-lens") or str(Path(sys.executable).parent / "make-lens")
+runner = CliRunner()
+
+
+def _one_line_exit_2(args, expected):
+    result = runner.invoke(app, args)
+    lines = [ln for ln in result.output.splitlines() if ln.strip()]
+    assert result.exit_code == 2 and len(lines) == 1 and expected in lines[0], result.output
+    assert result.exception is None or isinstance(result.exception, SystemExit)
+
+
+def test_output_problems_are_one_line_before_synthesis(tmp_path, monkeypatch):
+    import antenna_cad.pipeline as pipeline
+
+    def no_synthesis(spec):
+        raise AssertionError("synthesis ran before the output folder was checked")
+    monkeypatch.setattr(pipeline, "prepare", no_synthesis)
+    a_file = tmp_path / "file.txt"
+    a_file.write_text("x")
+    _one_line_exit_2(["build", str(SPEC), "-o", str(a_file)], f"{a_file}: exists and is not a folder")
+    _one_line_exit_2(["build", str(SPEC), "-o", str(tmp_path / "no" / "such")], "does not exist")
+    _one_line_exit_2(["build", str(SPEC), "-o", "/proc/make-lens-out"], "/proc: cannot write into the folder")
+    (tmp_path / NAME).write_text("not a folder")
+    _one_line_exit_2(["build", str(SPEC), "-o", str(tmp_path)], f"{tmp_path / NAME}: exists and is not a build folder")
+    (tmp_path / NAME).unlink()
+    (tmp_path / NAME).mkdir()
+    (tmp_path / NAME / "thesis.tex").write_text("precious")
+    _one_line_exit_2(["build", str(SPEC), "-o", str(tmp_path)], "not a make-lens build (no manifest.json)")
+    assert (tmp_path / NAME / "thesis.tex").read_text() == "precious"
+
+
+def _complete(folder: Path) -> str:
+    """sha256 of the manifest of a complete build in ``folder`` (every file listed matches)."""
+    manifest = json.loads((folder / "manifest.json").read_text())
+    for entry in manifest["files"]:
+        assert hashlib.sha256((folder / entry["path"]).read_bytes()).hexdigest() == entry["sha256"], entry["path"]
+    return hashlib.sha256((folder / "manifest.json").read_bytes()).hexdigest()
+
+
+def _run(out: Path) -> subprocess.Popen:
+    return subprocess.Popen([EXE, str(SPEC), "-o", str(out)], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                            text=True)
+
+
+@pytest.fixture(scope="module")
+def first_build(tmp_path_factory):
+    out = tmp_path_factory.mktemp("promises")
+    start = time.monotonic()
+    done = subprocess.run([EXE, str(SPEC), "-o", str(out)], capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr
+    return out, time.monotonic() - start
+
+
+@pytest.mark.slow
+def test_planted_leftovers_are_removed(first_build):
+    out, _ = first_build
+    (out / f".{NAME}.tmp-1").mkdir()
+    (out / f".{NAME}.tmp-1" / "part.stl").write_text("half")
+    (out / f".{NAME}.tmp-{os.getpid()}").write_text("a file where a folder goes")
+    (out / f".{NAME}.old-2").mkdir()
+    done = subprocess.run([EXE, str(SPEC), "-o", str(out)], capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr
+    assert sorted(p.name for p in out.iterdir()) == [NAME]
+    _complete(out / NAME)
+
+
+@pytest.mark.slow
+def test_sigkill_at_any_moment_keeps_a_complete_build(first_build):
+    """Kills spread over the whole build (imports, synthesis, CAD, writing, the swap): after each,
+    <name>/ is a complete build (the previous one or, after the swap, the new one); the next build
+    removes what the killed ones left."""
+    out, seconds = first_build
+    before = _complete(out / NAME)
+    outcomes = []
+    for fraction in (0.05, 0.2, 0.35, 0.5, 0.65, 0.8, 0.9, 0.95, 0.99, 1.02):
+        proc = _run(out)
+        time.sleep(seconds * fraction)
+        proc.send_signal(signal.SIGKILL)
+        proc.wait(timeout=60)
+        outcomes.append(_complete(out / NAME) == before)
+    print(f"\n{len(outcomes)} SIGKILLs: previous build kept {sum(outcomes)}, new build in place "
+          f"{len(outcomes) - sum(outcomes)}, stray entries before the next build: "
+          f"{sorted(p.name for p in out.iterdir() if p.name != NAME)}")
+    assert any(outcomes)                        # kills before the swap kept the previous build
+    done = subprocess.run([EXE, str(SPEC), "-o", str(out)], capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr
+    assert sorted(p.name for p in out.iterdir()) == [NAME]
+    assert _complete(out / NAME) == before      # byte-identical rebuild
+
+
+@pytest.mark.slow
+def test_ctrl_c_exits_130_at_once(first_build):
+    out, seconds = first_build
+    before = _complete(out / NAME)
+    for fraction in (0.1, 0.4, 0.7, 0.9):
+        proc = _run(out)
+        time.sleep(seconds * fraction)
+        sent = time.monotonic()
+        proc.send_signal(signal.SIGINT)
+        proc.wait(timeout=60)
+        stopped = time.monotonic() - sent
+        if proc.returncode == 0:                # finished before the signal landed
+            continue
+        assert proc.returncode == 130 and stopped < 2.0, (fraction, proc.returncode, stopped, proc.stderr.read())
+        assert "interrupted" in proc.stderr.read()
+        assert sorted(p.name for p in out.iterdir()) == [NAME]      # its temporary folder removed
+        assert _complete(out / NAME) == before
+
+
+@pytest.mark.slow
+def test_two_builds_into_one_folder_are_serialised(first_build):
+    out, _ = first_build
+    fd = os.open(out, os.O_RDONLY | os.O_DIRECTORY)
+    fcntl.flock(fd, fcntl.LOCK_EX)              # a build in progress (holding the folder)
+    proc = _run(out)
+    try:
+        time.sleep(min(60.0, 2 * first_build[1]))
+        assert proc.poll() is None              # still waiting for the folder
+        assert not any(p.name.startswith(f".{NAME}.tmp-") for p in out.iterdir())
+    finally:
+        os.close(fd)
+    assert proc.wait(timeout=600) == 0
+    a, b = _run(out), _run(out)                 # two at once: both succeed, one after the other
+    assert a.wait(timeout=900) == 0 and b.wait(timeout=900) == 0
+    assert sorted(p.name for p in out.iterdir()) == [NAME]
+    _complete(out / NAME)

@@ -37,7 +37,7 @@ def _spec(tmp_path: Path, recipe: str, path: str, value) -> Path:
     ("luneburg-classic-5", "design.layers.count", 1000000, "design.layers.count: must be ≤ 100"),   # hang
     ("xps-collimator-0.5m", "outputs.mesh_tolerance_mm", 1e-308, "outputs.mesh_tolerance_mm: must be ≥ 0.001"),
     ("xps-collimator-0.5m", "fabrication.sheet_thickness_mm", 5e-05, "fabrication.sheet_thickness_mm: must be ≥ 0.5"),
-    ("xps-collimator-0.5m", "design.antenna.aperture_mm", float("inf"), "design.antenna.aperture_mm: must be a finite"),
+    ("xps-collimator-0.5m", "design.aut.diameter_mm", float("inf"), "design.aut.diameter_mm: must be a finite"),
     ("luneburg-classic-5", "design.grades", [1.5] * 300, "design.grades: List should have at most 200 items"),
     ("xps-collimator-0.5m", "fabrication.sheet_thickness_mm", 1,            # build used to refuse it after 9 s
      "fabrication.dowel_diameter_mm: 20 mm dowels do not fit"),

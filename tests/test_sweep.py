@@ -134,10 +134,10 @@ def test_local_cluster_gives_the_figures_of_single_runs(local):
 def test_invalid_and_failing_variants_are_rows_and_the_rest_complete(local):
     _, out, output = local
     rows = {int(r["variant"]): r for r in _rows(out)}
-    for i in (1, 2, 3):                                         # f = 300 mm: valid spec, impossible design
-        assert rows[i]["status"] == "failed"
-        assert rows[i]["error"].startswith("design: design.focal_length_mm:")
-        assert "totally internally reflected" in rows[i]["error"]
+    for i in (1, 2, 3):                                         # f = 300 mm: valid spec, impossible to build
+        assert rows[i]["status"] == "failed"                    # (a thick lens: its first discs are too small)
+        assert rows[i]["error"].startswith("design: fabrication.dowel_diameter_mm:")
+        assert "do not fit" in rows[i]["error"]
     for i in (10, 11, 12):                                      # f = -5 mm: rejected by the spec loader
         assert rows[i]["status"] == "invalid"
         assert rows[i]["error"] == f"variant {i}: design.focal_length_mm: must be ≥ 1 (got -5)"

@@ -21,6 +21,7 @@ from rich.console import Console
 from rich.table import Table
 
 from antenna_cad import __version__
+from antenna_cad.interrupt import hold_if_stopping
 
 EXIT_CODES = ("Exit codes: 0 built/valid (checks pass or warn); 1 built, but a check failed; "
               "2 bad spec, design or output folder (one line per problem: file: field: rule) — nothing written; "
@@ -47,6 +48,7 @@ def _root(version: bool = typer.Option(False, "--version", callback=_version, is
 
 
 def _fail(lines: list[str]) -> None:
+    hold_if_stopping()          # an error caused by Ctrl-C removing the build's temporary folder
     for line in lines:
         err_console.print(line, markup=False, highlight=False)
     raise typer.Exit(2)

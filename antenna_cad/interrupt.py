@@ -16,6 +16,15 @@ import signal
 import sys
 import threading
 
+STOPPING = threading.Event()        # set by the watcher: the process is ending with exit 130
+
+
+def hold_if_stopping() -> None:
+    """On the main thread's way out (an error, even a traceback, caused by the temporary folder
+    vanishing under it): print nothing and let the watcher end the process with 130."""
+    if STOPPING.is_set():
+        threading.Event().wait()
+
 
 def stop_on_interrupt() -> None:
     """Ctrl-C stops at once with exit 130, even inside a long OCCT call or an import that catches
@@ -29,6 +38,7 @@ def stop_on_interrupt() -> None:
     def watch() -> None:
         while os.read(read_fd, 1) != bytes([signal.SIGINT]):   # other handled signals also wake us
             pass
+        STOPPING.set()
         try:
             pipeline = sys.modules.get("antenna_cad.pipeline")      # may be half imported
             for tmp in list(getattr(pipeline, "IN_PROGRESS", ())):

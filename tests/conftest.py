@@ -9,6 +9,7 @@ stage is tested in tests/test_fullwave.py, once, not in every build."""
 import os
 import shutil
 import sys
+from pathlib import Path
 
 import pytest
 from selenium import webdriver
@@ -33,6 +34,21 @@ def browser(tmp_path_factory):
     driver = webdriver.Chrome(options=options, service=service)
     yield driver
     driver.quit()
+
+
+@pytest.fixture(scope="session")
+def recipe_build(tmp_path_factory):
+    """``recipe_build(path)`` → the BuildResult of one full build of that recipe, made once per
+    session and shared by the slow end-to-end tests (a Ka-band array costs minutes to build)."""
+    from antenna_cad.pipeline import build
+    from antenna_cad.spec import load_spec
+    built = {}
+
+    def get(recipe):
+        if recipe not in built:
+            built[recipe] = build(load_spec(recipe), tmp_path_factory.mktemp(Path(recipe).stem))
+        return built[recipe]
+    return get
 
 
 ORIGINAL = os.environ.get("ANTENNA_CAD_MEEP_PYTHON")

@@ -298,15 +298,14 @@ def test_slot_outlines_hold_the_template_chord_tolerance():
 
 @pytest.mark.slow
 @pytest.mark.parametrize("recipe", [KA_RECIPE, ML_RECIPE, TRI_RECIPE], ids=["two-mirror", "mirror-lens", "trifocal"])
-def test_ka_recipes_build_everything(recipe, tmp_path):
+def test_ka_recipes_build_everything(recipe, recipe_build):
     import json
 
     import ezdxf
     from pypdf import PdfReader
 
-    from antenna_cad.pipeline import build
     spec = load_spec(recipe)
-    result = build(spec, tmp_path)
+    result = recipe_build(recipe)
     assert not [c for c in result.checks if c.status == "fail"]
     manifest = json.loads((result.out_dir / "manifest.json").read_text())
     parts = {p["label"]: p for p in manifest["parts"]}

@@ -24,7 +24,7 @@ from antenna_cad.spec.common import resolve_material
 from antenna_cad.synthesis.bifocal import (BifocalDesign, defocus_study, lens_volume_mm3, max_radius_in,
                                            synthesize_bifocal)
 from antenna_cad.synthesis.checks import Check
-from antenna_cad.synthesis.collimator import wavelength_mm
+from antenna_cad.synthesis.collimator import dissipative_loss_db, loss_check, wavelength_mm
 from antenna_cad.verification import Plot, Series, Verification
 
 
@@ -35,10 +35,12 @@ def _height(spec: BifocalSpec) -> float | None:
 def synthesize(spec: BifocalSpec) -> BifocalDesign:
     m = resolve_material(spec.material)
     g = spec.design
-    return synthesize_bifocal(edge_y_mm=g.edge_y_mm, eps_r=m.eps_r, edge_x_mm=g.edge_x_mm,
-                              focus_offset_mm=g.focus_offset_mm, beam_tilt_deg=g.beam_tilt_deg,
-                              antenna_x_mm=g.antenna_x_mm, shape=g.shape, construction=g.construction,
-                              kinber=g.kinber.model_dump() if g.kinber else None)
+    design = synthesize_bifocal(edge_y_mm=g.edge_y_mm, eps_r=m.eps_r, edge_x_mm=g.edge_x_mm,
+                                focus_offset_mm=g.focus_offset_mm, beam_tilt_deg=g.beam_tilt_deg,
+                                antenna_x_mm=g.antenna_x_mm, shape=g.shape, construction=g.construction,
+                                kinber=g.kinber.model_dump() if g.kinber else None)
+    loss = dissipative_loss_db(design.n, m.tan_delta, design.thickness_mm, wavelength_mm(spec.frequency_ghz))
+    return replace(design, checks=(*design.checks, loss_check(loss)))
 
 
 def _slab_radius(design: BifocalDesign):

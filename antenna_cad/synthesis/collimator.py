@@ -78,6 +78,18 @@ def dissipative_loss_db(n: float, tan_delta: float, d_mm: float, wavelength: flo
     return 27.3 * n * tan_delta * (d_mm / 2) / wavelength
 
 
+LOSS_LIMIT_DB = 3.0        # half the power absorbed: no lens, whatever the budget
+LOSS_WARN_DB = 1.0
+
+
+def loss_check(loss_db: float) -> Check:
+    """Dissipative loss through the lens centre, seed-000 §2.2 eq. (1.3): a warning above 1 dB,
+    a failure above 3 dB (a foam lens loses ~0.01–0.1 dB; a large tanδ is a typing error or the
+    wrong material)."""
+    return Check.upper("dissipative_loss", loss_db, LOSS_LIMIT_DB, "dB",
+                       "dielectric loss through the lens centre (1.3)", warn_margin=LOSS_LIMIT_DB - LOSS_WARN_DB)
+
+
 def reflection_loss_db(n: float) -> float:
     """Total reflection loss A ≈ 8.69·((n−1)/(n+1))², seed-000 §2.2 eq. (1.4)."""
     return 8.69 * ((n - 1) / (n + 1)) ** 2
@@ -260,7 +272,7 @@ def synthesize_collimator(*, diameter_mm: float, focal_length_mm: float, eps_r: 
     if not rim_reachable(diameter_mm, focal_length_mm, n, d):
         raise DesignError("design.focal_length_mm", f"the feed cannot reach the rim: the face at r = "
                           f"{diameter_mm / 2:g} mm turns away from the focus; lengthen f or reduce D")
-    checks = [_rim_check(rim, tir, n)]
+    checks = [_rim_check(rim, tir, n), loss_check(dissipative_loss_db(n, tan_delta, d, lam))]
     if antenna_aperture_mm is not None:
         g = edge_margin_mm(lam, antenna_distance_mm or 0.0)
         need = antenna_aperture_mm + 2 * g

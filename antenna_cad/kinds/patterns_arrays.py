@@ -81,6 +81,12 @@ def ports_case(lens: str, feed: str, points_mm: np.ndarray, amplitude, path_mm: 
                 ("y", "x"))
 
 
+def chief_note(d: np.ndarray, is_point: bool) -> str:
+    """Where a lens's exit field is referred to: the chief direction's angle from the axis (last component)."""
+    angle = float(np.degrees(np.arctan2(np.linalg.norm(d[:-1]), d[-1])))
+    return f"{'image point' if is_point else 'plane wave'} {angle:.2f}° off axis"
+
+
 def transverse(points: np.ndarray, d: np.ndarray) -> np.ndarray:
     """2-D points (axial, transverse) measured across the unit direction ``d`` from their centroid."""
     p = points - points.mean(axis=0)
@@ -102,14 +108,18 @@ def array_patterns(cases: list[Case], caption: str) -> Verification:
             ap, key = case.aperture, f"pattern_{case.lens}_{case.feed}"
             for along in case.cuts:
                 pf: PatternFigures = pattern_figures(ap, along)
-                tag = "" if along == "y" else "_x"
                 eff = pf.efficiency
-                figures |= {f"{key}_directivity_dbi": pf.directivity_dbi, f"{key}_hpbw{tag}_deg": pf.beam.hpbw_deg,
-                            f"{key}_sll{tag}_db": pf.beam.sll_db, f"{key}_efficiency": eff.total,
-                            f"{key}_efficiency_taper": eff.taper, f"{key}_efficiency_phase": eff.phase}
-                rows.append((case.lens, feed + ("" if along == "y" else " (x cut)"), _r(pf.directivity_dbi),
-                             _r(pf.beam.hpbw_deg, 4), _r(pf.beam.sll_db, 2), _r(eff.taper, 4), _r(eff.phase, 4),
-                             _r(eff.total, 4), case.note))
+                if along == "y":            # the scan plane: directivity and efficiency at its peak
+                    figures |= {f"{key}_directivity_dbi": pf.directivity_dbi, f"{key}_hpbw_deg": pf.beam.hpbw_deg,
+                                f"{key}_sll_db": pf.beam.sll_db, f"{key}_efficiency": eff.total,
+                                f"{key}_efficiency_taper": eff.taper, f"{key}_efficiency_phase": eff.phase}
+                    rows.append((case.lens, feed, _r(pf.directivity_dbi), _r(pf.beam.hpbw_deg, 4),
+                                 _r(pf.beam.sll_db, 2), _r(eff.taper, 4), _r(eff.phase, 4), _r(eff.total, 4),
+                                 case.note))
+                else:
+                    figures |= {f"{key}_hpbw_x_deg": pf.beam.hpbw_deg, f"{key}_sll_x_db": pf.beam.sll_db}
+                    rows.append((case.lens, f"{feed} (x cut)", None, _r(pf.beam.hpbw_deg, 4), _r(pf.beam.sll_db, 2),
+                                 None, None, None, case.note))
                 cut = ap.cut(along)
                 span = np.degrees(PLOT_BEAMWIDTHS * ap.wavelength_mm / cut.extent_mm)
                 th = pf.beam.theta_deg + np.linspace(-span, span, 801)
@@ -136,7 +146,5 @@ def imaged_case(lens: str, feed: str, points_mm: np.ndarray, amplitude, phase_ra
     """A 2-D lens's exit field (points (axial, transverse) mm) referred to its image point or
     output direction ``target`` (module docstring), as a strip of ``height_mm``."""
     total, d = referred(points_mm, path_mm(phase_rad, wavelength_mm), np.asarray(target, float), is_point)
-    angle = float(np.degrees(np.arctan2(d[1], d[0])))
-    note = f"{'image point' if is_point else 'plane wave'} at {angle:.2f}°"
     return line_case(lens, feed, transverse(points_mm, d), amplitude, total, wavelength_mm, half_mm, height_mm,
-                     note=note)
+                     note=chief_note(d[::-1], is_point))

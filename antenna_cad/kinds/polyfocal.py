@@ -13,7 +13,8 @@ import io
 import numpy as np
 
 from antenna_cad.fabrication.polyfocal import channel_clearance_check, fabricate_polyfocal
-from antenna_cad.kinds.patterns_arrays import array_patterns, imaged_case, path_mm, ports_case, referred
+from antenna_cad.kinds.patterns_arrays import (array_patterns, chief_note, imaged_case, path_mm, ports_case,
+                                              referred)
 from antenna_cad.materials import Material
 from antenna_cad.spec.common import resolve_material
 from antenna_cad.spec.polyfocal import PolyfocalSpec
@@ -164,7 +165,7 @@ def _patterns(spec: PolyfocalSpec, design: PolyfocalDesign, built: ConstrainedLe
                                          design.aperture_mm / 2, ln.plate_spacing_mm))
             else:
                 total, d = referred(pos, path_mm(phase, lam), target, is_point)
-                cases.append(ports_case(name, feed, pos, amp, total, d, ln.pitch_mm**2, lam))
+                cases.append(ports_case(name, feed, pos, amp, total, d, ln.pitch_mm**2, lam, chief_note(d, is_point)))
     return array_patterns(cases, "exit-port field (1/√r or 1/r spreading from the feed, no feed pattern) referred to "
                                  "the lens's image point or output direction; 2-D: line aperture × plate spacing, "
                                  "3-D: port grid (pitch² each), both principal cuts")

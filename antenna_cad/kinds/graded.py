@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from antenna_cad.kinds.patterns_arrays import array_patterns, best_focus, imaged_case, path_mm
 from antenna_cad.spec.common import resolve_material
 from antenna_cad.spec.graded import GradedSpec
 from antenna_cad.synthesis.checks import Check
@@ -111,4 +112,19 @@ def verify(spec: GradedSpec, design: GradedDesign, layup, fab) -> Verification:
     figures = {"sigma_max": float(design.sigma.max()), "sigma_max_mm": float(design.sigma.max() * design.unit_mm),
                "sigma_max_deg": float(design.sigma.max() * design.unit_mm / lam * 360.0),
                "aperture_field_rays": len(pos)}
-    return Verification(figures, (), (layers, field), plots)
+    return Verification(figures, (), (layers, field), plots).merged(_patterns(spec, design, lam))
+
+
+def _patterns(spec: GradedSpec, design: GradedDesign, lam: float) -> Verification:
+    """Patterns of the synthesized lens (continuous n(y); the slabs are not traced), feed on axis
+    and at the field edge, referred to the best-focus image point (:mod:`antenna_cad.kinds.patterns_arrays`)."""
+    cases, u = [], design.unit_mm
+    for feed, angle in (("on_axis", 0.0), ("field_edge", spec.design.view_angle_deg / 2)):
+        pos, amp, phase = aperture_field(design, lam, angle)
+        a = np.radians(angle)
+        guess = pos.mean(axis=0) + u * np.array([np.cos(a), np.sin(a)])    # across the axis, ~D behind
+        image = best_focus(pos, path_mm(phase, lam), guess)
+        cases.append(imaged_case("ideal", feed, pos, amp, phase, image, True, lam, design.half_aperture * u,
+                                 spec.design.height_mm))
+    return array_patterns(cases, "GO exit field of the continuous index law (uniform amplitude over the traced rays) "
+                                 "referred to its best-focus image point; line aperture × the plate spacing")

@@ -23,6 +23,7 @@ from scipy.interpolate import CubicHermiteSpline
 from antenna_cad.fabrication.layup import LayupPlan
 from antenna_cad.kinds.asbuilt import ruze_loss_db
 from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks, plan_layup_and_box, plan_sheets
+from antenna_cad.kinds.patterns_arrays import array_patterns, line_case, path_mm
 from antenna_cad.materials import Material
 from antenna_cad.raytrace.mirror_lens import Body, Surface, aperture_field as trace_aperture_field, sigma_at
 from antenna_cad.spec.common import SheetLayupSpec, resolve_material
@@ -35,6 +36,8 @@ from antenna_cad.verification import Plot, Series, Table, Verification
 CAD_SAMPLES = 257           # = geometry.mirror_lens.SPLINE_POINTS (the spline the STEP holds)
 TOLERANCE_STEPS = (-1.0, 1.0)
 PROFILE_ROWS = 11
+PATTERN_CAPTION = ("3-D GO exit field of the scan-plane cut (isotropic feed, Fresnel and dielectric loss), beam tilt "
+                   "removed; on axis a body of revolution (Hankel transform), at the field edge E(x) across the disc")
 
 
 def _metal(spec: MirrorLensSpec) -> Material:
@@ -267,9 +270,10 @@ def _astigmatism_table(design: MirrorLensDesign) -> Table:
                          "marched geometry, validated against 3-D stationary paths in the tests")
 
 
-def _aperture_plot(spec, design: MirrorLensDesign, name: str, feed, bodies) -> tuple[Plot, dict[str, float]]:
-    """Aperture phase of the ideal and the fabricated body and the amplitude, for one feed (mm)."""
-    series, figures = [], {}
+def _aperture_plot(spec, design: MirrorLensDesign, name: str, feed, bodies):
+    """Aperture phase of the ideal and the fabricated body and the amplitude, for one feed (mm);
+    the plot, its figures and the pattern cases of :mod:`antenna_cad.kinds.patterns_arrays`."""
+    series, figures, cases = [], {}, []
     for variant, body in bodies:
         rms, pp = _phase_stats(design, body, np.asarray(feed) / design.diameter_mm)
         af = aperture_field(spec, design, feed, body)
@@ -277,12 +281,16 @@ def _aperture_plot(spec, design: MirrorLensDesign, name: str, feed, bodies) -> t
                     f"{variant}_{name}_gain_loss_db": ruze_loss_db(rms),
                     f"{variant}_{name}_edge_amplitude_db": float(20 * np.log10(min(af.amplitude[[0, -1]])))}
         series.append(Series(f"phase, {variant}", af.r_mm, af.phase_deg, "line" if variant == "ideal" else "dashed"))
+        lam = design.wavelength_mm
+        cases.append(line_case(variant, name, af.r_mm, af.amplitude, path_mm(np.radians(af.phase_deg), lam), lam,
+                               design.diameter_mm / 2, on_axis=not any(feed[:2]),
+                               note=f"beam {af.beam_angle_deg:.2f}°, tilt removed"))
     series.append(Series("amplitude × 100 (isotropic feed)", af.r_mm, 100 * af.amplitude, "dashed"))
     figures[f"{name}_beam_angle_deg"] = af.beam_angle_deg
     title = f"Aperture field, feed {name.replace('_', ' ')} ({feed[0]:.1f}, {feed[1]:.1f}, {feed[2]:.1f}) mm"
     return Plot(f"aperture-field-{name.replace('_', '-')}", title, "x on the exit face, scan plane (mm)",
                 "phase (deg), amplitude × 100", tuple(series),
-                caption=f"3-D GO, beam at {af.beam_angle_deg:.2f}°, tilt removed"), figures
+                caption=f"3-D GO, beam at {af.beam_angle_deg:.2f}°, tilt removed"), figures, cases
 
 
 def verify(spec: MirrorLensSpec, design: MirrorLensDesign, layup: LayupPlan | None, fab) -> Verification:
@@ -291,11 +299,12 @@ def verify(spec: MirrorLensSpec, design: MirrorLensDesign, layup: LayupPlan | No
     m = resolve_material(spec.material)
     D, sc = design.diameter_mm, design.scan
     bodies = (("ideal", design.body(m.tan_delta)), ("fabricated", fabricated_body(design, m.tan_delta)))
-    figures, plots = {}, [_profile_plot(design)]
+    figures, plots, cases = {}, [_profile_plot(design)], []
     for name, feed in (("on_axis", (0.0, 0.0, 0.0)), ("field_edge", (-sc.delta_r[-1] * D, 0.0, sc.delta_z[-1] * D))):
-        plot, fig = _aperture_plot(spec, design, name, feed, bodies)
+        plot, fig, case = _aperture_plot(spec, design, name, feed, bodies)
         plots.append(plot)
         figures |= fig
+        cases += case
     field_plot, field_table = _field_plot_and_table(design)
     sens_table, sens_check, sens_figures = _sensitivity(spec, design)
     figures |= sens_figures
@@ -305,4 +314,4 @@ def verify(spec: MirrorLensSpec, design: MirrorLensDesign, layup: LayupPlan | No
                        f"curve): {edge:.1f}° p-p vs budget {budget:g}°")
     return Verification(figures, (sens_check, edge_check),
                         (_profile_table(design), field_table, _astigmatism_table(design), sens_table),
-                        tuple(plots + [field_plot]))
+                        tuple(plots + [field_plot])).merged(array_patterns(cases, PATTERN_CAPTION))

@@ -85,26 +85,37 @@ def exit_field(lens: Lens, medium: Medium, feed, z_ref: float) -> ExitField:
     amp = transmitted_amplitude(tr, lens.wavelength_mm, lens.tan_delta)[keep]
     lossless = transmitted_amplitude(tr, lens.wavelength_mm, 0.0)[keep]
     o = np.argsort(y)
-    R = lens.radius_mm
-    grid = np.linspace(-R, R, 2 * int(SAMPLES_PER_WAVELENGTH * R / lens.wavelength_mm) + 1)
-    a = np.interp(grid, y[o], amp[o], left=0.0, right=0.0)
-    k = 2 * np.pi / lens.wavelength_mm
-    e = a * np.exp(1j * k * np.interp(grid, y[o], path[o]))
+    grid, e = resampled(y[o], amp[o], 2 * np.pi / lens.wavelength_mm * path[o], lens.radius_mm, lens.wavelength_mm)
     return ExitField(grid, e, float(np.sum(amp**2) / np.sum(lossless**2)))
 
 
+def resampled(y_mm, amplitude, phase_rad, half_mm: float, wavelength_mm: float) -> tuple[np.ndarray, np.ndarray]:
+    """A field A·e^{jφ} known at increasing ``y_mm`` on the uniform cut −half … half (zero outside
+    the samples)."""
+    grid = np.linspace(-half_mm, half_mm, 2 * int(SAMPLES_PER_WAVELENGTH * half_mm / wavelength_mm) + 1)
+    a = np.interp(grid, y_mm, amplitude, left=0.0, right=0.0)
+    return grid, a * np.exp(1j * np.interp(grid, y_mm, phase_rad))
+
+
 def _aperture(lens: Lens, ef: ExitField, on_axis: bool, height_mm: float | None):
-    lam, R = lens.wavelength_mm, lens.radius_mm
+    return cut_aperture(ef.y_mm, ef.field, lens.wavelength_mm, lens.radius_mm, on_axis, height_mm)
+
+
+def cut_aperture(y_mm: np.ndarray, field: np.ndarray, lam: float, R: float, on_axis: bool,
+                 height_mm: float | None = None):
+    """The aperture of a cut E(y) on the uniform symmetric grid ``y_mm``: a body of revolution E(r)
+    (``on_axis``), else E(y) taken constant across a disc of radius ``R`` or, with ``height_mm``,
+    across a strip 2R × height (a cylindrical or 2-D lens between plates)."""
     if on_axis:
-        half = ef.y_mm >= 0
-        return bor_aperture(ef.y_mm[half], ef.field[half], lam, R)
+        half = y_mm >= 0
+        return bor_aperture(y_mm[half], field[half], lam, R)
     step = max(1, SAMPLES_PER_WAVELENGTH // GRID_PER_WAVELENGTH)
-    y, e = ef.y_mm[::step], ef.field[::step]
+    y, e = y_mm[::step], field[::step]
     if height_mm is None:
         x = y.copy()
         inside = np.hypot(*np.meshgrid(x, y)) <= R
         return grid_aperture(x, y, np.where(inside, e[:, None], 0.0), lam, np.pi * R**2)
-    x = np.linspace(-height_mm / 2, height_mm / 2, 2 * int(GRID_PER_WAVELENGTH * height_mm / 2 / lam) + 1)
+    x = np.linspace(-height_mm / 2, height_mm / 2, 2 * max(1, int(GRID_PER_WAVELENGTH * height_mm / 2 / lam)) + 1)
     return grid_aperture(x, y, np.broadcast_to(e[:, None], (len(y), len(x))), lam, 2 * R * height_mm)
 
 

@@ -13,6 +13,8 @@ import io
 import numpy as np
 
 from antenna_cad.fabrication.polyfocal import channel_clearance_check, fabricate_polyfocal
+from antenna_cad.kinds.patterns_arrays import (array_patterns, chief_note, imaged_case, path_mm, ports_case,
+                                              referred)
 from antenna_cad.materials import Material
 from antenna_cad.spec.common import resolve_material
 from antenna_cad.spec.polyfocal import PolyfocalSpec
@@ -142,7 +144,28 @@ def verify(spec: PolyfocalSpec, design: PolyfocalDesign, layup, fab) -> Verifica
         tri, four = design.comparison[1].max, design.comparison[2].max
         figures |= {"seed_trifocal_over_fourfocal_sigma_ratio": tri / four}
     pos, amp, phase, _ = aperture_field(design, built, 0.0)
+    patterns = _patterns(spec, design, built)
     table = Table("aperture-field", "Aperture field on the exit ports, feed on axis (plain arrays for the "
                   "pattern module)", ("x_mm", "y_mm", "z_mm", "amplitude", "phase_rad"),
                   tuple((*map(float, p), float(a), float(ph)) for p, a, ph in zip(pos, amp, phase)))
-    return Verification(figures, tuple(checks), (table,), tuple(plots))
+    return Verification(figures, tuple(checks), (table,), tuple(plots)).merged(patterns)
+
+
+def _patterns(spec: PolyfocalSpec, design: PolyfocalDesign, built: ConstrainedLens) -> Verification:
+    """Patterns of the synthesized elements and the lines as built, feed on axis and at the field
+    edge (:mod:`antenna_cad.kinds.patterns_arrays`): 2-D a strip of the plate spacing, 3-D the port grid."""
+    lam, ln = design.wavelength_mm, spec.design.lines
+    cases = []
+    for feed, angle in (("on_axis", 0.0), ("field_edge", spec.design.view_angle_deg / 2)):
+        for name, lens in (("ideal", design.elements), ("fabricated", built)):
+            pos, amp, phase, target = aperture_field(design, lens, angle)
+            is_point = lens.foci[0].image is not None
+            if lens.dimensions == 2:
+                cases.append(imaged_case(name, feed, pos[:, [2, 1]], amp, phase, target[[2, 1]], is_point, lam,
+                                         design.aperture_mm / 2, ln.plate_spacing_mm))
+            else:
+                total, d = referred(pos, path_mm(phase, lam), target, is_point)
+                cases.append(ports_case(name, feed, pos, amp, total, d, ln.pitch_mm**2, lam, chief_note(d, is_point)))
+    return array_patterns(cases, "exit-port field (1/√r or 1/r spreading from the feed, no feed pattern) referred to "
+                                 "the lens's image point or output direction; 2-D: line aperture × plate spacing, "
+                                 "3-D: port grid (pitch² each), both principal cuts")

@@ -14,7 +14,7 @@ from shapely.geometry import Polygon, box
 
 from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.sheets import FabPlan
-from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
+from antenna_cad.fabrication.templates import Drawing
 from antenna_cad.materials import Material
 from antenna_cad.synthesis.graded_design import GradedDesign
 
@@ -71,8 +71,8 @@ def fabricate_graded(design: GradedDesign, base: Material, height_mm: float, all
                            poly.area / 1e6, kg, order, f"εr {design.slab_eps[k]:.4f}; bond in order of y"))
         d = Drawing(label)
         d.add_polygon(poly)
-        d.texts.append((f"{title}: {label} 1:1, εr {design.slab_eps[k]:.4f}, height {height_mm:g} mm",
-                        minx, maxy + 10.0, TEXT_HEIGHT_MM))
+        d.add_title([f"{title}: {label} 1:1, εr {design.slab_eps[k]:.4f}, height {height_mm:g} mm"],
+                    minx, maxy + 10.0)
         d.add_check_bar(minx, miny - 20.0)
         drawings.append(d)
     totals["all"] = sum(totals.values())

@@ -12,7 +12,7 @@ from shapely.geometry import Polygon
 
 from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.sheets import FabPlan
-from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
+from antenna_cad.fabrication.templates import Drawing
 from antenna_cad.materials import Material
 from antenna_cad.synthesis.mirror_lens import MirrorLensDesign
 
@@ -42,9 +42,9 @@ def gauge_drawing(design: MirrorLensDesign, title: str, material: Material) -> D
         rows.append(f"{p.s[k] * D:7.2f} {p.f[k] * D:9.3f}  | {p.R_b[k] * D:7.2f} {p.Z_b[k] * D:9.3f}")
     for k, text in enumerate(rows):
         drawing.texts.append((text, x0, z_hi - k * 7.0, 4.0))
-    drawing.texts.append((f"{title}: mirror-lens section gauge 1:1, {material.name}, D {D:g} mm; z from the feed "
-                          f"(focus); front face at the bottom, MARK dotted: the mirror face", -design.body_radius_mm,
-                          z_hi + 25.0, TEXT_HEIGHT_MM))
+    drawing.add_title([f"{title}: mirror-lens section gauge 1:1, {material.name}, D {D:g} mm; z from the feed "
+                       "(focus); front face at the bottom, MARK dotted: the mirror face"], -design.body_radius_mm,
+                      z_hi + 25.0)
     drawing.add_check_bar(-design.body_radius_mm, z_lo - 30.0)
     return drawing
 

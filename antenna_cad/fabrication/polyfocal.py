@@ -13,7 +13,7 @@ from shapely.geometry import Polygon
 
 from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.sheets import FabPlan
-from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
+from antenna_cad.fabrication.templates import Drawing
 from antenna_cad.materials import Material
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.polyfocal_design import PolyfocalDesign
@@ -91,8 +91,8 @@ def fabricate_polyfocal(design: PolyfocalDesign, fill: Material, metal: Material
         for q in channel_quads(design):
             d.cut.append([(round(y, 4), round(z, 4)) for y, z in q])
         d.marks.append([(0.0, miny - 10.0), (0.0, maxy + 10.0)])
-        d.texts.append((f"{title}: constrained-lens section 1:1, {len(design.length_mm)} channels, plate spacing "
-                        f"{h:g} mm; channel lengths in lines.csv", minx, maxy + 20.0, TEXT_HEIGHT_MM))
+        d.add_title([f"{title}: constrained-lens section 1:1, {len(design.length_mm)} channels, plate spacing "
+                     f"{h:g} mm; channel lengths in lines.csv"], minx, maxy + 20.0)
         d.add_check_bar(minx, miny - 30.0)
         drawings = (d,)
     else:

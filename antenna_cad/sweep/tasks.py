@@ -87,7 +87,9 @@ def run_asbuilt(payload: dict) -> Result:
 def run_build(payload: dict) -> Result:
     from antenna_cad.pipeline import build
     from antenna_cad.spec import parse_spec
-    result = build(parse_spec(payload["spec"]), Path(payload["out"]))
+    out = Path(payload["out"])
+    out.mkdir(parents=True, exist_ok=True)          # builds/<hash>/: the build checks its parent exists
+    result = build(parse_spec(payload["spec"]), out)
     figures = dict(result.figures) | dict(result.verified) | fabrication_figures(result.masses_kg, result.boards)
     return {"figures": _plain(figures), "checks": _checks(result.checks), "folder": str(result.out_dir)}
 

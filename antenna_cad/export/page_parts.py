@@ -34,3 +34,14 @@ def table(columns, rows, css_id: str = "") -> str:
     body = "".join("<tr>" + "".join(cell(v) for v in row) + "</tr>" for row in rows)
     ident = f' id="{css_id}"' if css_id else ""
     return f'<table{ident}><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'
+
+
+def page(title: str, heading: str, byline: str, sections, extra_css: str = "") -> str:
+    """A self-contained HTML page: ``heading`` and ``byline`` (HTML) above a navigation bar and one
+    ``<section>`` per (id, title, HTML content) of ``sections``; no scripts, no network."""
+    nav = "".join(f'<a href="#{sid}">{name}</a>' for sid, name, _ in sections)
+    body = "".join(f'<section id="{sid}"><h2>{name}</h2>{content}</section>' for sid, name, content in sections)
+    return (f'<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
+            f'<meta name="viewport" content="width=device-width,initial-scale=1">'
+            f"<title>{html.escape(title)}</title><style>{CSS}{extra_css}</style></head><body>"
+            f"<h1>{html.escape(heading)}</h1><p>{byline}</p><nav>{nav}</nav>{body}</body></html>\n")

@@ -17,7 +17,7 @@ from matplotlib.colors import to_hex
 
 from antenna_cad import __version__
 from antenna_cad.export.mesh import picture_meshes
-from antenna_cad.export.page_parts import CSS, table as _table
+from antenna_cad.export.page_parts import page as html_page, table as _table
 from antenna_cad.export.plots import assembly_png, plot_svg
 from antenna_cad.fabrication.cutlist import FIELDS as CUT_FIELDS
 from antenna_cad.verification import Table, Verification
@@ -90,14 +90,9 @@ def write_report_html(path: Path, r: ReportContent) -> None:
         ("files", "Files", f'<div class="scroll">{_table(("file", "solid volume mm³"), r.files)}</div>'),
         ("spec", "Spec", f"<pre>{html.escape(r.spec_yaml)}</pre>"),
     ]
-    nav = "".join(f'<a href="#{sid}">{title}</a>' for sid, title, _ in sections)
-    body = "".join(f'<section id="{sid}"><h2>{title}</h2>{content}</section>' for sid, title, content in sections)
-    page = (f'<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
-            f'<meta name="viewport" content="width=device-width,initial-scale=1">'
-            f"<title>{html.escape(r.name)} — antenna_cad report</title><style>{CSS}</style></head><body>"
-            f"<h1>{html.escape(r.name)}</h1><p>kind <b>{r.kind}</b> · {r.frequency_ghz:g} GHz · "
-            f"antenna_cad {__version__} · overall <span class='badge {r.status}'>{r.status}</span> · "
-            f"workshop copy: {REPORT_PDF}</p><nav>{nav}</nav>{body}</body></html>\n")
+    page = html_page(f"{r.name} — antenna_cad report", r.name,
+                     f"kind <b>{r.kind}</b> · {r.frequency_ghz:g} GHz · antenna_cad {__version__} · overall "
+                     f"<span class='badge {r.status}'>{r.status}</span> · workshop copy: {REPORT_PDF}", sections)
     path.write_text(page, encoding="utf-8")
 
 

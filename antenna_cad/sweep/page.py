@@ -10,7 +10,7 @@ import math
 from pathlib import Path
 
 from antenna_cad import __version__
-from antenna_cad.export.page_parts import CSS, table
+from antenna_cad.export.page_parts import page as html_page, table
 from antenna_cad.export.plots import STYLE, figure_svg, plt       # plt on the Agg backend
 from antenna_cad.sweep.model import SweepSpec
 from antenna_cad.sweep.results import PAGE, atomic_write
@@ -104,12 +104,7 @@ def write_page(out_dir: Path, sweep: SweepSpec, base_source: str, cols: list[str
     sections = [("summary", "Summary", summary), ("pareto", f"Pareto front ({len(front)})", pareto),
                 ("plots", "Figures against axes", plots), ("failures", f"Failed and invalid ({len(bad)})", failures),
                 ("results", "All variants", everything)]
-    nav = "".join(f'<a href="#{sid}">{title}</a>' for sid, title, _ in sections)
-    body = "".join(f'<section id="{sid}"><h2>{title}</h2>{content}</section>' for sid, title, content in sections)
-    page = (f'<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
-            f'<meta name="viewport" content="width=device-width,initial-scale=1">'
-            f"<title>{html.escape(sweep.name)} — antenna_cad sweep</title><style>{CSS}"
-            f"figure.plot{{display:inline-block;width:49%;vertical-align:top;margin:.4em 0}}</style></head><body>"
-            f"<h1>{html.escape(sweep.name)}</h1><p>design sweep · antenna_cad {__version__} · "
-            f"tables: results.csv, results.parquet, pareto.csv</p><nav>{nav}</nav>{body}</body></html>\n")
+    page = html_page(f"{sweep.name} — antenna_cad sweep", sweep.name,
+                     f"design sweep · antenna_cad {__version__} · tables: results.csv, results.parquet, pareto.csv",
+                     sections, "figure.plot{display:inline-block;width:49%;vertical-align:top;margin:.4em 0}")
     atomic_write(out_dir / PAGE, page.encode("utf-8"))

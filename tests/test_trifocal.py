@@ -32,14 +32,14 @@ def _surface_point(surf: tr.Surface, x: float):
 
 def _eikonal_residuals(fo: tr.Foci, surf: tr.Surface, M, T) -> list[float]:
     """|Ψ_j(M) − const_j| for the three foci, each with the physical ray found independently: the
-    first-surface point whose reflected ray passes through M (sign change of the cross product on a
-    400-point scan, brentq), path |F_j P| + |P M| + T − s_j x_M."""
+    first-surface point whose reflected (or refracted, index n₂) ray passes through M (sign change of the
+    cross product on a 200-point scan, brentq), path |F_j P| + n₂|P M| + T − s_j x_M."""
     consts, sines = (fo.c1, fo.cF, fo.c1), (fo.s1, 0.0, -fo.s1)
     out = []
     for F, c, s in zip((fo.F1, fo.F, fo.F2), consts, sines):
         def miss(x):
             px, pz, sl = _surface_point(surf, x)
-            e = tr._unit2(*tr._redirect(*tr._unit2(px - F[0], pz - F[1]), sl, 1.0))
+            e = tr._unit2(*tr._redirect(*tr._unit2(px - F[0], pz - F[1]), sl, fo.n2))
             return e[0] * (M[1] - pz) - e[1] * (M[0] - px)
         xs = np.linspace(-surf.x1, surf.x1, 201)
         g = np.array([miss(x) for x in xs])
@@ -48,7 +48,7 @@ def _eikonal_residuals(fo: tr.Foci, surf: tr.Surface, M, T) -> list[float]:
         roots += [x for x, gx in zip(xs[[0, -1]], g[[0, -1]]) if abs(gx) < 1e-11]     # the surface's last point
         for x in roots:
             px, pz, _ = _surface_point(surf, x)
-            best = min(best, abs(math.dist((px, pz), F) + math.dist((px, pz), M) + T - s * M[0] - c))
+            best = min(best, abs(math.dist((px, pz), F) + fo.n2 * math.dist((px, pz), M) + T - s * M[0] - c))
         out.append(best)
     return out
 

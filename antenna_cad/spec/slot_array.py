@@ -92,14 +92,17 @@ class SlotsSpec(StrictModel):
 BEAMFORMER_PARAMS = {"single_mirror": ("minor_semi_axis_mm", "focal_separation_mm"),
     "bifocal_two_mirror": ("a0", "a2", "h1", "b0", "b2", "h2", "rho1"),
     "bifocal_mirror_lens": ("lens_a2", "lens_vertex", "x0", "p1", "p2", "f0", "n"),
-    "trifocal_two_mirror": ("f1", "f", "c")}
+    "trifocal_two_mirror": ("f1", "f", "c"),
+    "trifocal_mirror_lens": ("f1", "f", "x_a", "gamma_a_rad", "n")}
+TRIFOCAL = ("trifocal_two_mirror", "trifocal_mirror_lens")
 POINT_COORD = Annotated[float, Field(ge=-5, le=5)]
 POINT = tuple[POINT_COORD, POINT_COORD]     # (x, z) in the seed's frame, units of D (seed-003 §3.6)
 
 
 
 class BeamFormerSpec(StrictModel):
-    type: Literal["single_mirror", "bifocal_two_mirror", "bifocal_mirror_lens", "trifocal_two_mirror"]
+    type: Literal["single_mirror", "bifocal_two_mirror", "bifocal_mirror_lens", "trifocal_two_mirror",
+                  "trifocal_mirror_lens"]
     # single_mirror (ellipse, seed-003 §3.5)
     minor_semi_axis_mm: float | None = Field(None, ge=0.1, le=100000)
     focal_separation_mm: float | None = Field(None, ge=0, le=100000)
@@ -118,14 +121,20 @@ class BeamFormerSpec(StrictModel):
     p1: Coefficient = None
     p2: Coefficient = None
     f0: Coefficient = None
-    n: float | None = Field(None, ge=1.0, le=10.0)
-    # trifocal_two_mirror (normalised (x, z) points in the seed's frame, §3.6/§3.8)
+    n: float | None = Field(None, ge=1.0, le=10.0, description="lens index (mirror-lens formers)")
+    # trifocal formers (normalised (x, z) points in the seed's frame, §3.6–§3.8)
     f1: POINT | None = Field(None, description="focus F1 (x < 0, z < 0); F2 is its mirror image")
     f: POINT | None = Field(None, description="focus F on the axis (x = 0)")
     f2: POINT | None = Field(None, description="optional; must be the mirror image of f1 (erratum §7.7)")
     c: POINT | None = Field(None, description="point C of mirror 1 (x < 0) where the F1 central ray reflects")
     beta_c_deg: float | None = Field(None, gt=30, lt=120, description="direction of the reflected ray C→B "
                                      "below +x (not given in the seed); omitted: found by the §3.8 optimiser")
+    x_a: float | None = Field(None, ge=-1, le=-1e-3, description="trifocal_mirror_lens: x of lens point A "
+                              "where the F1 central ray enters (x < 0, §3.7)")
+    gamma_a_rad: float | None = Field(None, ge=-1.2, le=1.2, description="trifocal_mirror_lens: angle of the lens "
+                                      "tangent at A to the x axis (radians; lens z = a2 x², a2 = tg γ_A/(2 x_A))")
+    o1: POINT | None = Field(None, description="trifocal_mirror_lens: mirror vertex O1 = (0, z) (not given in the "
+                             "seed); omitted: found by the §3.8 optimiser")
     t_b: float | None = Field(None, ge=0, le=5, description="t at B (normalised); default: slot_line_offset_mm at x = 0")
     scale_mm: float | None = Field(None, ge=1, le=100000, description="physical size of the normalised D = 1")
     slot_line_offset_mm: float = Field(10.0, ge=0, le=10000, description="t0: last mirror → first slot line")
@@ -138,13 +147,15 @@ class BeamFormerSpec(StrictModel):
         if missing:
             raise ValueError(f"beamformer.{missing[0]}: required for type {self.type} "
                              f"(missing: {', '.join(missing)})")
-        if self.type == "trifocal_two_mirror":
-            for name in ("f1", "f", "f2", "c"):
+        if self.type in TRIFOCAL:
+            if self.type == "trifocal_mirror_lens" and self.o1 is not None and self.o1[0] != 0:
+                raise ValueError(f"beamformer.o1: must lie on the axis, x = 0 (got {self.o1[0]:g})")
+            for name in ("f1", "f", "f2", "c", "o1"):
                 if getattr(self, name) is not None and max(abs(v) for v in getattr(self, name)) > 5:
                     raise ValueError(f"beamformer.{name}: coordinates must lie within ±5 D")
             if self.f[0] != 0:
                 raise ValueError(f"beamformer.f: must lie on the axis, x = 0 (got {self.f[0]:g})")
-            if self.f1[0] >= 0 or self.f1[1] >= 0 or self.c[0] >= 0:
+            if self.f1[0] >= 0 or self.f1[1] >= 0 or (self.c is not None and self.c[0] >= 0):
                 raise ValueError("beamformer.f1: need x_F1 < 0, z_F1 < 0 and x_C < 0 (seed-003 §3.8 frame)")
             if self.f2 is not None and (abs(self.f2[0] + self.f1[0]) > 1e-12 or abs(self.f2[1] - self.f1[1]) > 1e-12):
                 raise ValueError("beamformer.f2: must be the mirror image of f1 (erratum §7.7)")
@@ -153,7 +164,8 @@ class BeamFormerSpec(StrictModel):
         return self
 
     def params(self) -> dict:
-        extra = {"t_b": self.t_b, "beta_c_deg": self.beta_c_deg} if self.type == "trifocal_two_mirror" else {}
+        extra = ({"t_b": self.t_b, "beta_c_deg": self.beta_c_deg} if self.type == "trifocal_two_mirror" else
+                 {"t_b": self.t_b, "o1": self.o1} if self.type == "trifocal_mirror_lens" else {})
         return {k: getattr(self, k) for k in BEAMFORMER_PARAMS[self.type]} | extra
 
 

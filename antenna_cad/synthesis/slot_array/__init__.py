@@ -24,7 +24,7 @@ slotted guide is ≈ 1 % lower (10.7 vs 10.80 GHz, §3.1).
 Modules (one per concern): :mod:`.scan` (§3.1 scan law), :mod:`.taper` (§3.2), :mod:`.curves`,
 :mod:`.beamformer` (the shared result and ray traces) and one module per former
 (:mod:`.ellipse`, :mod:`.bifocal_two_mirror`, :mod:`.bifocal_mirror_lens`, :mod:`.trifocal_two_mirror`
-on the march of :mod:`.trifocal`), :mod:`.slot_line`, :mod:`.fov` (σ against field angle),
+and :mod:`.trifocal_mirror_lens` on the march of :mod:`.trifocal`), :mod:`.slot_line`, :mod:`.fov` (σ against field angle),
 :mod:`.layout`, :mod:`.feeds`, :mod:`.design`. The names below are re-exported so that
 ``from antenna_cad.synthesis.slot_array import ...`` keeps working.
 """
@@ -52,6 +52,7 @@ from antenna_cad.synthesis.slot_array.slot_line import (feed_phase_errors, slot_
 from antenna_cad.synthesis.slot_array.fov import FieldCurve, field_curve, sigma_at
 from antenna_cad.synthesis.slot_array.taper import (slot_length_from_alpha_mm, taper_alpha_np_per_m,
                                                     taper_slot_lengths_mm)
+from antenna_cad.synthesis.slot_array.trifocal_mirror_lens import optimise_o1, trifocal_mirror_lens
 from antenna_cad.synthesis.slot_array.trifocal_two_mirror import optimise_beta_c, trifocal_two_mirror
 
 __all__ = ['reflect', 'refract', 'BeamFormer', 'trace_mirror_lens', 'trace_single_mirror', 'trace_two_mirror',
@@ -66,4 +67,4 @@ __all__ = ['reflect', 'refract', 'BeamFormer', 'trace_mirror_lens', 'trace_singl
            'wavenumber_per_mm', 'feed_phase_errors', 'slot_line_t_mm', 'slot_phase_spread',
            'traced_eikonal_mm', 'traced_rays', 'FieldCurve', 'field_curve', 'sigma_at',
            'slot_length_from_alpha_mm', 'taper_alpha_np_per_m', 'taper_slot_lengths_mm', 'optimise_beta_c',
-           'trifocal_two_mirror']
+           'trifocal_two_mirror', 'optimise_o1', 'trifocal_mirror_lens']

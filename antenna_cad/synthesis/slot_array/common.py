@@ -15,7 +15,8 @@ FEED_RMS_WARN = 1 / 16  # λ; RMS slot-phase aberration of a feed above this is 
 
 LAYOUTS = ("longitudinal_4", "longitudinal_pair", "transverse_3")
 TAPER_LAWS = ("sin", "exp", "cos_pedestal", "uniform")
-BEAMFORMERS = ("single_mirror", "bifocal_two_mirror", "bifocal_mirror_lens", "trifocal_two_mirror")
+BEAMFORMERS = ("single_mirror", "bifocal_two_mirror", "bifocal_mirror_lens", "trifocal_two_mirror",
+               "trifocal_mirror_lens")
 
 
 def _unit(v: np.ndarray) -> np.ndarray:

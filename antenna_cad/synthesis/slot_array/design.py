@@ -20,6 +20,7 @@ from antenna_cad.synthesis.slot_array.scan import (ScanFigures, guide_gamma_per_
                                                    period_for_angle_mm, scan_figures)
 from antenna_cad.synthesis.slot_array.slot_line import feed_phase_errors, slot_line_t_mm, slot_phase_spread
 from antenna_cad.synthesis.slot_array.taper import taper_slot_lengths_mm
+from antenna_cad.synthesis.slot_array.trifocal_mirror_lens import optimise_o1, trifocal_mirror_lens
 from antenna_cad.synthesis.slot_array.trifocal_two_mirror import optimise_beta_c, trifocal_two_mirror
 
 
@@ -95,7 +96,8 @@ def synthesize_slot_array(
     single_mirror: minor_semi_axis_mm, focal_separation_mm; bifocal_two_mirror: a0, a2, h1, b0,
     b2, h2, rho1 (rho2 = inf: plane output fronts are required to feed the guides);
     bifocal_mirror_lens: lens_a2, lens_vertex, x0, p1, p2, f0, n; trifocal_two_mirror: f1, f (x, z
-    pairs), c, beta_c_deg (None: optimised, §3.8), optional t_b (t at B, normalised; replaces t0).
+    pairs), c, beta_c_deg (None: optimised, §3.8), optional t_b (t at B, normalised; replaces t0);
+    trifocal_mirror_lens: f1, f, x_a, gamma_a_rad, n, o1 ((0, z) or None: optimised, §3.8), optional t_b.
     ``slot_line_offset_mm`` is
     t0, the distance along the guide from the last mirror to the first slot line at x = 0.
     Slots: ``lengths_mm`` (per cell for the longitudinal layouts, s1..s3 for transverse_3),
@@ -121,7 +123,7 @@ def synthesize_slot_array(
         period_mm = period_for_angle_mm(design_ghz, a, eps, beta_design)
     period_mm = float(period_mm)
     layers = [("layer1", layer_height_mm, 1.0)]
-    if beamformer_type == "bifocal_mirror_lens":
+    if beamformer_type in ("bifocal_mirror_lens", "trifocal_mirror_lens"):
         layers.append(("lens", layer_height_mm, float(bp.get("n", np.sqrt(2.2)))))
     scan = scan_figures(min_ghz=min_ghz, max_ghz=max_ghz, design_ghz=design_ghz, width_mm=a,
                         height_mm=guide_height_mm, eps_r=eps, period_mm=period_mm,
@@ -160,11 +162,20 @@ def synthesize_slot_array(
         bf = trifocal_two_mirror(f1=bp["f1"], f_z=bp["f"][1], c=bp["c"], beta_c=beta_c, half_width=hw + 0.005,
                                  margin=0.02, scale_mm=D)
         aim_point = np.array([0.0, bf.params["b0"] * D])
-        if bp.get("t_b") is not None:        # t at B (seed-003 §3.6) → t at x = 0
-            xb = float(bf.params["B"][0]) * D
-            slot_line_offset_mm = bp["t_b"] * D - float(slot_line_t_mm(bf, np.array([xb]), nw, cb, 0.0)[0])
+    elif beamformer_type == "trifocal_mirror_lens":
+        D = span if scale_mm is None else float(scale_mm)
+        hw = (np.abs(guide_x).max() + a / 2 + wall_mm) / D
+        lens_args = dict(f1=bp["f1"], f_z=bp["f"][1], x_a=bp["x_a"], gamma_a=bp["gamma_a_rad"], n=bp["n"])
+        o1_z = bp["o1"][1] if bp.get("o1") is not None else optimise_o1(**lens_args, half_width=hw)[0]
+        bf = trifocal_mirror_lens(**lens_args, o1_z=o1_z, half_width=hw + 0.005, margin=0.02, scale_mm=D)
+        aim_point = np.zeros(2)                                     # lens vertex
+        checks.append(_lower("lens_thickness", bf.params["min_lens_thickness_mm"], 0.0, "mm",
+                             "minimum lens thickness over the aperture"))
     else:
         raise DesignError("beamformer.type", f"unknown {beamformer_type!r} (use {BEAMFORMERS})")
+    if beamformer_type.startswith("trifocal") and bp.get("t_b") is not None:   # t at B (§3.6/§3.7) → t at x = 0
+        xb = float(bf.params["B"][0]) * D
+        slot_line_offset_mm = bp["t_b"] * D - float(slot_line_t_mm(bf, np.array([xb]), nw, cb, 0.0)[0])
     half_guides = np.abs(guide_x).max() + a / 2 + wall_mm
     x0c, x1c = bf.guide_curve.x_range_mm
     checks.append(Check.upper("guides_inside_aperture", float(half_guides), float(min(-x0c, x1c)),
@@ -251,6 +262,9 @@ def synthesize_slot_array(
     if "beta_c_rad" in bf.params:                          # trifocal: the parameters the seed leaves out
         figures |= {"beta_c_deg": float(np.degrees(bf.params["beta_c_rad"])), "mirror2_vertex_z": bf.params["a0"],
                     "march_guide_half_width": bf.params["guide_half_width"]}
+    elif bf.type == "trifocal_mirror_lens":
+        figures |= {"mirror_vertex_z": bf.params["b0"], "beam_alpha_deg": float(np.degrees(bf.params["alpha_rad"])),
+                    "lens_a2": bf.params["a2"], "march_guide_half_width": bf.params["guide_half_width"]}
     return SlotArrayDesign(scan, bf, slots, slot_line, coupling_edge, feeds, a,
                            float(guide_height_mm), float(wall_mm), eps, float(layer_height_mm),
                            float(coupling_slot_mm), termination, load_length_mm, spread, figures,

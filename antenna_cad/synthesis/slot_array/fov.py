@@ -99,6 +99,7 @@ def reference_formers() -> dict[str, tuple[BeamFormer, float]]:
     from antenna_cad.synthesis.slot_array.bifocal_mirror_lens import bifocal_mirror_lens
     from antenna_cad.synthesis.slot_array.bifocal_two_mirror import bifocal_two_mirror
     from antenna_cad.synthesis.slot_array.ellipse import ellipse_mirror
+    from antenna_cad.synthesis.slot_array.trifocal_mirror_lens import KA_RECIPE, trifocal_mirror_lens
     from antenna_cad.synthesis.slot_array.trifocal_two_mirror import trifocal_two_mirror
     return {
         "single_mirror": (ellipse_mirror(245 / 300, 75 / 300, 0.5), 0.5),
@@ -107,6 +108,7 @@ def reference_formers() -> dict[str, tuple[BeamFormer, float]]:
                                                     f0=1.4, n=np.sqrt(2.2)), 0.5),
         "trifocal_two_mirror": (trifocal_two_mirror(f1=(-0.25, -0.23), f_z=-0.25, c=(-0.16, 0.25),
                                                     beta_c=np.radians(61.647), half_width=0.35, margin=0.02), 0.345),
+        "trifocal_mirror_lens": (trifocal_mirror_lens(**KA_RECIPE, half_width=0.505, margin=0.02), 0.5),
     }
 
 

@@ -24,11 +24,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 from scipy.optimize import brentq
 
 from antenna_cad.synthesis.checks import DesignError
+from antenna_cad.synthesis.slot_array.beamformer import (BeamFormer, _assemble_symmetric, trace_mirror_lens,
+                                                         trace_two_mirror)
+from antenna_cad.synthesis.slot_array.common import N_SIGMA_RAYS
+from antenna_cad.synthesis.slot_array.curves import _make_curve, _rms
 
 class MarchError(DesignError):
     """The march cannot continue (no real root, folded or crossing segments)."""
@@ -111,6 +116,8 @@ class Segment:
     points (machine precision for the smooth maps of the march; the error at the mid-nodes is
     measured and kept in ``interp_error``)."""
 
+    breaks = ()
+
     def __init__(self, f, u0: float, u1: float, nodes: int = 49):
         k = np.arange(nodes)
         self.u0, self.u1 = float(u0), float(u1)
@@ -130,6 +137,29 @@ class Segment:
         out = (c @ self.values) / c.sum(axis=1)[:, None]
         hit = exact.any(axis=1)
         out[hit] = self.values[np.argmax(exact[hit], axis=1)]
+        return out
+
+
+class Piecewise:
+    """Segments of one map joined end to end at ``breaks`` of its parameter: a map of the march is smooth
+    between the joins of the segments it is built on and only C¹ across them, so each smooth piece is
+    frozen on its own (same interface as :class:`Segment`)."""
+
+    def __init__(self, f, u0: float, u1: float, breaks=()):
+        span = u1 - u0
+        cuts = [float(u0), *sorted(float(b) for b in breaks if u0 + 1e-9 * span < b < u1 - 1e-9 * span), float(u1)]
+        self.pieces = [Segment(f, a, b) for a, b in zip(cuts[:-1], cuts[1:])]
+        self.u0, self.u1, self.cuts, self.breaks = float(u0), float(u1), np.array(cuts), tuple(cuts[1:-1])
+        self.values = np.concatenate([p.values[1 if k else 0:] for k, p in enumerate(self.pieces)])
+        self.interp_error = max(p.interp_error for p in self.pieces)
+
+    def __call__(self, u):
+        u = np.atleast_1d(np.asarray(u, float))
+        k = np.clip(np.searchsorted(self.cuts, u, side="right") - 1, 0, len(self.pieces) - 1)
+        out = np.empty((u.size, self.values.shape[1]))
+        for i, piece in enumerate(self.pieces):
+            if np.any(k == i):
+                out[k == i] = piece(u[k == i])
         return out
 
 
@@ -201,7 +231,7 @@ def first_from_guide(fo: Foci, G: Segment, field: str) -> Segment:
             if 0 < r < K / n2 and (n2 == 1.0 or ix * ex + iz * ez > 1.0 / n2):
                 return [Nx, Nz, _slope_between(ix, iz, ex, ez, n2)]
         raise MarchError(field, f"no first-surface point for the F2 ray to x = {qx:.4g} D of the guide curve")
-    return Segment(f, G.u0, G.u1)
+    return Piecewise(f, G.u0, G.u1, G.breaks)
 
 
 def in_x(S: Segment, field: str) -> Segment:
@@ -218,7 +248,7 @@ def in_x(S: Segment, field: str) -> Segment:
         if g(S.u0) * g(S.u1) > 0:
             raise MarchError(field, f"the first surface folds back near x = {x:.4g} D: crossing segments")
         return S(brentq(g, S.u0, S.u1, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200))[0]
-    return Segment(f, min(x0, x1), max(x0, x1))
+    return Piecewise(f, min(x0, x1), max(x0, x1), [S(b)[0][0] for b in S.breaks])
 
 
 class Surface:
@@ -268,6 +298,9 @@ def guide_from_surface(fo: Foci, surf: Surface, p0: float, field: str) -> tuple[
         lo, hi = max(n_guess - w, new.u0), min(n_guess + w, new.u1)
         for _ in range(60):
             glo, ghi = g(p, lo), g(p, hi)
+            for end, ge in ((lo, glo), (hi, ghi)):       # root at a segment end (p at a join)
+                if abs(ge) < 1e-14 and end in (new.u0, new.u1):
+                    return end
             if math.isfinite(glo) and math.isfinite(ghi) and glo * ghi <= 0:
                 return float(brentq(lambda v: g(p, v), lo, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200))
             if lo <= new.u0 and hi >= new.u1:
@@ -305,7 +338,11 @@ def guide_from_surface(fo: Foci, surf: Surface, p0: float, field: str) -> tuple[
         mx, mz, T, e1, ef = at(p, xn)[1]
         dx, dz = n2 * (e1[0] - ef[0]), n2 * (e1[1] - ef[1])
         return [mx, mz, (s1 - dx) / dz, T, ef[0], ef[1]]
-    return Segment(f, p0, p1), p1
+    breaks = [b for seg in surf.segs[:-1] for b in (*seg.breaks, seg.u1)]         # joins under the F1 sources
+    for b in new.breaks:                                                          # joins under the F-ray points N
+        k = int(np.searchsorted(track_n, b))
+        breaks.append(brentq(lambda q: g(q, b), track_p[k - 1], track_p[k], xtol=1e-15, rtol=4 * np.finfo(float).eps))
+    return Piecewise(f, p0, p1, breaks), p1
 
 
 def _monotone_x(seg: Segment, what: str, field: str) -> None:
@@ -348,3 +385,66 @@ def construct(fo: Foci, S0: Segment, g0: float, g2: float, x_b: float, *, half_w
         G.append(Gk)
     raise MarchError(field, f"the guide curve did not reach |x| = {need:.3g} D in {max_steps} steps "
                      f"(reached {G[-1].values[:, 0].max():.4g} D)")
+
+
+def _sample(seg: Segment, n: int) -> np.ndarray:
+    return seg(np.linspace(seg.u0, seg.u1, n))
+
+
+def assemble_former(kind: str, fo: Foci, surf: Surface, G: list, first0, guide0: tuple[float, float], *,
+                    half_width: float, n_seg: int, scale_mm: float, params: dict, flip: bool = False) -> BeamFormer:
+    """The :class:`BeamFormer` of a finished march (both trifocal formers), scaled to mm.
+
+    ``first0``: (x, z, slope) samples of the initial first-surface segment; ``guide0`` = (g0, g2) of the
+    initial guide parabola (its exact values replace the interpolated ones). ``kind`` trifocal_two_mirror:
+    mirrors (first surface, guide curve); trifocal_mirror_lens: lens = first surface (index fo.n2), mirror =
+    guide curve. ``flip`` maps the thesis's z to −y (§3.7: the foci lie on the far side of the lens, the
+    guides run back from the mirror, +y in this package). ``eikonal(x_mm, j)`` is the design path from
+    focus j (0: F1, 1: F, 2: F2) to the guide curve at x: c_j + s_j x − T(x); ``params['T_curve']``
+    holds T(x) = n_w t(x) (mm) for the slot line.
+    """
+    ys = -1.0 if flip else 1.0
+    g0, g2 = guide0
+    m1 = [tuple(first0)] + [tuple(_sample(s, n_seg).T) for s in surf.segs[1:]]
+    g = [_sample(s, n_seg) for s in G]
+    m2 = [(v[:, 0], v[:, 1], v[:, 2]) for v in g]
+    m2[0] = (m2[0][0], g0 + g2 * m2[0][0] ** 2, 2 * g2 * m2[0][0])
+    tt = [(v[:, 0], v[:, 3], -fo.n2 * (v[:, 4] + v[:, 5] * v[:, 2])) for v in g]
+    sc = float(scale_mm)
+    lens = kind == "trifocal_mirror_lens"
+    flipped = lambda segs: [(x, ys * z, ys * s) for x, z, s in segs]
+    first = _assemble_symmetric(flipped(m1), "lens" if lens else "mirror_1", "layer1" if lens else "layer1-layer2", sc)
+    guide = _assemble_symmetric(flipped(m2), "mirror" if lens else "mirror_2",
+                                "layer1-layer2" if lens else "layer2-layer3", sc)
+    T = _assemble_symmetric(tt, "T", "guides", 1.0)
+    T = _make_curve("T", "guides", T.points_mm[:, 0] * sc, T.points_mm[:, 1] * sc, T.slopes)
+    s = np.array([fo.s1, 0.0, -fo.s1])
+    const = np.array([fo.c1, fo.cF, fo.c1]) * sc
+    foci = np.array([fo.F1, fo.F, fo.F2]) * np.array([1.0, ys]) * sc
+    dirs = np.stack([s, np.sqrt(1 - s**2)], -1)
+
+    def eikonal(x_mm, j):
+        x = np.asarray(x_mm, float)
+        return const[j] + s[j] * x - T.y_at(x)
+
+    if lens:
+        trace, mirrors, lenses = partial(trace_mirror_lens, first, guide, fo.n2), (guide,), (first,)
+    else:
+        trace, mirrors, lenses = partial(trace_two_mirror, first, guide), (first, guide), ()
+    from antenna_cad.synthesis.slot_array.slot_line import traced_eikonal_mm   # noqa: E402 (cycle)
+    xs = np.linspace(-half_width, half_width, N_SIGMA_RAYS) * sc
+    bf0 = BeamFormer(kind, mirrors, lenses, foci, dirs, np.zeros(3), np.zeros(3), sc, guide,
+                     np.empty((0, 2)), np.zeros(2), eikonal, trace, {})
+    sig = np.array([_rms(traced_eikonal_mm(bf0, j, xs) - eikonal(xs, j)) for j in range(3)])
+    yc = (fo.F1[0] ** 2 + fo.F1[1] ** 2 - fo.F[1] ** 2) / (2 * (fo.F1[1] - fo.F[1]))   # circle through the foci
+    R = abs(fo.F[1] - yc) * sc
+    lim = 1.6 * abs(math.atan2(fo.F1[0], abs(fo.F1[1] - yc)))
+    phi = np.linspace(-lim, lim, 121)
+    up = ys * (1.0 if fo.F[1] > yc else -1.0)
+    centre = np.array([0.0, ys * yc]) * sc
+    locus = centre + np.stack([R * np.sin(phi), up * R * np.cos(phi)], -1)
+    errors = max(sg.interp_error for sg in surf.segs[1:] + G)
+    params = params | {"alpha_rad": math.asin(fo.s1), "beam_angle_rad": math.asin(fo.s1), "steps": len(G) - 1,
+                       "interp_error": errors, "guide_half_width": float(G[-1].values[:, 0].max()), "T_curve": T,
+                       "construction": (fo, surf, G)}
+    return BeamFormer(kind, mirrors, lenses, foci, dirs, sig, sig / sc, sc, guide, locus, centre, eikonal, trace, params)

@@ -19,15 +19,12 @@ is built for a half-aperture ``half_width`` ≤ 0.35 D: D (``scale_mm``) is larg
 from __future__ import annotations
 
 import math
-from functools import partial
-
 import numpy as np
 
 from antenna_cad.synthesis.checks import DesignError
 from antenna_cad.synthesis.slot_array import trifocal as tr
-from antenna_cad.synthesis.slot_array.beamformer import BeamFormer, _assemble_symmetric, trace_two_mirror
+from antenna_cad.synthesis.slot_array.beamformer import BeamFormer
 from antenna_cad.synthesis.slot_array.common import N_SIGMA_RAYS
-from antenna_cad.synthesis.slot_array.curves import _make_curve, _rms
 
 
 def initial_segments(f1, f_z: float, c, beta_c: float, field: str):
@@ -56,10 +53,6 @@ def initial_segments(f1, f_z: float, c, beta_c: float, field: str):
     return fo, b0, b2, a0, a2, B
 
 
-def _sample(seg: tr.Segment, n: int) -> np.ndarray:
-    return seg(np.linspace(seg.u0, seg.u1, n))
-
-
 def trifocal_two_mirror(*, f1, f_z: float, c, beta_c: float, half_width: float = 0.35, margin: float = 0.03,
                         n_seg: int = 81, max_steps: int = 30, scale_mm: float = 1.0,
                         field_prefix: str = "beamformer") -> BeamFormer:
@@ -75,49 +68,9 @@ def trifocal_two_mirror(*, f1, f_z: float, c, beta_c: float, half_width: float =
     surf, G = tr.construct(fo, S0, a0, a2, B[0], half_width=half_width, margin=margin, max_steps=max_steps,
                            field=fp + ".beta_c_deg")
     xs0 = np.linspace(xc, -xc, n_seg)
-    m1 = [(xs0, b0 + b2 * xs0**2, 2 * b2 * xs0)] + [tuple(_sample(s, n_seg).T) for s in surf.segs[1:]]
-    g = [_sample(s, n_seg) for s in G]
-    tprime = lambda v: -fo.n2 * (v[:, 4] + v[:, 5] * v[:, 2])
-    m2 = [(v[:, 0], v[:, 1], v[:, 2]) for v in g]
-    tt = [(v[:, 0], v[:, 3], tprime(v)) for v in g]
-    m2[0] = (m2[0][0], a0 + a2 * m2[0][0] ** 2, 2 * a2 * m2[0][0])
-    sc = float(scale_mm)
-    mir1 = _assemble_symmetric(m1, "mirror_1", "layer1-layer2", sc)
-    mir2 = _assemble_symmetric(m2, "mirror_2", "layer2-layer3", sc)
-    T = _assemble_symmetric(tt, "T", "guides", 1.0)
-    T = _make_curve("T", "guides", T.points_mm[:, 0] * sc, T.points_mm[:, 1] * sc, T.slopes)
-    s = np.array([fo.s1, 0.0, -fo.s1])
-    const = np.array([fo.c1, fo.cF, fo.c1]) * sc
-    foci = np.array([fo.F1, fo.F, fo.F2]) * sc
-    dirs = np.stack([s, np.sqrt(1 - s**2)], -1)
-
-    def eikonal(x_mm, j):
-        x = np.asarray(x_mm, float)
-        return const[j] + s[j] * x - T.y_at(x)
-
-    trace = partial(trace_two_mirror, mir1, mir2)
-    from antenna_cad.synthesis.slot_array.slot_line import traced_eikonal_mm   # noqa: E402 (cycle)
-    xs = np.linspace(-half_width, half_width, N_SIGMA_RAYS) * sc
-    sig = []
-    bf0 = BeamFormer("trifocal_two_mirror", (mir1, mir2), (), foci, dirs, np.zeros(3), np.zeros(3), sc, mir2,
-                     np.empty((0, 2)), np.zeros(2), eikonal, trace, {})
-    for j in range(3):
-        sig.append(_rms(traced_eikonal_mm(bf0, j, xs) - eikonal(xs, j)))
-    sig = np.array(sig)
-    yc = (fo.F1[0] ** 2 + fo.F1[1] ** 2 - fo.F[1] ** 2) / (2 * (fo.F1[1] - fo.F[1]))   # circle through the foci
-    centre = np.array([0.0, yc]) * sc
-    R = abs(fo.F[1] - yc) * sc
-    lim = 1.6 * abs(math.atan2(fo.F1[0], abs(fo.F1[1] - yc)))
-    phi = np.linspace(-lim, lim, 121)
-    up = 1.0 if fo.F[1] > yc else -1.0
-    locus = centre + np.stack([R * np.sin(phi), up * R * np.cos(phi)], -1)
-    errors = max(sg.interp_error for sg in surf.segs[1:] + G)
-    params = {"beta_c_rad": float(beta_c), "b0": b0, "b2": b2, "a0": a0, "a2": a2, "B": np.array(B),
-              "alpha_rad": math.asin(fo.s1), "beam_angle_rad": math.asin(fo.s1), "steps": len(G) - 1,
-              "interp_error": errors, "guide_half_width": float(G[-1].values[:, 0].max()), "T_curve": T,
-              "construction": (fo, surf, G)}
-    return BeamFormer("trifocal_two_mirror", (mir1, mir2), (), foci, dirs, sig, sig / sc, sc, mir2, locus,
-                      centre, eikonal, trace, params)
+    params = {"beta_c_rad": float(beta_c), "b0": b0, "b2": b2, "a0": a0, "a2": a2, "B": np.array(B)}
+    return tr.assemble_former("trifocal_two_mirror", fo, surf, G, (xs0, b0 + b2 * xs0**2, 2 * b2 * xs0), (a0, a2),
+                              half_width=half_width, n_seg=n_seg, scale_mm=scale_mm, params=params)
 
 
 def optimise_beta_c(*, f1, f_z: float, c, half_width: float, bounds_deg: tuple[float, float] = (55.0, 70.0),

@@ -255,7 +255,10 @@ def test_verification_figures_reach_the_manifest(x_build):
         "tolerance_loss_db_feed_position_along_the_axis"}
     tables = {t["name"]: t for t in manifest["verification"]["tables"]}
     assert set(tables) == {"feeds", "slots", "sensitivity", "fov-sigma", "slot-patterns"}
-    assert len(tables["fov-sigma"]["rows"]) == 5 and 0 < fig["sigma_fov80_design"] < 5.6e-4 * 2
+    from antenna_cad.synthesis.slot_array.fov import reference_curves
+    rows = tables["fov-sigma"]["rows"]                                     # this design + the reference formers
+    assert len(rows) == 1 + len(reference_curves()) and "trifocal_mirror_lens" in {r[0] for r in rows}
+    assert 0 < fig["sigma_fov80_design"] < 5.6e-4 * 2
     assert len(tables["slot-patterns"]["rows"]) == 2 * 5                   # ideal and as written, every horn
     assert 20 < fig["frequency_scan_sector_deg_fabricated"] < 40           # thesis (FEM): single mirror ≈ 30°
     assert fig["pattern_fabricated_horn3_gain_dbi"] < fig["pattern_fabricated_horn3_directivity_dbi"]

@@ -16,8 +16,10 @@ parabola must have that slope at B: the C¹ condition), and the F2 ray that must
 point is fixed too, which makes the new first-surface point explicit (:func:`first_from_guide`). The
 new guide point is where an F1 ray from the known first surface meets an F ray from the newest
 first-surface segment with Ψ_1 = const_1 (:func:`guide_from_surface`: one scalar brentq root per
-point, followed continuously from the previous one). Segments are smooth functions of their parameter,
-frozen as Chebyshev interpolants (:class:`Segment`). Never the garbled closed forms (3.18)/(3.24).
+point, followed continuously from the previous one). Segments are smooth functions of their parameter
+between the joins of the surfaces they are built on (only C¹ there), frozen piecewise as Chebyshev
+interpolants (:class:`Segment`, :class:`Piecewise`). :func:`assemble_former` turns a finished march into
+the :class:`BeamFormer` of either former. Never the garbled closed forms (3.18)/(3.24).
 """
 
 from __future__ import annotations

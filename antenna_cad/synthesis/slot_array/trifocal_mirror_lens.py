@@ -14,8 +14,8 @@ Where the seed is silent or inconsistent (measured, see the tests): O1 and n are
 §7.7). The three eikonals fix the mirror slope at B (n (e_1 − e_F)·(1, z′) = sin α), so O1 and the beam
 angle α are one parameter: this former takes O1 and derives α. The thesis's α = arctg(x_F1/z_F1) = 29.1°
 (with its x_A, γ_A and n = √2.2) would need a steep mirror (b2 = −15.4), on which no F2 ray satisfies its
-eikonal: the march stops at x = 0.05 D. With its F1, F, x_A, γ_A the march covers |x| ≥ 0.55 D only for
-z_O1 in a window of about ±0.03 D about z_B (a nearly flat initial mirror; beams α ≈ 13.4–15.3°).
+eikonal: the march stops at x = 0.05 D. With its F1, F, x_A, γ_A the march covers |x| ≥ 0.525 D only for
+z_O1 ≈ 1.015–1.07 about z_B = 1.040 (a nearly flat initial mirror; beams α ≈ 13.5–15.0°).
 """
 
 from __future__ import annotations

@@ -342,8 +342,10 @@ def guide_from_surface(fo: Foci, surf: Surface, p0: float, field: str) -> tuple[
         return [mx, mz, (s1 - dx) / dz, T, ef[0], ef[1]]
     breaks = [b for seg in surf.segs[:-1] for b in (*seg.breaks, seg.u1)]         # joins under the F1 sources
     for b in new.breaks:                                                          # joins under the F-ray points N
-        k = int(np.searchsorted(track_n, b))
-        breaks.append(brentq(lambda q: g(q, b), track_p[k - 1], track_p[k], xtol=1e-15, rtol=4 * np.finfo(float).eps))
+        k = int(np.clip(np.searchsorted(track_n, b), 1, len(track_n) - 1))
+        w = max(track_n[k] - track_n[k - 1], 1e-6 * span)
+        breaks.append(brentq(lambda q: local_root(q, b, w) - b, track_p[k - 1], track_p[k], xtol=1e-15,
+                             rtol=4 * np.finfo(float).eps))
     return Piecewise(f, p0, p1, breaks), p1
 
 

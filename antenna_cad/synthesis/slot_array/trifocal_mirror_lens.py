@@ -14,8 +14,9 @@ Where the seed is silent or inconsistent (measured, see the tests): O1 and n are
 §7.7). The three eikonals fix the mirror slope at B (n (e_1 − e_F)·(1, z′) = sin α), so O1 and the beam
 angle α are one parameter: this former takes O1 and derives α. The thesis's α = arctg(x_F1/z_F1) = 29.1°
 (with its x_A, γ_A and n = √2.2) would need a steep mirror (b2 = −15.4), on which no F2 ray satisfies its
-eikonal: the march stops at x = 0.05 D. With its F1, F, x_A, γ_A the march covers |x| ≥ 0.525 D only for
-z_O1 ≈ 1.015–1.07 about z_B = 1.040 (a nearly flat initial mirror; beams α ≈ 13.5–15.0°).
+eikonal: the march stops at x = 0.05 D. With its F1, F, x_A, γ_A the march covers |x| ≥ 0.525 D with
+smooth segments only for z_O1 ≈ 1.03–1.07 about z_B = 1.040 (a nearly flat initial mirror; α ≈ 13.9–15.0°;
+steps of 0.01 D: at 1.01–1.02 and 1.08–1.10 it still covers the aperture, through near-folds).
 """
 
 from __future__ import annotations
@@ -31,6 +32,7 @@ from antenna_cad.synthesis.slot_array.beamformer import BeamFormer
 # recipes/ka-slot-array-trifocal-mirror-lens.yaml (normalised): the thesis's §3.8 foci, x_A and γ_A, n = √2.2
 # (the lens of the guide filling, as in §2.3), z_O1 from :func:`optimise_o1`
 KA_RECIPE = dict(f1=(-0.25, -0.45), f_z=-0.5, x_a=-0.09, gamma_a=-0.09, n=math.sqrt(2.2), o1_z=1.0355)
+SMOOTH_TOL = 1e-8       # D: largest mid-node error of a frozen march segment the O1 search accepts
 
 
 def _refracted(P, F, slope: float, n: float) -> tuple[float, float]:
@@ -95,7 +97,8 @@ def optimise_o1(*, f1, f_z: float, x_a: float, gamma_a: float, n: float, half_wi
     leaves out: a 17-point scan of z_B + ``window`` (the march covers the aperture only near a flat
     initial mirror), then a bounded scalar search about the best. Objective: σ(80°) of
     :func:`antenna_cad.synthesis.slot_array.fov.field_curve` on 5 field angles (1 where the march does not
-    cover ``half_width`` or the rays miss before 40°). Returns (z_O1, objective)."""
+    cover ``half_width``, a frozen segment misses its map by more than ``SMOOTH_TOL`` — a near-fold, where
+    the eikonals would no longer hold to 1e-9 D — or the rays miss before 40°). Returns (z_O1, objective)."""
     from scipy.optimize import minimize_scalar
 
     from antenna_cad.synthesis.slot_array.fov import field_curve
@@ -107,6 +110,8 @@ def optimise_o1(*, f1, f_z: float, x_a: float, gamma_a: float, n: float, half_wi
             bf = trifocal_mirror_lens(f1=f1, f_z=f_z, x_a=x_a, gamma_a=gamma_a, n=n, o1_z=z,
                                       half_width=half_width + 0.005, margin=0.02, n_seg=21, field_prefix=field_prefix)
         except DesignError:
+            return 1.0
+        if bf.params["interp_error"] > SMOOTH_TOL:               # a map of the march not smooth: not exact
             return 1.0
         value = field_curve(bf, half_width, n_angles=5).sigma_fov()
         return value if np.isfinite(value) else 1.0

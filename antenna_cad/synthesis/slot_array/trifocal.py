@@ -340,7 +340,7 @@ def guide_from_surface(fo: Foci, surf: Surface, p0: float, field: str) -> tuple[
         mx, mz, T, e1, ef = at(p, xn)[1]
         dx, dz = n2 * (e1[0] - ef[0]), n2 * (e1[1] - ef[1])
         return [mx, mz, (s1 - dx) / dz, T, ef[0], ef[1]]
-    breaks = [b for seg in surf.segs[:-1] for b in (*seg.breaks, seg.u1)]         # joins under the F1 sources
+    breaks = [b for seg in surf.segs for b in seg.breaks] + [seg.u1 for seg in surf.segs[:-1]]   # under F1 sources
     for b in new.breaks:                                                          # joins under the F-ray points N
         k = int(np.clip(np.searchsorted(track_n, b), 1, len(track_n) - 1))
         w = max(track_n[k] - track_n[k - 1], 1e-6 * span)

@@ -325,5 +325,5 @@ def test_ka_recipes_build_everything(recipe, recipe_build):
     assert (round(w), round(h)) == (210, 297) and len(pdf.pages) >= 40
     fig = manifest["verification"]["figures"]
     # trifocal: the C¹ Hermite curves between the march's exact points leave ≈ 2e-8 D of path error
-    assert fig["design_focus_phase_rms_deg"] < (1e-3 if recipe in (TRI_RECIPE, TRI_ML_RECIPE) else 1e-4)
+    assert fig["design_focus_phase_rms_deg"] < (1e-3 if recipe is TRI_RECIPE else 1e-4)
     assert fig["phase_rms_deg_as_built_worst_feed"] < 22.5

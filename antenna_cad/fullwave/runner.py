@@ -16,11 +16,11 @@ dielectrics, so it is stair-stepped: every cell at least half inside becomes met
 block per run of cells along z. Meep still averages over each node's voxel and a node is a conductor
 only when its whole voxel is, so the blocks are grown by half a cell: the raster's faces are then the
 conducting surfaces (measured: a flat plate behind a slab within 3° of the Yee-grid plane-wave
-theory at 16–24 px/λ, 45° off without the growth). The aperture
-plane may lie on either side of the sheet: in front of it (z < sheet) it sees the wave a reflecting
-body sends back through the sheet (plus the sheet's own weak back lobe, which a run without parts
-measures). Gaussian pulse, DFT at f0. Output: Er, Eφ at f0 on the plane ``plane_z_mm`` (r_i = i/res,
-Meep 1.25's metadata being wrong in cylindrical coordinates) and |E| over the (r, z) cell, decimated.
+theory at 16–24 px/λ, 45° off without the growth). The aperture plane may lie on either side of the
+sheet: in front of it (z < sheet) it sees the wave a reflecting body sends back through the sheet
+(plus the sheet's own weak back lobe, which a run without parts measures). Gaussian pulse, DFT at
+f0. Output: Er, Eφ at f0 on the plane ``plane_z_mm`` (r_i = i/res, Meep 1.25's metadata being wrong
+in cylindrical coordinates) and |E| over the (r, z) cell, decimated.
 """
 
 from __future__ import annotations

@@ -6,8 +6,8 @@ face. Its coating (tens of µm) is far below a grid cell and the field behind it
 conductor is drawn ``METAL_CELLS`` cells thick (or the coating, if thicker). The feed's analytic
 field enters on a Huygens sheet 1.5 λ in front of the front vertex, radiating toward the body; the
 reflected beam passes back through the sheet to the aperture plane ``plane_offset_lambda`` in front
-of it, where the co-polar field is read. The sheet's own back lobe is measured by the same deck without parts and subtracted (the
-fields add linearly). The feed and its support are not meshed: their blockage of the outgoing beam
+of it, where the co-polar field is read. The sheet's own back lobe is measured by the same deck
+without parts and subtracted (the fields add linearly). The feed and its support are not meshed: their blockage of the outgoing beam
 is ignored, as in the GO trace. Variants: ``ideal`` (the exact marched profiles) and ``fabricated``
 (the CAD's splines; a solid body with its flange ring; a sanded layup has the exact faces, so its
 deck equals the ideal one and runs once). Figures ``fullwave_<variant>_on_axis_*`` and

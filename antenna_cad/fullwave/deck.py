@@ -49,18 +49,24 @@ def slab_parts(slabs: Slabs, eps_r: float, labels: list[str] | None = None) -> l
 
 def make_deck(parts: list[dict], *, frequency_ghz: float, resolution: float, feed_z_mm: float,
               feed_pattern: str, feed_q: float, radius_mm: float, plane_offset_lambda: float,
-              field_map: bool = True, m: int = 1) -> dict:
+              field_map: bool = True, m: int = 1, reflected: bool = False) -> dict:
     """The runner's input: named parameters (εr per part, geometry in mm, feed, frequency, resolution)
-    and the domain: sheet 1.5 λ before the foremost dielectric, the aperture plane
-    ``plane_offset_lambda`` behind the hindmost, radial PML 4 λ, axial 2 λ."""
+    and the domain: sheet 1.5 λ before the foremost part, the aperture plane ``plane_offset_lambda``
+    behind the hindmost (``reflected``: in front of the sheet, for a body that sends the beam back
+    through it, seed-004; the feed itself is not meshed, so it blocks nothing), radial PML 4 λ, axial 2 λ."""
     lam = 299.792458 / frequency_ghz
     pts = np.array([p for part in parts for p in part["polygon"]]) if parts else np.zeros((1, 2))
     z_front, z_back = float(pts[:, 1].min()), float(pts[:, 1].max())
     sheet = z_front - SHEET_GAP_LAMBDA * lam
-    plane = z_back + plane_offset_lambda * lam
+    if reflected:
+        plane = sheet - plane_offset_lambda * lam
+        z_min, z_max = plane - BACK_MARGIN_LAMBDA * lam, z_back + BACK_MARGIN_LAMBDA * lam
+    else:
+        plane = z_back + plane_offset_lambda * lam
+        z_min, z_max = sheet - 0.5 * lam, plane + BACK_MARGIN_LAMBDA * lam
     return {"frequency_ghz": float(frequency_ghz), "resolution_px_per_lambda": float(resolution), "m": int(m),
             "parts": parts, "feed": {"z_mm": float(feed_z_mm), "pattern": feed_pattern, "q": float(feed_q)},
             "sheet_z_mm": round(sheet, 4), "plane_z_mm": round(plane, 4),
             "r_max_mm": round(radius_mm + R_MARGIN_LAMBDA * lam, 4),
-            "z_min_mm": round(sheet - 0.5 * lam, 4), "z_max_mm": round(plane + BACK_MARGIN_LAMBDA * lam, 4),
+            "z_min_mm": round(z_min, 4), "z_max_mm": round(z_max, 4),
             "pml_r_lambda": PML_R_LAMBDA, "pml_z_lambda": PML_Z_LAMBDA, "field_map": bool(field_map)}

@@ -23,6 +23,7 @@ from scipy.interpolate import CubicHermiteSpline
 from antenna_cad.fabrication.layup import LayupPlan
 from antenna_cad.kinds.asbuilt import ruze_loss_db
 from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks, plan_layup_and_box, plan_sheets
+from antenna_cad.kinds.mirror_lens_fullwave import body_parts, full_wave_verification
 from antenna_cad.kinds.patterns_arrays import array_patterns, line_case, path_mm
 from antenna_cad.materials import Material
 from antenna_cad.raytrace.mirror_lens import Body, Surface, aperture_field as trace_aperture_field, sigma_at
@@ -293,9 +294,18 @@ def _aperture_plot(spec, design: MirrorLensDesign, name: str, feed, bodies):
                 caption=f"3-D GO, beam at {af.beam_angle_deg:.2f}°, tilt removed"), figures, cases
 
 
+def _fullwave_parts(spec: MirrorLensSpec, design: MirrorLensDesign, layup: LayupPlan | None) -> dict[str, list]:
+    """The full-wave decks' bodies: ideal, and as fabricated (a solid body with its flange ring)."""
+    kw = dict(eps_r=resolve_material(spec.material).eps_r, coating_mm=spec.design.mirror.thickness_mm,
+              resolution=spec.verification.resolution_px_per_lambda, cad_samples=CAD_SAMPLES)
+    return {"ideal": body_parts(design, "ideal", **kw),
+            "fabricated": body_parts(design, "fabricated", flange=None if layup else _ring(spec, design), **kw)}
+
+
 def verify(spec: MirrorLensSpec, design: MirrorLensDesign, layup: LayupPlan | None, fab) -> Verification:
     """The exact and the fabricated body on axis and at the field edge (feed on the focal curve),
-    σ over the field, the tolerance study; p-p phase against the budget."""
+    σ over the field, the tolerance study; p-p phase against the budget; the full-wave check with
+    the feed on the axis (:mod:`antenna_cad.kinds.mirror_lens_fullwave`)."""
     m = resolve_material(spec.material)
     D, sc = design.diameter_mm, design.scan
     bodies = (("ideal", design.body(m.tan_delta)), ("fabricated", fabricated_body(design, m.tan_delta)))
@@ -314,4 +324,6 @@ def verify(spec: MirrorLensSpec, design: MirrorLensDesign, layup: LayupPlan | No
                        f"curve): {edge:.1f}° p-p vs budget {budget:g}°")
     return Verification(figures, (sens_check, edge_check),
                         (_profile_table(design), field_table, _astigmatism_table(design), sens_table),
-                        tuple(plots + [field_plot])).merged(array_patterns(cases, PATTERN_CAPTION))
+                        tuple(plots + [field_plot])).merged(array_patterns(cases, PATTERN_CAPTION)).merged(
+        full_wave_verification(design, spec.verification, _fullwave_parts(spec, design, layup),
+                               aperture_field(spec, design)))

@@ -12,7 +12,9 @@ same feed, a table and the scan-plane and orthogonal cuts of the phase over GO's
 
 from __future__ import annotations
 
+import json
 import os
+import shlex
 from dataclasses import dataclass
 
 import numpy as np
@@ -99,6 +101,10 @@ def scan_edge_study(plan: ScanEdgePlan, go: dict[str, tuple[np.ndarray, np.ndarr
         for label, cx, cy in (("scan plane", 0 * cut, cut), ("orthogonal cut", cut, 0 * cut)):
             ph = tilt_removed(aperture_copolar(r, fields, cx, cy), cx, cy, st.k_xy)
             series.append(Series(f"full-wave {v}, {label}", cut, ph, "line" if label == "scan plane" else "points"))
+        inner = (np.abs(cut) >= 0.5 * lam) & (np.abs(cut) <= 0.9 * R)
+        ph = series[-2].y[inner]                 # the scan plane, as GO's meridional cut
+        rows.append((v, "full-wave (scan-plane cut)", round(float(np.ptp(ph)), 3),
+                     round(float(np.sqrt(np.mean((ph - ph.mean()) ** 2))), 3), "", ""))
         if v in go:
             gy, gph, beam, eff = go[v]
             figures |= {f"go_{v}_scan_edge_beam_deg": beam, f"go_{v}_scan_edge_phase_efficiency_db": eff}
@@ -125,4 +131,20 @@ def scan_edge_study(plan: ScanEdgePlan, go: dict[str, tuple[np.ndarray, np.ndarr
                   ("lens", "model", "p-p deg", "RMS deg", "beam deg", "phase efficiency dB"), tuple(rows), caption)
     plot = Plot("fullwave-scan-edge-phase", "Scan-edge aperture phase: full-wave over GO", "position on the cut (mm)",
                 "phase, tilt removed (deg)", tuple(series), caption=caption)
-    return Verification(figures, (check,), (table,), (plot,))
+    return Verification(figures, (check,), (table,), (plot,), _deck_files(plan))
+
+
+def _deck_files(plan: ScanEdgePlan) -> dict[str, str]:
+    """When it ran: ``fullwave/scan-edge/<lens>-m<m>.json``, one deck per order run, and ``rerun-scan-edge.sh`` (the
+    orders −m are the mirror images of m: see :mod:`antenna_cad.fullwave.offaxis`)."""
+    files, lines = {}, ["#!/bin/sh", "# Rerun the scan-edge feed's azimuthal orders (one deck per order m >= 0) with Debian's",
+                        "# python3-meep; results <lens>-m<m>.npz (Er, Ephi of that order on the aperture plane).",
+                        'cd "$(dirname "$0")/scan-edge"', 'PY="${ANTENNA_CAD_MEEP_PYTHON:-/usr/bin/python3}"']
+    for v, decks in plan.decks.items():
+        for d in decks:
+            name = f"{v}-m{d['m']}"
+            files[f"fullwave/scan-edge/{name}.json"] = json.dumps(d, sort_keys=True) + "\n"
+            lines.append(f'"$PY" ../runner.py {shlex.quote(name + ".json")} {shlex.quote(name + ".npz")}')
+    if files:
+        files["fullwave/rerun-scan-edge.sh"] = "\n".join(lines) + "\n"
+    return files

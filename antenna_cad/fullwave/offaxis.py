@@ -6,7 +6,8 @@ still along +z and its E along x (φ = 0 of the runner; a displacement along y s
 meridional plane the GO trace draws). Its tangential E and H on the sheet plane are sampled on rings and
 split into orders by FFT over φ (:func:`sheet_harmonics`). The orders kept are |m| ≤ M with M the
 smallest for which the truncated sum rebuilds the sheet's co-polar field over r ≤ R + 1 λ to a relative
-error ≤ ``ORDER_TOLERANCE`` (0.3°, 0.04 dB, below the sheet's own 0.6° p-p; the power the dropped orders carry is reported beside it).
+error ≤ ``ORDER_TOLERANCE`` (0.3°, 0.04 dB, below the sheet's own 0.6° p-p; the power the dropped
+orders carry is reported beside it).
 A body of revolution maps the order-m solution to the order −m one under the mirror φ → −φ:
 (Er, Eφ, Hr, Hφ) → (Er, −Eφ, −Hr, Hφ). When the sheet's order −m equals s_m times that mirror of its
 order m (checked here to ``SYMMETRY_TOLERANCE``: it holds for a linearly polarized feed displaced in a

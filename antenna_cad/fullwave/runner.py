@@ -12,8 +12,9 @@ with 5×5 sub-samples per pixel (area-weighted ε: subpixel smoothing) into a ``
 enters through a Huygens current sheet (J = ẑ×H, M = −ẑ×E of the analytic feed field) on the plane
 ``sheet_z_mm``, extended through the radial PML; empty space between the feed and the lens is not
 meshed; a laterally displaced feed comes as one azimuthal order m per run, its sheet fields tabulated in
-the deck (``sheet``, :mod:`antenna_cad.fullwave.offaxis`). Gaussian pulse, DFT at f0. Output: Er, Eφ at f0 on the plane ``plane_z_mm`` (r_i = i/res,
-Meep 1.25's metadata being wrong in cylindrical coordinates) and |E| over the (r, z) cell, decimated.
+the deck (``sheet``, :mod:`antenna_cad.fullwave.offaxis`). Gaussian pulse, DFT at f0. Output: Er, Eφ at
+f0 on the plane ``plane_z_mm`` (r_i = i/res, Meep 1.25's metadata being wrong in cylindrical
+coordinates) and |E| over the (r, z) cell, decimated.
 """
 
 from __future__ import annotations

@@ -77,40 +77,16 @@ def scan_edge_study(plan: ScanEdgePlan, go: dict[str, tuple[np.ndarray, np.ndarr
     if plan.python is None:
         return Verification(checks=(_check(plan),))
     lens = plan.lens
-    lam, R = lens.wavelength_mm, lens.radius_mm
     flat = [d for v in plan.variants for d in plan.decks[v]]
     results = solver.run_decks(flat, plan.python, max(1, min(len(flat), os.cpu_count() or 1)))
-    h = lam / GRID_PER_LAMBDA
-    g = np.arange(-0.9 * R, 0.9 * R + h / 2, h)
-    x, y = (a.ravel() for a in np.meshgrid(g, g))
-    disc = (np.hypot(x, y) >= 0.5 * lam) & (np.hypot(x, y) <= 0.9 * R)
-    x, y = x[disc], y[disc]
     dz = plan.decks["ideal"][0]["plane_z_mm"] - lens.feed_z_mm
     guess = -plan.feed_y_mm / np.hypot(plan.feed_y_mm, dz)
     figures, rows, series, start = {}, [], [], 0
     for v in plan.variants:
         chunk = results[start:start + len(plan.decks[v])]
         start += len(chunk)
-        fields = order_fields(plan.choices[v], chunk)
-        r = chunk[0]["r_mm"]
-        st = tilted_stats(aperture_copolar(r, fields, x, y), x, y, lam, guess)
-        figures |= {f"fullwave_{v}_scan_edge_{k}": val for k, val in vars(st).items() if k != "k_xy"}
-        rows.append((v, "full-wave (2-D aperture)", *(round(float(a), 3) for a in (st.p2p_deg, st.rms_deg, st.beam_deg,
-                                                                               st.phase_efficiency_db))))
-        cut = np.linspace(-R, R, CUT_POINTS)
-        for label, cx, cy in (("scan plane", 0 * cut, cut), ("orthogonal cut", cut, 0 * cut)):
-            ph = tilt_removed(aperture_copolar(r, fields, cx, cy), cx, cy, st.k_xy)
-            series.append(Series(f"full-wave {v}, {label}", cut, ph, "line" if label == "scan plane" else "points"))
-        inner = (np.abs(cut) >= 0.5 * lam) & (np.abs(cut) <= 0.9 * R)
-        ph = series[-2].y[inner]                 # the scan plane, as GO's meridional cut
-        rows.append((v, "full-wave (scan-plane cut)", round(float(np.ptp(ph)), 3),
-                     round(float(np.sqrt(np.mean((ph - ph.mean()) ** 2))), 3), "", ""))
-        if v in go:
-            gy, gph, beam, eff = go[v]
-            figures |= {f"go_{v}_scan_edge_beam_deg": beam, f"go_{v}_scan_edge_phase_efficiency_db": eff}
-            rows.append((v, "GO (meridional cut)", round(float(np.ptp(gph)), 3),
-                         round(float(np.sqrt(np.mean((gph - gph.mean()) ** 2))), 3), round(beam, 3), round(eff, 3)))
-            series.append(Series(f"GO {v}", gy, gph - np.mean(gph), "dashed"))
+        f, t, s = _variant_report(v, chunk[0]["r_mm"], order_fields(plan.choices[v], chunk), lens, guess, go.get(v))
+        figures, rows, series = figures | f, rows + t, series + s
     unique = {o["key"]: o for o in results}
     seconds = float(sum(float(o["seconds"]) for o in unique.values()))
     cached = sum(bool(o["cached"]) for o in unique.values())
@@ -121,11 +97,13 @@ def scan_edge_study(plan: ScanEdgePlan, go: dict[str, tuple[np.ndarray, np.ndarr
                 "fullwave_scan_edge_sheet_power_fraction": worst.power_fraction}
     detail = (f" |m| ≤ {max(worst.orders)} rebuild the sheet's co-polar field to {worst.sheet_error:.1e} "
               f"({100 * worst.power_fraction:.4f} % of its power)"
-              + (f", order −m from m by mirror symmetry (residual {worst.symmetry_residual:.0e})" if worst.mirror else "")
+              + (f", order −m from m by mirror symmetry (residual {worst.symmetry_residual:.0e})"
+                 if worst.mirror else "")
               + f"; {len(unique)} runs ({cached} from the cache; solver {seconds:.0f} s)")
     check = _check(plan, ";" + detail)
     caption = (f"feed displaced {plan.feed_y_mm:.1f} mm along y (E along x: H-plane scan); co-polar phase on the "
-               f"plane {plan.plane_offset_lambda:g} λ behind the lens (GO: on the antenna plane), best-fit tilt (the beam squint) removed; statistics "
+               f"plane {plan.plane_offset_lambda:g} λ behind the lens (GO: on the antenna plane), best-fit tilt "
+               "(the beam squint) removed; statistics "
                "over 0.5 λ ≤ ρ ≤ 0.9 R of the 2-D aperture")
     table = Table("fullwave-scan-edge", "Scan-edge feed: full-wave against GO",
                   ("lens", "model", "p-p deg", "RMS deg", "beam deg", "phase efficiency dB"), tuple(rows), caption)
@@ -134,11 +112,40 @@ def scan_edge_study(plan: ScanEdgePlan, go: dict[str, tuple[np.ndarray, np.ndarr
     return Verification(figures, (check,), (table,), (plot,), _deck_files(plan))
 
 
+def _variant_report(v: str, r: np.ndarray, fields: dict, lens: RevolvedLens, guess: float, go) -> tuple:
+    """(figures, table rows, plot series) of one lens at the scan edge: the 2-D aperture statistics, the
+    scan-plane and orthogonal cuts with the same tilt removed, and GO's meridional cut beside them."""
+    lam, R = lens.wavelength_mm, lens.radius_mm
+    g = np.arange(-0.9 * R, 0.9 * R + lam / GRID_PER_LAMBDA / 2, lam / GRID_PER_LAMBDA)
+    x, y = (a.ravel() for a in np.meshgrid(g, g))
+    disc = (np.hypot(x, y) >= 0.5 * lam) & (np.hypot(x, y) <= 0.9 * R)
+    x, y = x[disc], y[disc]
+    st = tilted_stats(aperture_copolar(r, fields, x, y), x, y, lam, guess)
+    figures = {f"fullwave_{v}_scan_edge_{k}": val for k, val in vars(st).items() if k != "k_xy"}
+    rows = [(v, "full-wave (2-D aperture)", *(round(float(a), 3) for a in (st.p2p_deg, st.rms_deg, st.beam_deg,
+                                                                          st.phase_efficiency_db)))]
+    cut = np.linspace(-R, R, CUT_POINTS)
+    scan, orthogonal = (tilt_removed(aperture_copolar(r, fields, cx, cy), cx, cy, st.k_xy)
+                        for cx, cy in ((0 * cut, cut), (cut, 0 * cut)))
+    series = [Series(f"full-wave {v}, scan plane", cut, scan), Series(f"full-wave {v}, orthogonal cut", cut,
+                                                                      orthogonal, "points")]
+    ph = scan[(np.abs(cut) >= 0.5 * lam) & (np.abs(cut) <= 0.9 * R)]     # as GO's meridional cut
+    rows.append((v, "full-wave (scan-plane cut)", round(float(np.ptp(ph)), 3), round(float(np.std(ph)), 3), "", ""))
+    if go is not None:
+        gy, gph, beam, eff = go
+        figures |= {f"go_{v}_scan_edge_beam_deg": beam, f"go_{v}_scan_edge_phase_efficiency_db": eff}
+        rows.append((v, "GO (meridional cut)", round(float(np.ptp(gph)), 3), round(float(np.std(gph)), 3),
+                     round(beam, 3), round(eff, 3)))
+        series.append(Series(f"GO {v}", gy, gph - np.mean(gph), "dashed"))
+    return figures, rows, series
+
+
 def _deck_files(plan: ScanEdgePlan) -> dict[str, str]:
     """When it ran: ``fullwave/scan-edge/<lens>-m<m>.json``, one deck per order run, and ``rerun-scan-edge.sh`` (the
     orders −m are the mirror images of m: see :mod:`antenna_cad.fullwave.offaxis`)."""
-    files, lines = {}, ["#!/bin/sh", "# Rerun the scan-edge feed's azimuthal orders (one deck per order m >= 0) with Debian's",
-                        "# python3-meep; results <lens>-m<m>.npz (Er, Ephi of that order on the aperture plane).",
+    files, lines = {}, ["#!/bin/sh", "# Rerun the scan-edge feed's azimuthal orders (one deck per order m >= 0)",
+                        "# with Debian's python3-meep; results <lens>-m<m>.npz (Er, Ephi of that order on the",
+                        "# aperture plane).",
                         'cd "$(dirname "$0")/scan-edge"', 'PY="${ANTENNA_CAD_MEEP_PYTHON:-/usr/bin/python3}"']
     for v, decks in plan.decks.items():
         for d in decks:

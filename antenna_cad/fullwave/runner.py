@@ -11,8 +11,9 @@ resolution is in px/λ. The lens is ε(r, z) from the deck's (r, z) polygons, on
 with 5×5 sub-samples per pixel (area-weighted ε: subpixel smoothing) into a ``MaterialGrid``. The feed
 enters through a Huygens current sheet (J = ẑ×H, M = −ẑ×E of the analytic feed field) on the plane
 ``sheet_z_mm``, extended through the radial PML; empty space between the feed and the lens is not
-meshed. A part with ``"metal": true`` (no εr) is a perfect conductor: Meep 1.25 averages only lossless
-dielectrics, so it is stair-stepped: every cell at least half inside becomes metal, one ``mp.metal``
+meshed; a laterally displaced feed comes as one azimuthal order m per run, its sheet fields tabulated in
+the deck (``sheet``, :mod:`antenna_cad.fullwave.offaxis`). A part with
+``"metal": true`` (no εr) is a perfect conductor: Meep 1.25 averages only lossless dielectrics, so it is stair-stepped: every cell at least half inside becomes metal, one ``mp.metal``
 block per run of cells along z. Meep still averages over each node's voxel and a node is a conductor
 only when its whole voxel is, so the blocks are grown by half a cell: the raster's faces are then the
 conducting surfaces (measured: a flat plate behind a slab within 3° of the Yee-grid plane-wave
@@ -147,13 +148,23 @@ def run(deck: dict) -> dict:
     m_scale = 1.0 / np.cos(np.pi / res)     # M sits half a cell from J: balance the pair (back lobe ≈ −26 dB)
     src = mp.GaussianSource(1.0, fwidth=FWIDTH)
 
+    table = deck.get("sheet")      # a displaced feed: this order's sheet fields, tabulated (offaxis.py)
+
+    def fields_at(r):
+        if table is None:
+            return feed_fields(np.array(r), np.array(dz), k, feed["pattern"], feed.get("q", 1.0))
+        return [np.interp(r, table["r_lambda"], table[c][0]) + 1j * np.interp(r, table["r_lambda"], table[c][1])
+                for c in ("er", "ep", "hr", "hp")]
+
+    r0 = table["r_lambda"][0] if table else 0.0
+
     def amp(index):
-        def f(p):
-            er, ep, hr, hp = feed_fields(np.array(p.x + sr / 2), np.array(dz), k, feed["pattern"], feed.get("q", 1.0))
+        def f(p):                                                       # p relative to the line's centre
+            er, ep, hr, hp = fields_at(p.x + (r0 + sr) / 2)
             return complex((-hp, hr, m_scale * ep, -m_scale * er)[index])   # J_r, J_φ, M_r, M_φ
         return f
 
-    line = dict(center=mp.Vector3(sr / 2, 0, zs), size=mp.Vector3(sr, 0, 0))
+    line = dict(center=mp.Vector3((r0 + sr) / 2, 0, zs), size=mp.Vector3(sr - r0, 0, 0))
     sources = [mp.Source(src, component=c, amp_func=amp(i), **line)
                for i, c in enumerate((mp.Er, mp.Ep, mp.Hr, mp.Hp))]
     sim = mp.Simulation(cell_size=mp.Vector3(sr, 0, sz), dimensions=mp.CYLINDRICAL, m=deck.get("m", 1),

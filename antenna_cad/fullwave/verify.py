@@ -56,6 +56,11 @@ def fast_model(lens: RevolvedLens, settings) -> PhaseModel:
     return PhaseModel(FAST, r, {v: lens.fast_difference_deg(v, settings.plane_offset_lambda, r) for v in lens.sections})
 
 
+def on_axis_decks(lens: RevolvedLens, settings) -> list[dict]:
+    """The decks of the on-axis feed: the ideal lens, then each stepped section."""
+    return [lens.deck(v, settings) for v in ("ideal", *lens.sections)]
+
+
 def _decision(settings, decks: list[dict], jobs: int) -> tuple[str | None, str, float]:
     """(interpreter, why, estimated s): the interpreter when the full-wave stage runs, else None."""
     if settings.full_wave == "off":
@@ -76,7 +81,7 @@ def full_wave_study(lens: RevolvedLens, settings, go: dict[str, tuple[np.ndarray
     """The full-wave stage; ``go``: variant → (y, phase deg) of the GO trace at the on-axis feed, drawn
     under the full-wave curves."""
     variants = ["ideal", *lens.sections]
-    decks = [lens.deck(v, settings) for v in variants]
+    decks = on_axis_decks(lens, settings)
     jobs = max(1, min(len(decks), os.cpu_count() or 1))
     python, why, estimate = _decision(settings, decks, jobs)
     files = _deck_files(variants, decks)

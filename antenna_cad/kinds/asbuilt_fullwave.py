@@ -8,6 +8,8 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+import numpy as np
+
 from antenna_cad.fabrication.section import fabricated_section, stepped_section
 from antenna_cad.fullwave.lens import C_MM_GHZ, RevolvedLens
 from antenna_cad.fullwave.verify import PhaseModel
@@ -35,3 +37,21 @@ def modelled_stats(lens, model: PhaseModel, variant: str, feed):
     ap = replace(ap, path_mm=ap.path_mm + model.added(variant, ap.y_mm) / 360.0 * lens.wavelength_mm)
     rms = ap.rms_deg()
     return replace(base, p2p_deg=ap.peak_to_peak_deg(), rms_deg=rms, gain_loss_db=ruze_loss_db(rms))
+
+
+def scan_edge_go(lens, layup, fab, feed) -> dict[str, tuple[np.ndarray, np.ndarray, float, float]]:
+    """GO of each variant at the scan-edge ``feed`` (z, y), beside the full-wave scan edge: (y, phase with
+    the least-squares tilt removed (deg), beam angle from that tilt (deg), phase efficiency
+    |mean e^{iψ}|² over the meridional cut (dB))."""
+    from antenna_cad.kinds.asbuilt import lens_variants, trace_lens
+    out = {}
+    for variant, medium in lens_variants(lens, layup, fab):
+        tr, keep = trace_lens(lens, medium, feed)
+        ap = ApertureTrace.from_trace(tr, lens.wavelength_mm, keep)
+        order = np.argsort(ap.y_mm)
+        slope = np.polyfit(ap.y_mm, ap.phase_deg(), 1)[0]          # deg/mm = k sin θ in degrees
+        ph = ap.detrended_phase_deg()
+        eff = 20 * np.log10(np.abs(np.mean(np.exp(1j * np.radians(ph)))))
+        out[variant] = (ap.y_mm[order], ph[order], float(np.degrees(np.arcsin(slope * lens.wavelength_mm / 360.0))),
+                        float(eff))
+    return out

@@ -8,7 +8,9 @@ from functools import partial
 import numpy as np
 
 from antenna_cad.fabrication.layup import LayupPlan
+from antenna_cad.fullwave.scan import plan_scan_edge, scan_edge_study
 from antenna_cad.kinds.asbuilt import Lens, lens_variants, stock_study, verify_lens
+from antenna_cad.kinds.asbuilt_fullwave import revolved, scan_edge_go
 from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks, plan_layup_and_box, plan_sheets
 from antenna_cad.kinds.patterns import collimator_feed_limits, criteria_from, lens_patterns
 from antenna_cad.raytrace.collimator import front_face, single_surface_p2p_deg, usable_half_range_mm
@@ -102,7 +104,8 @@ def fabrication_checks(spec: CollimatorSpec, design: CollimatorDesign, layup: La
 def verify(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | None, fab) -> Verification:
     """As-built verification (issue 6, :mod:`antenna_cad.kinds.asbuilt`) on axis and at the edge of the
     scan range: the transverse feed displacement where the ideal lens reaches the phase budget
-    (seed-000 §5.5)."""
+    (seed-000 §5.5); the full-wave stage solves that feed too when its budget allows
+    (:mod:`antenna_cad.fullwave.scan`)."""
     f, D, gap = design.focal_length_mm, design.diameter_mm, _antenna_gap_mm(spec)
     _, edge = usable_half_range_mm(
         lambda y: single_surface_p2p_deg(f, D, design.eps_r, y, gap, design.wavelength_mm),
@@ -111,7 +114,11 @@ def verify(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | No
                          spec.verification)
              if layup is not None else ())
     lens, feeds = _lens(spec, design, layup), (("on_axis", -f, 0.0), ("edge", -f, edge))
+    # decided before the on-axis runs, so that auto's estimate counts every run still to do
+    edge_plan = plan_scan_edge(revolved(lens, layup, fab), spec.verification, edge)
     v = verify_lens(lens, feeds, spec.tolerances, layup, fab, study, spec.verification)
+    go_edge = scan_edge_go(lens, layup, fab, (-f, edge)) if edge_plan.python else {}
+    v = v.merged(scan_edge_study(edge_plan, go_edge))
     crit = criteria_from(spec.design.aut, spec.design.test_zone)
     v = v.merged(lens_patterns(lens, lens_variants(lens, layup, fab), feeds, crit)).merged(
         collimator_feed_limits(design, gap, crit.aut.height_mm if crit.aut else D, crit.aut.taper_k if crit.aut else 0,

@@ -11,7 +11,11 @@ resolution is in px/λ. The lens is ε(r, z) from the deck's (r, z) polygons, on
 with 5×5 sub-samples per pixel (area-weighted ε: subpixel smoothing) into a ``MaterialGrid``. The feed
 enters through a Huygens current sheet (J = ẑ×H, M = −ẑ×E of the analytic feed field) on the plane
 ``sheet_z_mm``, extended through the radial PML; empty space between the feed and the lens is not
-meshed. Gaussian pulse, DFT at f0. Output: Er, Eφ at f0 on the plane ``plane_z_mm`` (r_i = i/res,
+meshed. Or (feed ``kind: point``, a Luneburg sphere's feed touching its surface) point sources on the
+axis at the feed: ``Er`` alone (a transverse electric dipole, circularly polarized in m = +1) or, for
+``pattern: huygens``, with the crossed magnetic dipole ``Hφ`` that makes it a Huygens element radiating
+toward +z (seed-002 §2.4.5). ``graded``: spheres whose ε(r) is a table (r_mm, eps_r), sampled at the
+same sub-samples (the continuous law as a per-pixel ε). Gaussian pulse, DFT at f0. Output: Er, Eφ at f0 on the plane ``plane_z_mm`` (r_i = i/res,
 Meep 1.25's metadata being wrong in cylindrical coordinates) and |E| over the (r, z) cell, decimated.
 """
 
@@ -28,6 +32,8 @@ SUBSAMPLES = 5
 MAP_MAX_PX = 240               # field map decimated to at most this many pixels a side
 EXTRA_PERIODS = 30.0           # after the pulse has crossed the cell (≤ 0.03° change past 30, fullwave-notes)
 FWIDTH = 0.5                   # Gaussian pulse bandwidth, units of f0
+HUYGENS_HP = 1.0               # Hφ/Er of the point Huygens element (η0 = 1): front/back 54 dB toward +z
+                               # (an Hr source at r = 0 does nothing in Meep 1.25; the wrong sign radiates to −z)
 
 
 def feed_pattern(theta: np.ndarray, pattern: str, q: float) -> tuple[np.ndarray, np.ndarray]:
@@ -77,6 +83,19 @@ def fill_fraction(parts, r_edges: np.ndarray, z_edges: np.ndarray) -> np.ndarray
     return eps
 
 
+def graded_fill(graded, r_edges: np.ndarray, z_edges: np.ndarray) -> np.ndarray:
+    """ε − 1 of each cell from the graded spheres (centre z, table r → εr, air beyond the table),
+    averaged over SUBSAMPLES² points per cell."""
+    s = (np.arange(SUBSAMPLES) + 0.5) / SUBSAMPLES
+    rs = (r_edges[:-1, None] + np.diff(r_edges)[:, None] * s).ravel()
+    zs = (z_edges[:-1, None] + np.diff(z_edges)[:, None] * s).ravel()
+    add = np.zeros((len(rs), len(zs)))
+    for g in graded:
+        rho = np.hypot(rs[:, None], zs[None, :] - g["center_z"])
+        add += np.interp(rho, g["r"], np.asarray(g["eps_r"]) - 1.0, right=0.0)
+    return add.reshape(len(r_edges) - 1, SUBSAMPLES, len(z_edges) - 1, SUBSAMPLES).mean(axis=(1, 3))
+
+
 def domain(deck: dict) -> dict:
     """The cell in units of λ0: radial size ``sr`` and axial ``sz`` with the PML (whole pixels),
     its centre ``zc`` (meep z = z/λ − zc), pixel counts and the run time in periods."""
@@ -87,7 +106,7 @@ def domain(deck: dict) -> dict:
     nr = int(np.ceil((r_in + deck["pml_r_lambda"]) * res))
     nz = int(np.ceil((z1 - z0 + 2 * deck["pml_z_lambda"]) * res))
     sr, sz = nr / res, nz / res
-    n_max = np.sqrt(max([p["eps_r"] for p in deck["parts"]] + [1.0]))
+    n_max = np.sqrt(max([p["eps_r"] for p in deck["parts"]] + [max(g["eps_r"]) for g in deck.get("graded", [])] + [1.0]))
     after = n_max * np.hypot(sz, sr) + EXTRA_PERIODS
     return dict(lam=lam, res=res, r_in=r_in, z0=z0, z1=z1, sr=sr, sz=sz, zc=0.5 * (z0 + z1), nr=nr, nz=nz,
                 after=after, periods=after + 2 * 5.0 / FWIDTH)
@@ -97,6 +116,34 @@ def cell_updates(deck: dict) -> float:
     """Cells × time steps (Courant 0.5) of the run: what its cost scales with."""
     d = domain(deck)
     return d["nr"] * d["nz"] * 2 * d["res"] * d["periods"]
+
+
+def sheet_sources(mp, src, deck: dict, d: dict) -> list:
+    """The Huygens current sheet carrying the analytic feed field (J = ẑ×H, M = −ẑ×E)."""
+    feed, lam, res, sr, zc = deck["feed"], d["lam"], d["res"], d["sr"], d["zc"]
+    k = 2 * np.pi
+    zs = deck["sheet_z_mm"] / lam - zc
+    dz = (deck["sheet_z_mm"] - feed["z_mm"]) / lam
+    m_scale = 1.0 / np.cos(np.pi / res)     # M sits half a cell from J: balance the pair (back lobe ≈ −26 dB)
+
+    def amp(index):
+        def f(p):
+            er, ep, hr, hp = feed_fields(np.array(p.x + sr / 2), np.array(dz), k, feed["pattern"], feed.get("q", 1.0))
+            return complex((-hp, hr, m_scale * ep, -m_scale * er)[index])   # J_r, J_φ, M_r, M_φ
+        return f
+
+    line = dict(center=mp.Vector3(sr / 2, 0, zs), size=mp.Vector3(sr, 0, 0))
+    return [mp.Source(src, component=c, amp_func=amp(i), **line) for i, c in enumerate((mp.Er, mp.Ep, mp.Hr, mp.Hp))]
+
+
+def point_sources(mp, src, feed: dict, lam: float, zc: float) -> list:
+    """A point feed on the axis: an electric dipole (Er), plus the crossed magnetic dipole (Hφ) of a
+    Huygens element for ``pattern: huygens``."""
+    at = mp.Vector3(0, 0, feed["z_mm"] / lam - zc)
+    sources = [mp.Source(src, component=mp.Er, center=at)]
+    if feed["pattern"] == "huygens":
+        sources.append(mp.Source(src, component=mp.Hp, center=at, amplitude=HUYGENS_HP))
+    return sources
 
 
 def run(deck: dict) -> dict:
@@ -109,27 +156,18 @@ def run(deck: dict) -> dict:
     z_edges = np.linspace(-sz / 2, sz / 2, nz + 1)
     parts = [dict(p, polygon=[(r / lam, z / lam - zc) for r, z in p["polygon"]]) for p in deck["parts"]]
     eps = fill_fraction(parts, r_edges, z_edges)
-    eps_max = max([p["eps_r"] for p in parts] + [1.0 + 1e-6])
+    graded = [{"center_z": g["center_z_mm"] / lam - zc, "r": np.asarray(g["r_mm"]) / lam, "eps_r": g["eps_r"]}
+              for g in deck.get("graded", [])]
+    if graded:
+        eps += graded_fill(graded, r_edges, z_edges)
+    eps_max = max([p["eps_r"] for p in parts] + [float(eps.max()), 1.0 + 1e-6])
     grid = mp.MaterialGrid(mp.Vector3(nr, 1, nz), mp.air, mp.Medium(epsilon=eps_max),
                            weights=((eps - 1.0) / (eps_max - 1.0))[:, None, :], do_averaging=False)
     geometry = [mp.Block(size=mp.Vector3(sr, 0, sz), center=mp.Vector3(sr / 2, 0, 0), material=grid)]
 
     feed = deck["feed"]
-    k = 2 * np.pi
-    zs = deck["sheet_z_mm"] / lam - zc
-    dz = (deck["sheet_z_mm"] - feed["z_mm"]) / lam
-    m_scale = 1.0 / np.cos(np.pi / res)     # M sits half a cell from J: balance the pair (back lobe ≈ −26 dB)
     src = mp.GaussianSource(1.0, fwidth=FWIDTH)
-
-    def amp(index):
-        def f(p):
-            er, ep, hr, hp = feed_fields(np.array(p.x + sr / 2), np.array(dz), k, feed["pattern"], feed.get("q", 1.0))
-            return complex((-hp, hr, m_scale * ep, -m_scale * er)[index])   # J_r, J_φ, M_r, M_φ
-        return f
-
-    line = dict(center=mp.Vector3(sr / 2, 0, zs), size=mp.Vector3(sr, 0, 0))
-    sources = [mp.Source(src, component=c, amp_func=amp(i), **line)
-               for i, c in enumerate((mp.Er, mp.Ep, mp.Hr, mp.Hp))]
+    sources = point_sources(mp, src, feed, lam, zc) if feed.get("kind") == "point" else sheet_sources(mp, src, deck, d)
     sim = mp.Simulation(cell_size=mp.Vector3(sr, 0, sz), dimensions=mp.CYLINDRICAL, m=deck.get("m", 1),
                         resolution=res, geometry=geometry, sources=sources, force_complex_fields=True,
                         boundary_layers=[mp.PML(pml_r, direction=mp.R), mp.PML(pml_z, direction=mp.Z)])

@@ -135,3 +135,10 @@ def test_stage_on_a_small_sphere_against_mie(meep, tmp_path, monkeypatch):
     ideal = json.loads(v.files["fullwave/ideal.json"])
     assert ideal["parts"] == [] and ideal["graded"][0]["eps_r"][0] == 2.0 and ideal["graded"][0]["eps_r"][-1] == 1.0
     assert "5 runs (5 from the cache" in _note(_verify(_sphere(full_wave="on"))).message
+
+
+def test_on_without_meep_is_an_error_naming_the_field(monkeypatch):
+    from antenna_cad.synthesis.checks import DesignError
+    monkeypatch.setattr(solver, "meep_python", lambda: None)
+    with pytest.raises(DesignError, match="Meep not found"):
+        _verify(_sphere(full_wave="on"))

@@ -13,6 +13,7 @@ from antenna_cad.fullwave import solver
 from antenna_cad.fullwave.mie import shell_parts
 from antenna_cad.fullwave.runner import fill_fraction, graded_fill
 from antenna_cad.fullwave.sphere import C_MM_GHZ, aperture_gain_dbi, fine_shells, mie_focal_gain_dbi
+from antenna_cad.kinds import luneburg_fullwave
 from antenna_cad.kinds.luneburg_fullwave import medium_parts
 from antenna_cad.raytrace.media import Staircase
 from antenna_cad.registry import adapter
@@ -87,6 +88,10 @@ def test_auto_declines_a_large_sphere_and_says_why(monkeypatch):
     assert not any(k.startswith("fullwave_") for k in v.figures)
     assert v.figures["mie_ideal_focal_gain_dbi"] < v.figures["aperture_gain_limit_dbi"]
     assert json.loads(v.files["fullwave/ideal.json"])["feed"] == {"kind": "point", "z_mm": -1498.96229, "pattern": "dipole"}
+    monkeypatch.setattr(luneburg_fullwave, "MIE_MAX_D_LAMBDA", 2.0)       # as a sphere of D/λ > 200 would
+    small = _verify(_sphere(budget_s=1))
+    assert "Mie series not evaluated above D/λ = 2" in _note(small).message
+    assert not any(k.startswith("mie_") for k in small.figures)
 
 
 def test_cylinder_lens_is_not_run_and_says_why(monkeypatch):

@@ -15,8 +15,9 @@ meshed. Or (feed ``kind: point``, a Luneburg sphere's feed touching its surface)
 axis at the feed: ``Er`` alone (a transverse electric dipole, circularly polarized in m = +1) or, for
 ``pattern: huygens``, with the crossed magnetic dipole ``Hφ`` that makes it a Huygens element radiating
 toward +z (seed-002 §2.4.5). ``graded``: spheres whose ε(r) is a table (r_mm, eps_r), sampled at the
-same sub-samples (the continuous law as a per-pixel ε). Gaussian pulse, DFT at f0. Output: Er, Eφ at f0 on the plane ``plane_z_mm`` (r_i = i/res,
-Meep 1.25's metadata being wrong in cylindrical coordinates) and |E| over the (r, z) cell, decimated.
+same sub-samples (the continuous law as a per-pixel ε). Gaussian pulse, DFT at f0. Output: Er, Eφ at
+f0 on the plane ``plane_z_mm`` (r_i = i/res, Meep 1.25's metadata being wrong in cylindrical
+coordinates) and |E| over the (r, z) cell, decimated.
 """
 
 from __future__ import annotations
@@ -91,8 +92,11 @@ def graded_fill(graded, r_edges: np.ndarray, z_edges: np.ndarray) -> np.ndarray:
     zs = (z_edges[:-1, None] + np.diff(z_edges)[:, None] * s).ravel()
     add = np.zeros((len(rs), len(zs)))
     for g in graded:
-        rho = np.hypot(rs[:, None], zs[None, :] - g["center_z"])
-        add += np.interp(rho, g["r"], np.asarray(g["eps_r"]) - 1.0, right=0.0)
+        top = g["r"][-1]
+        i1 = np.searchsorted(rs, top, side="right")                      # only the sphere's bounding box
+        j0, j1 = np.searchsorted(zs, [g["center_z"] - top, g["center_z"] + top])
+        rho = np.hypot(rs[:i1, None], zs[None, j0:j1] - g["center_z"])
+        add[:i1, j0:j1] += np.interp(rho, g["r"], np.asarray(g["eps_r"]) - 1.0, right=0.0)
     return add.reshape(len(r_edges) - 1, SUBSAMPLES, len(z_edges) - 1, SUBSAMPLES).mean(axis=(1, 3))
 
 
@@ -106,7 +110,8 @@ def domain(deck: dict) -> dict:
     nr = int(np.ceil((r_in + deck["pml_r_lambda"]) * res))
     nz = int(np.ceil((z1 - z0 + 2 * deck["pml_z_lambda"]) * res))
     sr, sz = nr / res, nz / res
-    n_max = np.sqrt(max([p["eps_r"] for p in deck["parts"]] + [max(g["eps_r"]) for g in deck.get("graded", [])] + [1.0]))
+    eps = [p["eps_r"] for p in deck["parts"]] + [max(g["eps_r"]) for g in deck.get("graded", [])]
+    n_max = np.sqrt(max(eps + [1.0]))
     after = n_max * np.hypot(sz, sr) + EXTRA_PERIODS
     return dict(lam=lam, res=res, r_in=r_in, z0=z0, z1=z1, sr=sr, sz=sz, zc=0.5 * (z0 + z1), nr=nr, nz=nz,
                 after=after, periods=after + 2 * 5.0 / FWIDTH)

@@ -91,8 +91,8 @@ def luneburg_full_wave(spec, design: LuneburgDesign, media: dict, go: dict) -> V
     geometry = {"ideal": ([], [law_table(law.eps, R)])} | {
         v: (medium_parts(media[v], v), []) for v in VARIANTS[1:]}
     common = dict(frequency_ghz=design.frequency_ghz, resolution=settings.resolution_px_per_lambda)
-    decks = [feed_deck(R, parts=p, graded=g, feed_z_mm=-b, pattern=pattern,
-                       plane_offset_lambda=settings.plane_offset_lambda, **common)
+    decks = [feed_deck(R, parts=p, graded=g, feed_z_mm=-b, pattern=pattern, field_map=v != "ideal",
+                       plane_offset_lambda=settings.plane_offset_lambda, **common)    # the map shows the stepped lens
              for v, (p, g) in geometry.items()]
     decks += plane_wave_decks(shell_parts(*shells), R, b, **common)
     names = [*VARIANTS, "plane_wave_shells", "plane_wave_empty"]

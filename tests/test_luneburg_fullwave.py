@@ -147,3 +147,27 @@ def test_on_without_meep_is_an_error_naming_the_field(monkeypatch):
     monkeypatch.setattr(solver, "meep_python", lambda: None)
     with pytest.raises(DesignError, match="Meep not found"):
         _verify(_sphere(full_wave="on"))
+
+
+@pytest.mark.slow
+def test_classic_5_recipe_runs_its_stage_under_auto(meep, tmp_path, monkeypatch):
+    """luneburg-classic-5 (D = 10 λ) with the default verification block: auto runs (its estimate fits
+    budget_s); the steps' error full-wave is well below GO's (the shells' zones average); Meep's focal
+    gain within 1 dB of Mie; manifest figures, the fullwave/ decks and the report's four plots."""
+    from pathlib import Path
+    from antenna_cad.pipeline import build
+    from antenna_cad.spec import load_spec
+    monkeypatch.setenv("ANTENNA_CAD_FULLWAVE_CACHE", str(tmp_path / "cache"))
+    spec = load_spec(Path(__file__).resolve().parents[1] / "recipes" / "luneburg-classic-5.yaml")
+    spec = spec.model_copy(update={"outputs": spec.outputs.model_copy(update={"step": False, "stl": False,
+                                                                              "templates": False})})
+    result = build(spec, tmp_path / "out")
+    assert "stage ran (estimated" in next(c.message for c in result.checks if c.name == "full_wave")
+    figures = json.loads((result.out_dir / "manifest.json").read_text())["verification"]["figures"]
+    assert figures["fullwave_stepped_minus_ideal_rms_deg"] < 0.5 * figures["stepped_axis_phase_rms_deg"]
+    assert abs(figures["fullwave_shells_focal_gain_minus_mie_db"]) < 1.0
+    assert {f"{n}.json" for n in ("ideal", "stepped", "fabricated", "plane_wave_shells", "plane_wave_empty")} <= \
+        {p.name for p in (result.out_dir / "fullwave").iterdir()}
+    html = (result.out_dir / "report.html").read_text()
+    assert all(f'id="plot-fullwave-{n}"' in html for n in ("aperture-phase", "aperture-amplitude", "focal-spot",
+                                                           "field-map"))

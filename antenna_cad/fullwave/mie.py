@@ -6,9 +6,28 @@ i spans radii_mm[i−1] ≤ r ≤ radii_mm[i] with permittivity eps[i] (lossless
 
 from __future__ import annotations
 
+import os
+import sys
+from contextlib import contextmanager
+
 import numpy as np
 
 SEMICIRCLE_POINTS = 181
+
+
+@contextmanager
+def _quiet_stdout():
+    """scattnlay's C++ core prints convergence notes on file descriptor 1: send them to /dev/null
+    (library code never prints)."""
+    sys.stdout.flush()
+    saved = os.dup(1)
+    with open(os.devnull, "wb") as null:
+        os.dup2(null.fileno(), 1)
+        try:
+            yield
+        finally:
+            os.dup2(saved, 1)
+            os.close(saved)
 
 
 def mie_field(radii_mm, eps, wavelength_mm: float, points_mm: np.ndarray) -> np.ndarray:
@@ -16,7 +35,8 @@ def mie_field(radii_mm, eps, wavelength_mm: float, points_mm: np.ndarray) -> np.
     from scattnlay import fieldnlay
     k = 2 * np.pi / wavelength_mm
     p = np.asarray(points_mm, float) * k
-    _, e, _ = fieldnlay(k * np.asarray(radii_mm, float), np.sqrt(np.asarray(eps, complex)), p[:, 0], p[:, 1], p[:, 2])
+    with _quiet_stdout():
+        _, e, _ = fieldnlay(k * np.asarray(radii_mm, float), np.sqrt(np.asarray(eps, complex)), p[:, 0], p[:, 1], p[:, 2])
     return np.asarray(e)
 
 

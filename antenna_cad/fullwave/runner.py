@@ -11,17 +11,25 @@ resolution is in px/λ. The lens is ε(r, z) from the deck's (r, z) polygons, on
 with 5×5 sub-samples per pixel (area-weighted ε: subpixel smoothing) into a ``MaterialGrid``. The feed
 enters through a Huygens current sheet (J = ẑ×H, M = −ẑ×E of the analytic feed field) on the plane
 ``sheet_z_mm``, extended through the radial PML; empty space between the feed and the lens is not
-meshed; a laterally displaced feed comes as one azimuthal order m per run, its sheet fields tabulated in
-the deck (``sheet``, :mod:`antenna_cad.fullwave.offaxis`). A part with
-``"metal": true`` (no εr) is a perfect conductor: Meep 1.25 averages only lossless dielectrics, so it is stair-stepped: every cell at least half inside becomes metal, one ``mp.metal``
+meshed. A laterally displaced feed comes as one azimuthal order m per run, its sheet fields tabulated
+in the deck (``sheet``, :mod:`antenna_cad.fullwave.offaxis`). Or (feed ``kind: point``, a Luneburg
+sphere's feed touching its surface) point sources on the axis at the feed: ``Er`` alone (a transverse
+electric dipole, circularly polarized in m = +1) or, for ``pattern: huygens``, with the crossed
+magnetic dipole ``Hφ`` that makes it a Huygens element radiating toward +z (seed-002 §2.4.5).
+``graded``: spheres whose ε(r) is a table (r_mm, eps_r), sampled at the same sub-samples (the
+continuous law as a per-pixel ε).
+
+A part with ``"metal": true`` (no εr) is a perfect conductor: Meep 1.25 averages only lossless
+dielectrics, so it is stair-stepped: every cell at least half inside becomes metal, one ``mp.metal``
 block per run of cells along z. Meep still averages over each node's voxel and a node is a conductor
 only when its whole voxel is, so the blocks are grown by half a cell: the raster's faces are then the
 conducting surfaces (measured: a flat plate behind a slab within 3° of the Yee-grid plane-wave
 theory at 16–24 px/λ, 45° off without the growth). The aperture plane may lie on either side of the
 sheet: in front of it (z < sheet) it sees the wave a reflecting body sends back through the sheet
-(plus the sheet's own weak back lobe, which a run without parts measures). Gaussian pulse, DFT at
-f0. Output: Er, Eφ at f0 on the plane ``plane_z_mm`` (r_i = i/res, Meep 1.25's metadata being wrong
-in cylindrical coordinates) and |E| over the (r, z) cell, decimated.
+(plus the sheet's own weak back lobe, which a run without parts measures).
+
+Gaussian pulse, DFT at f0. Output: Er, Eφ at f0 on the plane ``plane_z_mm`` (r_i = i/res, Meep 1.25's
+metadata being wrong in cylindrical coordinates) and |E| over the (r, z) cell, decimated.
 """
 
 from __future__ import annotations
@@ -37,6 +45,8 @@ SUBSAMPLES = 5
 MAP_MAX_PX = 240               # field map decimated to at most this many pixels a side
 EXTRA_PERIODS = 30.0           # after the pulse has crossed the cell (≤ 0.03° change past 30, fullwave-notes)
 FWIDTH = 0.5                   # Gaussian pulse bandwidth, units of f0
+HUYGENS_HP = 1.0               # Hφ/Er of the point Huygens element (η0 = 1): front/back 54 dB toward +z
+                               # (an Hr source at r = 0 does nothing in Meep 1.25; the wrong sign radiates to −z)
 
 
 def feed_pattern(theta: np.ndarray, pattern: str, q: float) -> tuple[np.ndarray, np.ndarray]:
@@ -100,6 +110,22 @@ def metal_blocks(parts, r_edges: np.ndarray, z_edges: np.ndarray) -> list[tuple[
     return blocks
 
 
+def graded_fill(graded, r_edges: np.ndarray, z_edges: np.ndarray) -> np.ndarray:
+    """ε − 1 of each cell from the graded spheres (centre z, table r → εr, air beyond the table),
+    averaged over SUBSAMPLES² points per cell."""
+    s = (np.arange(SUBSAMPLES) + 0.5) / SUBSAMPLES
+    rs = (r_edges[:-1, None] + np.diff(r_edges)[:, None] * s).ravel()
+    zs = (z_edges[:-1, None] + np.diff(z_edges)[:, None] * s).ravel()
+    add = np.zeros((len(rs), len(zs)))
+    for g in graded:
+        top = g["r"][-1]
+        i1 = np.searchsorted(rs, top, side="right")                      # only the sphere's bounding box
+        j0, j1 = np.searchsorted(zs, [g["center_z"] - top, g["center_z"] + top])
+        rho = np.hypot(rs[:i1, None], zs[None, j0:j1] - g["center_z"])
+        add[:i1, j0:j1] += np.interp(rho, g["r"], np.asarray(g["eps_r"]) - 1.0, right=0.0)
+    return add.reshape(len(r_edges) - 1, SUBSAMPLES, len(z_edges) - 1, SUBSAMPLES).mean(axis=(1, 3))
+
+
 def domain(deck: dict) -> dict:
     """The cell in units of λ0: radial size ``sr`` and axial ``sz`` with the PML (whole pixels),
     its centre ``zc`` (meep z = z/λ − zc), pixel counts and the run time in periods."""
@@ -110,7 +136,8 @@ def domain(deck: dict) -> dict:
     nr = int(np.ceil((r_in + deck["pml_r_lambda"]) * res))
     nz = int(np.ceil((z1 - z0 + 2 * deck["pml_z_lambda"]) * res))
     sr, sz = nr / res, nz / res
-    n_max = np.sqrt(max([p.get("eps_r", 1.0) for p in deck["parts"]] + [1.0]))
+    eps = [p.get("eps_r", 1.0) for p in deck["parts"]] + [max(g["eps_r"]) for g in deck.get("graded", [])]
+    n_max = np.sqrt(max(eps + [1.0]))
     after = n_max * np.hypot(sz, sr) + EXTRA_PERIODS
     return dict(lam=lam, res=res, r_in=r_in, z0=z0, z1=z1, sr=sr, sz=sz, zc=0.5 * (z0 + z1), nr=nr, nz=nz,
                 after=after, periods=after + 2 * 5.0 / FWIDTH)
@@ -122,33 +149,15 @@ def cell_updates(deck: dict) -> float:
     return d["nr"] * d["nz"] * 2 * d["res"] * d["periods"]
 
 
-def run(deck: dict) -> dict:
-    import meep as mp
-    d = domain(deck)
-    lam, res, r_in, z0, z1, sr, sz, zc, nr, nz = (d[k] for k in ("lam", "res", "r_in", "z0", "z1", "sr", "sz",
-                                                                   "zc", "nr", "nz"))
-    pml_r, pml_z = deck["pml_r_lambda"], deck["pml_z_lambda"]
-    r_edges = np.linspace(0.0, sr, nr + 1)
-    z_edges = np.linspace(-sz / 2, sz / 2, nz + 1)
-    parts = [dict(p, polygon=[(r / lam, z / lam - zc) for r, z in p["polygon"]]) for p in deck["parts"]]
-    metal = [p for p in parts if p.get("metal")]
-    parts = [p for p in parts if not p.get("metal")]
-    eps = fill_fraction(parts, r_edges, z_edges)
-    eps_max = max([p["eps_r"] for p in parts] + [1.0 + 1e-6])
-    grid = mp.MaterialGrid(mp.Vector3(nr, 1, nz), mp.air, mp.Medium(epsilon=eps_max),
-                           weights=((eps - 1.0) / (eps_max - 1.0))[:, None, :], do_averaging=False)
-    geometry = [mp.Block(size=mp.Vector3(sr, 0, sz), center=mp.Vector3(sr / 2, 0, 0), material=grid)]
-    geometry += [mp.Block(size=mp.Vector3(r1 - r0, 0, z1 - z0), center=mp.Vector3((r0 + r1) / 2, 0, (z0 + z1) / 2),
-                          material=mp.metal) for r0, r1, z0, z1 in metal_blocks(metal, r_edges, z_edges)]
-
-    feed = deck["feed"]
+def sheet_sources(mp, src, deck: dict, d: dict) -> list:
+    """The Huygens current sheet carrying the feed field (J = ẑ×H, M = −ẑ×E): the analytic on-axis
+    feed, or a displaced feed's azimuthal order tabulated in the deck (``sheet``, offaxis.py)."""
+    feed, lam, res, sr, zc = deck["feed"], d["lam"], d["res"], d["sr"], d["zc"]
     k = 2 * np.pi
     zs = deck["sheet_z_mm"] / lam - zc
     dz = (deck["sheet_z_mm"] - feed["z_mm"]) / lam
     m_scale = 1.0 / np.cos(np.pi / res)     # M sits half a cell from J: balance the pair (back lobe ≈ −26 dB)
-    src = mp.GaussianSource(1.0, fwidth=FWIDTH)
-
-    table = deck.get("sheet")      # a displaced feed: this order's sheet fields, tabulated (offaxis.py)
+    table = deck.get("sheet")
 
     def fields_at(r):
         if table is None:
@@ -165,8 +174,45 @@ def run(deck: dict) -> dict:
         return f
 
     line = dict(center=mp.Vector3((r0 + sr) / 2, 0, zs), size=mp.Vector3(sr - r0, 0, 0))
-    sources = [mp.Source(src, component=c, amp_func=amp(i), **line)
-               for i, c in enumerate((mp.Er, mp.Ep, mp.Hr, mp.Hp))]
+    return [mp.Source(src, component=c, amp_func=amp(i), **line) for i, c in enumerate((mp.Er, mp.Ep, mp.Hr, mp.Hp))]
+
+
+def point_sources(mp, src, feed: dict, lam: float, zc: float) -> list:
+    """A point feed on the axis: an electric dipole (Er), plus the crossed magnetic dipole (Hφ) of a
+    Huygens element for ``pattern: huygens``."""
+    at = mp.Vector3(0, 0, feed["z_mm"] / lam - zc)
+    sources = [mp.Source(src, component=mp.Er, center=at)]
+    if feed["pattern"] == "huygens":
+        sources.append(mp.Source(src, component=mp.Hp, center=at, amplitude=HUYGENS_HP))
+    return sources
+
+
+def run(deck: dict) -> dict:
+    import meep as mp
+    d = domain(deck)
+    lam, res, r_in, z0, z1, sr, sz, zc, nr, nz = (d[k] for k in ("lam", "res", "r_in", "z0", "z1", "sr", "sz",
+                                                                   "zc", "nr", "nz"))
+    pml_r, pml_z = deck["pml_r_lambda"], deck["pml_z_lambda"]
+    r_edges = np.linspace(0.0, sr, nr + 1)
+    z_edges = np.linspace(-sz / 2, sz / 2, nz + 1)
+    parts = [dict(p, polygon=[(r / lam, z / lam - zc) for r, z in p["polygon"]]) for p in deck["parts"]]
+    metal = [p for p in parts if p.get("metal")]
+    parts = [p for p in parts if not p.get("metal")]
+    eps = fill_fraction(parts, r_edges, z_edges)
+    graded = [{"center_z": g["center_z_mm"] / lam - zc, "r": np.asarray(g["r_mm"]) / lam, "eps_r": g["eps_r"]}
+              for g in deck.get("graded", [])]
+    if graded:
+        eps += graded_fill(graded, r_edges, z_edges)
+    eps_max = max([p["eps_r"] for p in parts] + [float(eps.max()), 1.0 + 1e-6])
+    grid = mp.MaterialGrid(mp.Vector3(nr, 1, nz), mp.air, mp.Medium(epsilon=eps_max),
+                           weights=((eps - 1.0) / (eps_max - 1.0))[:, None, :], do_averaging=False)
+    geometry = [mp.Block(size=mp.Vector3(sr, 0, sz), center=mp.Vector3(sr / 2, 0, 0), material=grid)]
+    geometry += [mp.Block(size=mp.Vector3(r1 - r0, 0, z1 - z0), center=mp.Vector3((r0 + r1) / 2, 0, (z0 + z1) / 2),
+                          material=mp.metal) for r0, r1, z0, z1 in metal_blocks(metal, r_edges, z_edges)]
+
+    feed = deck["feed"]
+    src = mp.GaussianSource(1.0, fwidth=FWIDTH)
+    sources = point_sources(mp, src, feed, lam, zc) if feed.get("kind") == "point" else sheet_sources(mp, src, deck, d)
     sim = mp.Simulation(cell_size=mp.Vector3(sr, 0, sz), dimensions=mp.CYLINDRICAL, m=deck.get("m", 1),
                         resolution=res, geometry=geometry, sources=sources, force_complex_fields=True,
                         boundary_layers=[mp.PML(pml_r, direction=mp.R), mp.PML(pml_z, direction=mp.Z)])

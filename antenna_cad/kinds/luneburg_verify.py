@@ -28,6 +28,9 @@ along and across its axis, worst of four (Hamilton: ΔL = −δ·t̂). Figure: t
 tolerance adds (tilt removed), RMS over the draws, and its Ruze loss; first order, so the loss
 grows with the square of the tolerance. Pins and registration dowels are of their shell's own
 grade and inside it, so they do not enter.
+
+Full-wave (Meep, point feed at the focus) and the exact multilayer-sphere series (Mie) follow in
+:mod:`antenna_cad.kinds.luneburg_fullwave` on the same media.
 """
 
 from __future__ import annotations
@@ -38,6 +41,7 @@ from dataclasses import replace
 import numpy as np
 
 from antenna_cad.fabrication.rings import RingLayupPlan, ring_radii
+from antenna_cad.kinds.luneburg_fullwave import luneburg_full_wave
 from antenna_cad.kinds.patterns_luneburg import luneburg_patterns
 from antenna_cad.raytrace.graded import trace_graded
 from antenna_cad.raytrace.luneburg import (RUZE_DB_PER_RAD2, Fan, added_phase_rms, fan_figures, feed_fan,
@@ -197,7 +201,11 @@ def verify_luneburg(spec, design: LuneburgDesign, layup: RingLayupPlan | None, f
                if stair and staircase_as_facets(design, layup) else []),
              _phase_plot(results, stair), _eps_plot(design), sens_plot)
     checks = _checks(design, layup, results, dominant, sens_figs["sens_total_gain_loss_db"])
-    return Verification(figures, tuple(checks), tables, plots).merged(luneburg_patterns(design, fans))
+    go = {v: (results[(case, "axis")][0].s_mm, results[(case, "axis")][0].phase_deg)
+          for v, case in (("ideal", "ideal"), ("stepped", "stepped"), ("fabricated", "as_built"))}
+    full_wave = luneburg_full_wave(spec, design, {"stepped": lenses["stepped"].medium,
+                                                  "fabricated": lenses["as_built"].medium}, go)
+    return Verification(figures, tuple(checks), tables, plots).merged(luneburg_patterns(design, fans)).merged(full_wave)
 
 
 def _trace_with_focus(lens: _Lens, angle: float, figs) -> tuple[Fan, tuple]:

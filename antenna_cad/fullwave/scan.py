@@ -23,7 +23,7 @@ from antenna_cad.fullwave import solver
 from antenna_cad.fullwave.lens import RevolvedLens
 from antenna_cad.fullwave.offaxis import OrderChoice, aperture_copolar, order_decks, order_fields, tilt_removed, \
     tilted_stats
-from antenna_cad.fullwave.verify import _decision, on_axis_decks
+from antenna_cad.fullwave.verify import budget_decision, on_axis_decks
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.verification import Plot, Series, Table, Verification
 
@@ -55,7 +55,7 @@ def plan_scan_edge(lens: RevolvedLens, settings, feed_y_mm: float) -> ScanEdgePl
             decks[v], choices[v] = order_decks(lens.deck(v, settings, field_map=False), feed_y_mm)
     every = on_axis_decks(lens, settings) + [d for v in variants for d in decks.get(v, [])]
     jobs = os.cpu_count() or 1
-    python, why, estimate = _decision(settings, every, jobs)
+    python, why, estimate = budget_decision(settings, every, jobs)
     if python is not None:
         why = why.replace("ran (", "ran (on-axis and scan-edge runs ")
     return ScanEdgePlan(lens, feed_y_mm, variants, decks, choices, python, why, estimate, settings.budget_s,
@@ -109,7 +109,7 @@ def scan_edge_study(plan: ScanEdgePlan, go: dict[str, tuple[np.ndarray, np.ndarr
                   ("lens", "model", "p-p deg", "RMS deg", "beam deg", "phase efficiency dB"), tuple(rows), caption)
     plot = Plot("fullwave-scan-edge-phase", "Scan-edge aperture phase: full-wave over GO", "position on the cut (mm)",
                 "phase, tilt removed (deg)", tuple(series), caption=caption)
-    return Verification(figures, (check,), (table,), (plot,), _deck_files(plan))
+    return Verification(figures, (check,), (table,), (plot,), deck_files(plan))
 
 
 def _variant_report(v: str, r: np.ndarray, fields: dict, lens: RevolvedLens, guess: float, go) -> tuple:
@@ -140,7 +140,7 @@ def _variant_report(v: str, r: np.ndarray, fields: dict, lens: RevolvedLens, gue
     return figures, rows, series
 
 
-def _deck_files(plan: ScanEdgePlan) -> dict[str, str]:
+def deck_files(plan: ScanEdgePlan) -> dict[str, str]:
     """When it ran: ``fullwave/scan-edge/<lens>-m<m>.json``, one deck per order run, and ``rerun-scan-edge.sh`` (the
     orders −m are the mirror images of m: see :mod:`antenna_cad.fullwave.offaxis`)."""
     files, lines = {}, ["#!/bin/sh", "# Rerun the scan-edge feed's azimuthal orders (one deck per order m >= 0)",

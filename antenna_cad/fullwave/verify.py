@@ -61,7 +61,7 @@ def on_axis_decks(lens: RevolvedLens, settings) -> list[dict]:
     return [lens.deck(v, settings) for v in ("ideal", *lens.sections)]
 
 
-def _decision(settings, decks: list[dict], jobs: int) -> tuple[str | None, str, float]:
+def budget_decision(settings, decks: list[dict], jobs: int) -> tuple[str | None, str, float]:
     """(interpreter, why, estimated s): the interpreter when the full-wave stage runs, else None."""
     if settings.full_wave == "off":
         return None, "off in the spec (verification.full_wave)", 0.0
@@ -83,8 +83,8 @@ def full_wave_study(lens: RevolvedLens, settings, go: dict[str, tuple[np.ndarray
     variants = ["ideal", *lens.sections]
     decks = on_axis_decks(lens, settings)
     jobs = max(1, min(len(decks), os.cpu_count() or 1))
-    python, why, estimate = _decision(settings, decks, jobs)
-    files = _deck_files(variants, decks)
+    python, why, estimate = budget_decision(settings, decks, jobs)
+    files = deck_files(variants, decks)
     if python is None:
         return FullWave(fast_model(lens, settings), checks=(_note(why, FAST, estimate, settings),), files=files)
     results = dict(zip(variants, solver.run_decks(decks, python, jobs)))
@@ -116,7 +116,7 @@ def _note(why: str, model: str, estimate: float, settings) -> Check:
                  f"full-wave stage {why}; stair-step verdicts from the {model}")
 
 
-def _deck_files(variants: list[str], decks: list[dict]) -> dict[str, str]:
+def deck_files(variants: list[str], decks: list[dict]) -> dict[str, str]:
     """``fullwave/`` in the output: each variant's deck and the command that reruns it (finer: edit
     ``resolution_px_per_lambda`` in the deck)."""
     files = {f"fullwave/{v}.json": json.dumps(d, indent=1, sort_keys=True) + "\n" for v, d in zip(variants, decks)}

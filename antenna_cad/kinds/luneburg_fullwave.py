@@ -34,7 +34,7 @@ from antenna_cad.fullwave.aperture import aperture_stats, difference_stats, phas
 from antenna_cad.fullwave.mie import shell_parts
 from antenna_cad.fullwave.sphere import (MIE_MAX_D_LAMBDA, aperture_gain_dbi, feed_deck, fine_shells, focal_gain_dbi,
                                          law_table, mie_focal_field, mie_focal_gain_dbi, plane_wave_decks)
-from antenna_cad.fullwave.verify import _decision, _deck_files
+from antenna_cad.fullwave.verify import budget_decision, deck_files
 from antenna_cad.raytrace.media import Shells, Staircase
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.luneburg import LuneburgDesign, traced_law
@@ -97,8 +97,8 @@ def luneburg_full_wave(spec, design: LuneburgDesign, media: dict, go: dict) -> V
     decks += plane_wave_decks(shell_parts(*shells), R, b, **common)
     names = [*VARIANTS, "plane_wave_shells", "plane_wave_empty"]
     jobs = max(1, min(len(decks), os.cpu_count() or 1))
-    python, why, estimate = _decision(settings, decks, jobs)
-    files = _deck_files(names, decks)
+    python, why, estimate = budget_decision(settings, decks, jobs)
+    files = deck_files(names, decks)
     model = (f"full-wave (Meep, body of revolution, point {pattern} feed at the focus, "
              f"{settings.resolution_px_per_lambda:g} px/λ)")
     if python is None:

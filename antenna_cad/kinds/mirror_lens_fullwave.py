@@ -26,7 +26,7 @@ from antenna_cad.fullwave import solver
 from antenna_cad.fullwave.aperture import aperture_stats, difference_stats, phase_deg, phase_stats, window
 from antenna_cad.fullwave.deck import DECIMALS, PROFILE_POINTS, make_deck
 from antenna_cad.fullwave.runner import feed_pattern
-from antenna_cad.fullwave.verify import _decision, _deck_files
+from antenna_cad.fullwave.verify import budget_decision, deck_files
 from antenna_cad.synthesis.checks import Check, DesignError
 from antenna_cad.verification import Plot, Series, Table, Verification
 
@@ -95,8 +95,8 @@ def full_wave_verification(design, settings, parts: dict[str, list[dict]], go) -
     all_decks = decks(design, settings, parts)
     names, deck_list = list(all_decks), list(all_decks.values())
     jobs = max(1, min(len(deck_list), os.cpu_count() or 1))
-    python, why, estimate = _decision(settings, deck_list, jobs)
-    files = _deck_files(names, deck_list)
+    python, why, estimate = budget_decision(settings, deck_list, jobs)
+    files = deck_files(names, deck_list)
     if python is None:
         return Verification(checks=(_note(why, estimate, settings),), files=files)
     results = dict(zip(names, solver.run_decks(deck_list, python, jobs)))

@@ -1,4 +1,5 @@
-"""Kinber's bifocal lens completed (seed-001 §3.1): the central-segment curvatures a2, b2 from C²
+"""Kinber's bifocal lens (seed-001 §3.1): the method of steps from the seed's central-segment
+parameters, the RMS (3.10) over the view angle, the central-segment curvatures a2, b2 from C²
 continuity at the junctions, and the segment heights h1 (= h2) chosen for the least RMS over the
 view angle.
 
@@ -11,14 +12,177 @@ y = h1) and 2·b2 (surface 2, at B, y = h2).
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
-from antenna_cad.synthesis.bifocal import kinber_focal_circle_rms, kinber_lens
+from antenna_cad.raytrace.snell import refract
+from antenna_cad.raytrace.trace2d import Interface, trace
+from antenna_cad.synthesis.bifocal_steps import _back, _fwd, _hermite, _mirror, _Optics, _symmetric_profile, _unit
 from antenna_cad.synthesis.checks import DesignError
 
 JUNCTION_POINTS = 201       # points per central segment for the curvature estimate
 JUNCTION_SPAN = 0.01        # y range (D = 1) beyond the junction fitted for the curvature
+
+
+# --------------------------------------------------------------------------------------------------
+# Kinber's method of steps (seed-001 §3.1)
+# --------------------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class KinberLens:
+    """Seed-001 §3.1 lens in the seed's own frame (x axis = our z, origin at the lens centre O,
+    normalised units, D = aperture). ``F1`` below the axis; ``F1p`` its image point (None for a
+    plane output, then ``k`` is the output direction ω_B)."""
+
+    n: float
+    aperture: float
+    F1: np.ndarray
+    F1p: np.ndarray | None
+    k: np.ndarray | None
+    omega_B_rad: float
+    alpha_A_rad: float
+    L: float
+    surface1: np.ndarray            # (N, 2) full even profile (x, y), with slopes
+    slopes1: np.ndarray
+    surface2: np.ndarray
+    slopes2: np.ndarray
+    segments: int
+
+    def x1(self, y):
+        return _hermite(self.surface1[:, 1], self.surface1[:, 0], self.slopes1)(np.asarray(y, float))
+
+    def x2(self, y):
+        return _hermite(self.surface2[:, 1], self.surface2[:, 0], self.slopes2)(np.asarray(y, float))
+
+    def focus_angle_deg(self) -> float:
+        """"Angular position of the foci" as the digest reads it: the direction of F1' seen from the
+        surface-2 vertex (b0, 0), or ω_B for a plane output."""
+        if self.F1p is None:
+            return float(np.degrees(self.omega_B_rad))
+        b0 = float(self.x2(0.0))
+        return float(np.degrees(np.arctan2(self.F1p[1], self.F1p[0] - b0)))
+
+
+def kinber_lens(n: float, a0: float, a2: float, h1: float, b0: float, b2: float, h2: float | None,
+                rho1: float, rho2: float = np.inf, aperture: float = 1.0,
+                points_per_segment: int = 41, max_segments: int = 400,
+                allow_partial: bool = False, build_to: float = 1.02) -> KinberLens:
+    """Kinber's exact stepwise bifocal synthesis, seed-001 §3.1, in the seed's frame.
+
+    Central segments ``x1 = a0 + a2 y²`` (|y| ≤ h1) and ``x2 = b0 + b2 y²`` (|y| ≤ h2). If ``h2`` is None
+    it is set by A–O–B collinearity (``x_B/h2 = −x_A/h1``). Foci from (3.1); F1 rays through the newest
+    surface-1 segment give the next surface-2 segment (3.2)–(3.5); F2' rays through the newest
+    surface-2 segment give the next surface-1 segment (3.6)–(3.9) (computed as the mirror image of the
+    F1 backward step). ``rho2 = inf`` gives the plane-output lens (digest's derived form).
+    """
+    if h2 is None:                     # b2 h² + (x_A/h1) h + b0 = 0, root with h > 0
+        xa = a0 + a2 * h1**2
+        cq = [b2, xa / h1, b0] if abs(b2) > 0 else [xa / h1, b0]
+        roots = np.roots(cq)
+        roots = roots[np.isreal(roots) & (roots.real > 0)].real
+        if len(roots) == 0:
+            raise DesignError("design.kinber.h2", "A–O–B collinearity has no positive h2")
+        h2 = float(np.min(roots))
+    y1 = np.linspace(-h1, h1, points_per_segment)
+    y2 = np.linspace(-h2, h2, points_per_segment)
+    s1 = np.stack([a0 + a2 * y1**2, y1], -1)
+    n1 = _unit(np.stack([np.ones_like(y1), -2 * a2 * y1], -1))
+    s2 = np.stack([b0 + b2 * y2**2, y2], -1)
+    n2 = _unit(np.stack([np.ones_like(y2), -2 * b2 * y2], -1))
+    A, NA, B, NB = s1[:1], n1[:1], s2[-1:], n2[-1:]
+    v = _unit(B - A)
+    d_out, ok_a = refract(-v, NA, n, 1.0)        # from A back toward F1 (in air)
+    w, ok_b = refract(v, NB, n, 1.0)             # leaving B toward F1'
+    if not (ok_a.all() and ok_b.all()):
+        raise DesignError("design.kinber", "central ray A→B is totally reflected (3.1)")
+    F1 = (A + rho1 * d_out)[0]
+    omega_B = float(np.arctan2(w[0, 1], w[0, 0]))
+    alpha_A = float(np.arctan2(v[0, 1], v[0, 0]))
+    nab = n * float(np.linalg.norm(B - A))
+    if np.isinf(rho2):
+        k = w[0]
+        L = rho1 + nab - float(B[0] @ k)
+        o = _Optics(F1, n, L, k=k)
+        F1p = None
+    else:
+        k = None
+        F1p = (B + rho2 * w)[0]
+        L = rho1 + nab + rho2
+        o = _Optics(F1, n, L, Fp=F1p)
+    surf1_p, surf1_n = [s1], [n1]
+    surf2_p, surf2_n = [s2], [n2]
+    last1, last1n, last2, last2n = s1, n1, s2, n2
+    half = aperture / 2.0
+    segs = 0
+    for segs in range(1, max_segments + 1):
+        q, qn = _fwd(last1, last1n, o)                                   # new surface-2 segment
+        p, pn = _back(_mirror(last2), _mirror(last2n), o)                # F1 backward of mirror…
+        p, pn = _mirror(p), _mirror(pn)                                  # …mirrored = F2' step
+        good_q = np.all(np.isfinite(q), -1)
+        good_p = np.all(np.isfinite(p), -1)
+        if not (good_q.any() and good_p.any()):
+            break
+        surf2_p.append(q[good_q]); surf2_n.append(qn[good_q])
+        surf1_p.append(p[good_p]); surf1_n.append(pn[good_p])
+        last1, last1n, last2, last2n = p[good_p], pn[good_p], q[good_q], qn[good_q]
+        if (np.min(np.abs(surf1_p[-1][:, 1])) > build_to * half
+                and np.min(np.abs(surf2_p[-1][:, 1])) > build_to * half) \
+                or not (good_q.all() and good_p.all()):
+            break
+    P1 = np.concatenate(surf1_p); N1 = np.concatenate(surf1_n)
+    P2 = np.concatenate(surf2_p); N2 = np.concatenate(surf2_n)
+    ya, za, sa = _symmetric_profile(P1, N1)
+    yb_, zb, sb = _symmetric_profile(P2, N2)
+    if (ya[-1] < half or yb_[-1] < half) and not allow_partial:
+        raise DesignError("design.kinber", f"the method of steps stopped at |y| = "
+                          f"{min(ya[-1], yb_[-1]):.4g} before the aperture edge {half:.4g} (TIR or no root)")
+    return KinberLens(n, aperture, F1, F1p, k, omega_B, alpha_A, L,
+                      np.stack([za, ya], -1), sa, np.stack([zb, yb_], -1), sb, segs)
+
+
+def kinber_rms(lens: KinberLens, source: np.ndarray, image: np.ndarray, n_rays: int = 100,
+               half_aperture: float | None = None) -> float:
+    """Eikonal RMS (3.10) of seed-001 §3.1 for a point source and a point image (seed frame):
+    ``σ = sqrt(Σ (L_i − L_0)² / N)``, L_i = |S − P_i| + n|P_i Q_i| + |Q_i − S'| along exactly traced
+    rays aimed uniformly in y at surface 1, L_0 the ray aimed at the surface-1 vertex (so σ includes
+    piston, as in the seed). Rays leaving |y| > half_aperture (default D/2) on either face are dropped."""
+    h = lens.aperture / 2.0 if half_aperture is None else half_aperture
+    s1 = Interface.from_points(lens.surface1[:, 1], lens.surface1[:, 0], lens.n, lens.slopes1)
+    s2 = Interface.from_points(lens.surface2[:, 1], lens.surface2[:, 0], 1.0, lens.slopes2)
+    S = np.asarray(source, float)
+    Sp = np.asarray(image, float)
+    yt = np.linspace(-h, h, n_rays)
+    tgt = np.stack([lens.x1(yt), yt], -1)
+    tr = trace(np.tile(S, (n_rays, 1)), _unit(tgt - S), [s1, s2], 1.0)
+    ok = tr.ok & (np.abs(tr.points[1][:, 1]) <= h) & (np.abs(tr.points[2][:, 1]) <= h)
+    Li = tr.opl[ok] + np.linalg.norm(tr.points[-1][ok] - Sp, axis=-1)
+    c = trace(S[None], _unit(np.array([[float(lens.x1(0.0)), 0.0]]) - S), [s1, s2], 1.0)
+    L0 = c.opl[0] + np.linalg.norm(c.points[-1][0] - Sp)
+    return float(np.sqrt(np.mean((Li - L0) ** 2)))
+
+
+def kinber_focal_circle_rms(lens: KinberLens, x_axis: float, half_view_deg: float = 20.0,
+                            num: int = 41) -> tuple[np.ndarray, np.ndarray]:
+    """RMS (3.10) vs source angle for sources on the circle through F1, F2 centred on the axis and
+    crossing it at ``x_axis`` (seed-001 §4.2); source angle measured from the surface-1 vertex; image
+    S' = −S (point symmetry of the two-plane-symmetric lens 1). Point-image lenses only."""
+    F = lens.F1
+    xc = (F[0] ** 2 + F[1] ** 2 - x_axis**2) / (2.0 * (F[0] - x_axis))
+    R = abs(x_axis - xc)
+    V = np.array([float(lens.x1(0.0)), 0.0])
+    phis = np.radians(np.linspace(-half_view_deg, half_view_deg, num))
+    out = []
+    for phi in phis:
+        d = np.array([-np.cos(phi), -np.sin(phi)])
+        w = V - np.array([xc, 0.0])
+        bq = w @ d
+        t = -bq + np.sqrt(bq * bq - (w @ w - R * R))
+        S = V + t * d
+        out.append(kinber_rms(lens, S, -S))
+    return np.degrees(phis), np.array(out)
+
 
 
 def _curvature_beyond(lens_surface: np.ndarray, slopes: np.ndarray, h: float) -> float:

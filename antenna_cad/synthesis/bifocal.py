@@ -57,8 +57,8 @@ from antenna_cad.synthesis.bifocal_steps import (_back, _fwd, _hermite, _mirror,
 from antenna_cad.synthesis.bifocal_trace import (C0_MM_PER_NS, DefocusStudy, _design_focus_eikonal,
                                                  aperture_phase, defocus_study, trace_bifocal)
 from antenna_cad.synthesis.checks import Check, DesignError
-from antenna_cad.synthesis.kinber import (KinberLens, kinber_focal_circle_rms, kinber_lens, kinber_rms,
-                                          solve_c2)
+from antenna_cad.synthesis.kinber import (KinberLens, KinberView, kinber_focal_circle_rms, kinber_lens,
+                                          kinber_rms, resolve_kinber)
 
 __all__ = [
     "BifocalDesign", "KinberLens", "DefocusStudy", "equal_edge_ellipse", "thin_ray_rho2",
@@ -145,7 +145,8 @@ class BifocalDesign:
     :meth:`polyline`). ``poly_*`` are the seed's (1.11) coefficients (ρ_ν in mm, A_ν, B_ν with θ in
     radians), least-squares fitted; ``poly_fit_residual_mm`` is the max radial deviation of that fit.
     ``residual_path_error_mm``: peak-to-peak eikonal error of an exact trace through the Hermite
-    profiles from (O1, O2) to their plane fronts.
+    profiles from (O1, O2) to their plane fronts (or, for a point-image Kinber lens, to the image
+    points ``image_points_mm``; ``exit_directions`` are then the chief rays' directions ω_B).
     """
 
     construction: str
@@ -177,6 +178,8 @@ class BifocalDesign:
     residual_path_error_mm: tuple[float, float]
     checks: tuple[Check, ...]
     params: dict = field(default_factory=dict)     # construction-specific inputs/outputs
+    image_points_mm: np.ndarray | None = None      # (2, 2) O1', O2' of a point-image Kinber lens (else plane fronts)
+    view: KinberView | None = None                 # Kinber: σ (3.10) over the view angle (D = 1)
 
     # -- smooth representation -------------------------------------------------------------------
     def profile(self, surface: Literal["illuminated", "shadow"], y_mm: np.ndarray) -> np.ndarray:
@@ -451,7 +454,7 @@ def synthesize_bifocal(*, edge_y_mm: float, eps_r: float, edge_x_mm: float | Non
 
 
 def _assemble(construction, shape, eps_r, n, yb, s, a, al, L, rho1, ill_h, sh_h, edge_t, params,
-              antenna_x_mm, clearance, zero_rim) -> BifocalDesign:
+              antenna_x_mm, clearance, zero_rim, images=None) -> BifocalDesign:
     """Common tail: realizability checks, (1.11) fit, design record, exact-trace residuals."""
     if shape not in ("revolved", "cylindrical"):
         raise DesignError("design.shape", f"must be 'revolved' or 'cylindrical'; got {shape!r}")
@@ -470,6 +473,12 @@ def _assemble(construction, shape, eps_r, n, yb, s, a, al, L, rho1, ill_h, sh_h,
         c = float(antenna_x_mm)
     checks = _design_checks(n, float(zi[-1]), yb, a, al, c, rho1, rho2, y_dense, z_ill_d, z_sh_d,
                             zero_rim)
+    if images is not None:          # a point image beyond the lens (seed-001 §3.1, finite ρ2)
+        gap = float(np.min(images[:, 0]) - np.max(z_sh_d))
+        checks.append(Check.upper("kinber_image_beyond_lens", -gap, 0.0, "mm",
+                                  "shadow face beyond the image points O1', O2' by (z)"))
+        if checks[-1].status == "fail":
+            raise DesignError("design.kinber.rho2", f"the image points lie inside the lens: {checks[-1].message}")
     checks.append(Check.upper("bifocal_rim_closure", params["chain_rim_gap_mm"], 1e-2 * yb, "mm",
                               "closest approach of the constructed points to the rim",
                               warn_margin=0.99e-2 * yb))
@@ -486,7 +495,7 @@ def _assemble(construction, shape, eps_r, n, yb, s, a, al, L, rho1, ill_h, sh_h,
         illuminated_mm=ill, illuminated_normals=nrm(si), illuminated_slopes=si,
         shadow_mm=sh, shadow_normals=nrm(ss), shadow_slopes=ss,
         poly_illuminated=pi_, poly_shadow=ps_, poly_fit_residual_mm=max(ri, rs),
-        residual_path_error_mm=(np.nan, np.nan), checks=tuple(checks), params=params)
+        residual_path_error_mm=(np.nan, np.nan), checks=tuple(checks), params=params, image_points_mm=images)
     res = tuple(float(np.ptp(_design_focus_eikonal(design, k))) for k in (0, 1))
     chk = Check.upper("bifocal_design_focus_path_error", max(res), 1e-6 * 2 * yb, "mm",
                       "peak-to-peak eikonal error at the design foci (exact trace)")
@@ -499,23 +508,15 @@ def _assemble(construction, shape, eps_r, n, yb, s, a, al, L, rho1, ill_h, sh_h,
 
 
 def _kinber_design(n, eps_r, yb, kp, shape, antenna_x_mm, clearance) -> BifocalDesign:
-    """Seed-001 §3.1 plane-output lens from normalised parameters (D = 1), scaled to D = 2·Y_B and
-    moved into this module's frame (feed plane z = 0 through the foci)."""
+    """Seed-001 §3.1 lens from normalised parameters (D = 1; :func:`resolve_kinber`: C² a2/b2, h
+    optimised over the view, plane or point output), scaled to D = 2·Y_B and moved into this
+    module's frame (feed plane z = 0 through the foci). A point-image lens (finite ρ2) records its
+    image points O1', O2' (the seed's F2', F1' in this frame's orientation)."""
     need = ("a0", "a2", "h1", "b0", "b2", "rho1")
     missing = [k for k in need if k not in kp]
     if missing:
         raise DesignError("design.kinber", f"missing Kinber parameters {missing} (seed-001 §3.1 table)")
-    kp = dict(kp)
-    if kp["a2"] is None:                 # seed-001 §3.1: a2 (and b2 of a symmetric lens) from C² continuity
-        if kp.get("h2") is None:
-            raise DesignError("design.kinber.h2", "required when a2 is solved from C² continuity (the "
-                              "A–O–B collinearity would couple h2 to a2)")
-        kp["a2"], kp["b2"], _ = solve_c2(n, kp["a0"], kp["h1"], kp["b0"], kp["h2"], kp["rho1"], np.inf, kp["b2"],
-                                         -kp["b2"] if kp["b2"] is not None else 1.0)
-    elif kp["b2"] is None:
-        raise DesignError("design.kinber.b2", "required when a2 is given")
-    lens = kinber_lens(n, kp["a0"], kp["a2"], kp["h1"], kp["b0"], kp["b2"], kp.get("h2"), kp["rho1"],
-                       np.inf, aperture=1.0)
+    lens, kp, view = resolve_kinber(n, kp)
     scale = 2.0 * yb
     shift = np.array([lens.F1[0], 0.0])
     a = abs(float(lens.F1[1])) * scale
@@ -526,14 +527,22 @@ def _kinber_design(n, eps_r, yb, kp, shape, antenna_x_mm, clearance) -> BifocalD
     P2 = (lens.surface2 - shift) * scale
     ill_h = _finish_profile(P1[:, 1], P1[:, 0], lens.slopes1, yb)
     sh_h = _finish_profile(P2[:, 1], P2[:, 0], lens.slopes2, yb)
-    L = scale * (lens.L + lens.k[0] * lens.F1[0])
+    images = None
+    if lens.F1p is None:
+        L = scale * (lens.L + lens.k[0] * lens.F1[0])
+    else:
+        L = scale * lens.L
+        o1p = _mirror((lens.F1p - shift) * scale)
+        images = np.array([o1p, _mirror(o1p)])
     rho1 = float(_hermite(*ill_h)(0.0))
-    params = {f"kinber_{k}": (None if kp.get(k) is None else float(kp[k])) for k in need + ("h2",)}
-    params.update(kinber_segments=lens.segments, chain_rim_gap_mm=0.0,
+    params = {f"kinber_{k}": float(kp[k]) for k in need + ("h2",)}
+    params.update(kinber_rho2=float(kp["rho2"]) if kp.get("rho2") is not None else None,
+                  kinber_segments=lens.segments, chain_rim_gap_mm=0.0,
                   kinber_omega_B_deg=float(np.degrees(al)), kinber_alpha_A_deg=float(np.degrees(lens.alpha_A_rad)))
     edge_t = float(sh_h[1][-1] - ill_h[1][-1])
-    return _assemble("kinber", shape, eps_r, n, yb, float("nan"), a, al, L, rho1, ill_h, sh_h, edge_t,
-                     params, antenna_x_mm, clearance, zero_rim=False)
+    design = _assemble("kinber", shape, eps_r, n, yb, float("nan"), a, al, L, rho1, ill_h, sh_h, edge_t,
+                       params, antenna_x_mm, clearance, zero_rim=False, images=images)
+    return _replace(design, view=view)
 
 
 def _replace(d: BifocalDesign, **kw) -> BifocalDesign:

@@ -39,11 +39,16 @@ def trace_bifocal(design: BifocalDesign, feed_y_mm: float, feed_z_mm: float = 0.
 
 
 def _design_focus_eikonal(design: BifocalDesign, k: int, n_rays: int = 401) -> np.ndarray:
-    """Eikonal |O_k P| + n|PQ| − u_k·Q of rays from design focus k (c-free form of (3.16))."""
+    """Eikonal |O_k P| + n|PQ| − u_k·Q of rays from design focus k (c-free form of (3.16)); for a
+    point-image lens |O_k P| + n|PQ| + |Q O_k'| (seed-001 §3.1)."""
     F = design.foci_mm[k]
     tr = trace(np.tile(F, (n_rays, 1)), _aim(design, F, n_rays, 0.995), design.interfaces("spline"), 1.0)
-    Q = tr.points[-1][tr.ok]
-    return tr.opl[tr.ok] - Q @ design.exit_directions[k]
+    yb = design.edge_y_mm
+    ok = tr.ok & (np.abs(tr.points[1][:, 1]) <= yb) & (np.abs(tr.points[2][:, 1]) <= yb)   # inside the rim
+    Q = tr.points[-1][ok]
+    if design.image_points_mm is not None:
+        return tr.opl[ok] + np.linalg.norm(Q - design.image_points_mm[k], axis=-1)
+    return tr.opl[ok] - Q @ design.exit_directions[k]
 
 
 def aperture_phase(tr: Trace2D, wavelength_mm: float) -> tuple[np.ndarray, np.ndarray, float]:

@@ -32,7 +32,7 @@ AS_BUILT_LIMIT = 1e-9        # as-built σ/D may exceed the element σ/D by this
 def synthesize(spec: PolyfocalSpec) -> PolyfocalDesign:
     g, ln = spec.design, spec.design.lines
     return synthesize_polyfocal(
-        case=g.case, foci=[f.model_dump() for f in g.foci], unit_mm=g.unit_mm, aperture=g.aperture,
+        case=g.case, foci=g.resolved_foci(), unit_mm=g.unit_mm, aperture=g.aperture,
         thickness=g.thickness, law=g.line_law, straight_index=g.straight_index, view_angle_deg=g.view_angle_deg,
         line_type=ln.type, pitch_mm=ln.pitch_mm, phase_index=ln.phase_index, wall_mm=ln.wall_mm,
         height_mm=ln.plate_spacing_mm, fill_eps_r=resolve_material(spec.material).eps_r,

@@ -184,9 +184,20 @@ class MetalFabSpec(StrictModel):
     method: Literal["machined_metal"]
     metal: str = Field("aluminium", pattern=r"^[A-Za-z0-9_. -]+$")
     metal_density_kg_m3: float = Field(2700.0, ge=1, le=25000)
+    section_pitch_mm: float | None = Field(None, ge=1.0, le=10000, description="3-D: 1:1 section gauges of both "
+                                           "port surfaces at x = k·pitch (None: the element pitch)")
+    gauge_depth_mm: float = Field(20.0, ge=1.0, le=1000, description="3-D: gauge height beyond the surface's "
+                                  "extreme (its straight datum edge)")
 
 
 class PolyfocalSpec(SpecBase):
     kind: Literal["polyfocal"]
     fabrication: MetalFabSpec
     design: PolyfocalDesignSpec
+
+    @model_validator(mode="after")
+    def _gauges_3d(self):
+        if self.design.dimensions == "2d" and self.fabrication.section_pitch_mm is not None:
+            raise ValueError("fabrication.section_pitch_mm: section gauges are for 3-D lenses (a 2-D lens has its "
+                             "section template)")
+        return self

@@ -45,6 +45,8 @@ def _design_focus_eikonal(design: BifocalDesign, k: int, n_rays: int = 401) -> n
     tr = trace(np.tile(F, (n_rays, 1)), _aim(design, F, n_rays, 0.995), design.interfaces("spline"), 1.0)
     yb = design.edge_y_mm
     ok = tr.ok & (np.abs(tr.points[1][:, 1]) <= yb) & (np.abs(tr.points[2][:, 1]) <= yb)   # inside the rim
+    if ok.sum() < n_rays // 2:           # most rays lost: no spread to measure (NaN fails the check)
+        return np.array([np.nan])
     Q = tr.points[-1][ok]
     if design.image_points_mm is not None:
         return tr.opl[ok] + np.linalg.norm(Q - design.image_points_mm[k], axis=-1)

@@ -16,21 +16,17 @@ section; 2-D lenses are the YZ section extruded along X by the plate spacing, ce
 from __future__ import annotations
 
 import numpy as np
-from build123d import Align, Box, Face, Plane, Polyline, Solid, Vector, extrude, make_face
+from build123d import Align, Box, Face, Plane, Solid, Vector
 
 from antenna_cad.fabrication.polyfocal import channel_quads, outline_polygon
 from antenna_cad.geometry.model import Model, ModelPart
+from antenna_cad.geometry.profiles import yz_prism
 from antenna_cad.materials import Material
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.polyfocal_design import PolyfocalDesign
 
 PORT_PLATE_MM = 1.0         # 3-D port plates (B-spline surfaces thickened)
 READBACK_LIMIT = 1e-6       # relative error of a channel's electrical length read back from its solid
-
-
-def _yz_solid(points, x0: float, height: float) -> Solid:
-    face = make_face(Polyline(*[(x0, float(y), float(z)) for y, z in points], close=True))
-    return extrude(face, height, dir=(1, 0, 0))
 
 
 def _channel_3d(p: np.ndarray, q: np.ndarray, w: float, h: float) -> Solid:
@@ -50,15 +46,15 @@ def build_model(design: PolyfocalDesign, fill: Material, metal: Material, plate_
     parts, channels = [], []
     if design.case.startswith("2d"):
         for quad in channel_quads(design):
-            channels.append(_yz_solid(quad, -h / 2, h))
+            channels.append(yz_prism(quad, -h / 2, h))
         outline = outline_polygon(design)
-        body = _yz_solid(list(outline.exterior.coords)[:-1], -h / 2, h)
+        body = yz_prism(list(outline.exterior.coords)[:-1], -h / 2, h)
         for c in channels:
             body = body - c
         parts.append(ModelPart("septa", metal, "fabricated", body))
         plate = list(outline.buffer(margin_mm, join_style=2).exterior.coords)[:-1]
-        parts.append(ModelPart("plate-bottom", metal, "fabricated", _yz_solid(plate, -h / 2 - plate_mm, plate_mm)))
-        parts.append(ModelPart("plate-top", metal, "fabricated", _yz_solid(plate, h / 2, plate_mm)))
+        parts.append(ModelPart("plate-bottom", metal, "fabricated", yz_prism(plate, -h / 2 - plate_mm, plate_mm)))
+        parts.append(ModelPart("plate-top", metal, "fabricated", yz_prism(plate, h / 2, plate_mm)))
     else:
         for name, grid in zip(("entry", "exit"), design.surfaces):
             pts = (grid * design.unit_mm).tolist()

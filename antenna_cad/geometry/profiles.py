@@ -1,14 +1,15 @@
-"""Closed meridional profiles (r, z) revolved once about +Z into exact solids of revolution.
+"""Closed profiles into solids: meridional (r, z) profiles revolved once about +Z into exact solids
+of revolution, and (y, z) sections extruded along X into prisms.
 
-Profiles live in the XZ plane (x = r ≥ 0); one closed wire is revolved once (DESIGN.md pitfall:
-no revolve-then-cut on the seam). Conic arcs are exact OCC curves, not approximations.
+Meridional profiles live in the XZ plane (x = r ≥ 0); one closed wire is revolved once (DESIGN.md
+pitfall: no revolve-then-cut on the seam). Conic arcs are exact OCC curves, not approximations.
 """
 
 from __future__ import annotations
 
 import math
 
-from build123d import Axis, Edge, Face, Solid, Wire, revolve
+from build123d import Axis, Edge, Face, Polyline, Solid, Wire, extrude, make_face, revolve
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
 from OCP.Geom import Geom_Hyperbola, Geom_TrimmedCurve
 from OCP.GeomConvert import GeomConvert
@@ -45,3 +46,9 @@ def revolve_closed(edges: list[Edge]) -> Solid:
     if not solid.is_valid:
         raise RuntimeError("revolved profile is not a valid solid")
     return solid
+
+
+def yz_prism(points_yz, x0: float, height: float) -> Solid:
+    """The closed polygon of (y, z) points in the plane x = x0, extruded by ``height`` along +X."""
+    face = make_face(Polyline(*[(x0, float(y), float(z)) for y, z in points_yz], close=True))
+    return extrude(face, height, dir=(1, 0, 0))

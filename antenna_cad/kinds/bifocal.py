@@ -15,17 +15,19 @@ from functools import partial
 
 import numpy as np
 
+from antenna_cad.fabrication import bifocal_plates as bp
 from antenna_cad.fabrication.layup import LayupPlan
 from antenna_cad.kinds.asbuilt import Lens, lens_variants, stock_study, verify_lens
 from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks, plan_layup_and_box, plan_sheets
 from antenna_cad.kinds.patterns import criteria_from, lens_patterns
+from antenna_cad.materials import Material
 from antenna_cad.spec.bifocal import BifocalSpec
 from antenna_cad.spec.common import resolve_material
 from antenna_cad.synthesis.bifocal import (BifocalDesign, defocus_study, lens_volume_mm3, max_radius_in,
                                            synthesize_bifocal)
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.collimator import dissipative_loss_db, loss_check, wavelength_mm
-from antenna_cad.verification import Plot, Series, Verification
+from antenna_cad.verification import Plot, Series, Table, Verification
 
 
 def _height(spec: BifocalSpec) -> float | None:
@@ -72,18 +74,44 @@ def plan(spec: BifocalSpec, design: BifocalDesign):
                               spec.verification)
 
 
+def _metal(pp) -> Material:
+    return Material(pp.metal, 1.0, 0.0, pp.metal_density_kg_m3, "metal (conductor), design.parallel_plate")
+
+
+def _plates(spec: BifocalSpec, design: BifocalDesign):
+    """(plate outline, horn or None) in the (z, y) section for a lens between plates; None without."""
+    pp = spec.design.parallel_plate
+    if pp is None:
+        return None
+    horn_ = None if pp.horn is None else bp.horn(design, pp.horn, wavelength_mm(spec.frequency_ghz))
+    return bp.plate_outline(design, horn_, pp.margin_mm), horn_
+
+
 def model(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None, panels):
-    from antenna_cad.geometry.bifocal import build_model
+    from antenna_cad.geometry.bifocal import build_model, plate_parts
     box_material = resolve_material(spec.fabrication.box.material) if layup else None
-    return build_model(design, _height(spec), layup, resolve_material(spec.material), box_material, panels)
+    plates, pp = _plates(spec, design), spec.design.parallel_plate
+    extra = ([], []) if plates is None else plate_parts(
+        plates[0], [] if plates[1] is None else bp.wall_parts(plates[1]), spec.design.height_mm,
+        pp.plate_thickness_mm, _metal(pp))
+    return build_model(design, _height(spec), layup, resolve_material(spec.material), box_material, panels, extra)
 
 
 def fabricate(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None, panels):
     m = resolve_material(spec.material)
-    if layup is None:
-        from antenna_cad.fabrication.bifocal import fabricate_machined_bifocal
-        return fabricate_machined_bifocal(design, _height(spec), m, spec.fabrication.stock_allowance_mm, spec.name)
-    return fabricate_layup(spec.fabrication, layup, panels, m, spec.name)
+    if layup is not None:
+        return fabricate_layup(spec.fabrication, layup, panels, m, spec.name)
+    from antenna_cad.fabrication.bifocal import fabricate_machined_bifocal
+    fab = fabricate_machined_bifocal(design, _height(spec), m, spec.fabrication.stock_allowance_mm, spec.name)
+    plates, pp = _plates(spec, design), spec.design.parallel_plate
+    if plates is None:
+        return fab
+    metal, h = _metal(pp), spec.design.height_mm
+    rows = bp.plate_rows(plates[0], plates[1], metal, pp.plate_thickness_mm, h)
+    metal_kg = sum(r.mass_kg for r in rows)
+    drawing = bp.plates_drawing(design, plates[0], plates[1], spec.name, h, pp.plate_thickness_mm)
+    return replace(fab, drawings=fab.drawings + (drawing,), rows=fab.rows + tuple(rows),
+                   totals_kg=fab.totals_kg | {metal.name: metal_kg, "all": fab.totals_kg["all"] + metal_kg})
 
 
 def sanding_allowance_mm3(design: BifocalDesign, layup: LayupPlan) -> float:
@@ -109,15 +137,24 @@ def summary(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None) -
     }
     if design.shape == "cylindrical":
         figures["height_mm"] = float(spec.design.height_mm)
+    figures |= _kinber_figures(spec, design)
     if layup is not None:
         figures |= layup_figures(layup) | {"sanding_allowance_mm3": sanding_allowance_mm3(design, layup)}
     return figures
 
 
 def fabrication_checks(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None) -> list[Check]:
-    """Sheet discs against the lens on both faces (contain it, no excess) and neck material."""
+    """Sheet discs against the lens on both faces (contain it, no excess) and neck material; for a lens
+    between plates: the plate spacing below λ/2 (only the TEM mode in the air region) and the horn
+    clear of the lens."""
     if layup is None:
-        return []
+        plates = _plates(spec, design)
+        if plates is None:
+            return []
+        lam = wavelength_mm(spec.frequency_ghz)
+        checks = [Check.upper("plate_spacing_tem_only", spec.design.height_mm, lam / 2, "mm",
+                              "plate spacing vs λ/2 (the TM1 cut-off of the air-filled plates)")]
+        return checks + ([] if plates[1] is None else [bp.horn_clearance_check(design, plates[1])])
     fit, y = 0.0, np.linspace(0.0, design.edge_y_mm, 2001)
     zi, zs = design.profile("illuminated", y), design.profile("shadow", y)
     for s in layup.sheets:
@@ -131,11 +168,51 @@ def fabrication_checks(spec: BifocalSpec, design: BifocalDesign, layup: LayupPla
             ] + neck_checks(layup)
 
 
+def _kinber_figures(spec: BifocalSpec, design: BifocalDesign) -> dict[str, float]:
+    """Kinber's lens: the resolved central segments (h given or optimised), the image points of a
+    point-image lens, σ over the view, the plates and the horn."""
+    if design.view is None:
+        return {}
+    v, D = design.view, 2 * design.edge_y_mm
+    figures = {k: float(x) for k, x in design.params.items() if k.startswith("kinber_") and x is not None}
+    figures |= {"kinber_h_optimised": float(v.h_optimised), "kinber_focal_axis_x": v.focal_axis_x,
+                "kinber_focal_axis_optimised": float(v.focal_axis_optimised),
+                "kinber_view_angle_deg": v.view_angle_deg, "kinber_sigma_over_D_max": float(v.sigma.max()),
+                "kinber_sigma_max_mm": float(v.sigma.max() * D),
+                "kinber_sigma_max_deg": float(v.sigma.max() * D / wavelength_mm(spec.frequency_ghz) * 360.0)}
+    if design.image_points_mm is not None:
+        (iz, iy), _ = design.image_points_mm
+        figures |= {"image_1_z_mm": float(iz), "image_1_y_mm": float(iy)}
+    plates = _plates(spec, design)
+    if plates is not None and plates[1] is not None:
+        figures |= {"horn_flare_length_mm": plates[1].flare_length_mm,
+                    "dielectric_tm1_cutoff_spacing_mm": wavelength_mm(spec.frequency_ghz) / (2 * design.n)}
+    return figures
+
+
+def _sigma_view(spec: BifocalSpec, design: BifocalDesign) -> Verification:
+    """σ (3.10) against the source angle on the focal circle (seed-001 §3.1, §4): the Hermite faces the
+    CAD splines pass through, exact trace, best image point / output direction per source."""
+    v = design.view
+    D = 2 * design.edge_y_mm
+    out = "point image" if design.image_points_mm is not None else "plane output"
+    plot = Plot("sigma", "RMS aberration against the source angle (seed-001 (3.10))", "source angle (deg)",
+                "σ / D", (Series(f"Kinber lens, {out}", v.angles_deg, v.sigma),),
+                caption=f"focal circle through F1, F2 crossing the axis at {v.focal_axis_x:.4f} D "
+                        f"({'optimised' if v.focal_axis_optimised else 'given'}); max σ {v.sigma.max():.3g} D = "
+                        f"{v.sigma.max() * D:.4g} mm")
+    table = Table("sigma", "σ against the source angle", ("angle_deg", "sigma_over_D", "sigma_mm"),
+                  tuple((float(a), float(s), float(s * D)) for a, s in zip(v.angles_deg, v.sigma)))
+    return Verification({}, (), (table,), (plot,))
+
+
 def verify(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None, fab) -> Verification:
     """As-built verification (issue 6, :mod:`antenna_cad.kinds.asbuilt`) at the design focus O1 and at
     the edge of the usable scan range, plus the defocus study of issue 5 (seed-000 §5.9): p-p phase
     error against the feed displacement along the focal line, bifocal vs the single-surface lens of
     the same aperture and focal distance."""
+    if design.image_points_mm is not None:     # a point-image lens is no collimator: σ only
+        return _sigma_view(spec, design)
     budget = spec.design.phase_error_budget_deg
     st = defocus_study(design, budget_deg=budget, frequency_ghz=spec.frequency_ghz)
     study = (stock_study(_sheets(spec, design), partial(_lens, spec, design), spec.fabrication.stock_thicknesses_mm,
@@ -161,4 +238,5 @@ def verify(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None, fa
                         f"({st.usable_half_angle_deg:.2f}°), single-surface {st.single_usable_half_range_mm:.0f} mm "
                         f"({st.single_usable_half_angle_deg:.2f}°)",
                 hlines=(("budget", budget),))
-    return replace(v, figures=scan | v.figures, plots=v.plots + (plot,))
+    v = replace(v, figures=scan | v.figures, plots=v.plots + (plot,))
+    return v if design.view is None else v.merged(_sigma_view(spec, design))

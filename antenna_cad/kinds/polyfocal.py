@@ -9,10 +9,13 @@ from __future__ import annotations
 
 import csv
 import io
+from dataclasses import replace
 
 import numpy as np
 
+from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.polyfocal import channel_clearance_check, fabricate_polyfocal
+from antenna_cad.fabrication.polyfocal_sections import gauges_drawing, section_gauges
 from antenna_cad.kinds.patterns_arrays import (array_patterns, chief_note, imaged_case, path_mm, ports_case,
                                               referred)
 from antenna_cad.materials import Material
@@ -22,17 +25,18 @@ from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.collimator import wavelength_mm
 from antenna_cad.synthesis.polyfocal import ConstrainedLens
 from antenna_cad.synthesis.polyfocal_analysis import best_direction, focal_sphere, sigma_scan, source_on
-from antenna_cad.synthesis.polyfocal_design import PolyfocalDesign, synthesize_polyfocal
+from antenna_cad.synthesis.polyfocal_design import PolyfocalDesign, grid_3d, solve_case, synthesize_polyfocal
 from antenna_cad.verification import Plot, Series, Table, Verification
 
 SUMMARY_ANGLES = 7           # field angles 0 … half view listed in the summary
+GAUGE_GRID = 48             # exact points across the aperture for the 3-D section gauges
 AS_BUILT_LIMIT = 1e-9        # as-built σ/D may exceed the element σ/D by this (table rounding: 1e-6 mm)
 
 
 def synthesize(spec: PolyfocalSpec) -> PolyfocalDesign:
     g, ln = spec.design, spec.design.lines
     return synthesize_polyfocal(
-        case=g.case, foci=[f.model_dump() for f in g.foci], unit_mm=g.unit_mm, aperture=g.aperture,
+        case=g.case, foci=g.resolved_foci(), unit_mm=g.unit_mm, aperture=g.aperture,
         thickness=g.thickness, law=g.line_law, straight_index=g.straight_index, view_angle_deg=g.view_angle_deg,
         line_type=ln.type, pitch_mm=ln.pitch_mm, phase_index=ln.phase_index, wall_mm=ln.wall_mm,
         height_mm=ln.plate_spacing_mm, fill_eps_r=resolve_material(spec.material).eps_r,
@@ -57,14 +61,35 @@ def model(spec: PolyfocalSpec, design: PolyfocalDesign, layup, panels):
 
 def fabricate(spec: PolyfocalSpec, design: PolyfocalDesign, layup, panels):
     ln = spec.design.lines
-    return fabricate_polyfocal(design, resolve_material(spec.material), _metal(spec), ln.plate_thickness_mm,
-                               ln.margin_mm, spec.name)
+    fab = fabricate_polyfocal(design, resolve_material(spec.material), _metal(spec), ln.plate_thickness_mm,
+                              ln.margin_mm, spec.name)
+    if design.case.startswith("2d"):
+        return fab
+    pitch = _gauge_pitch(spec)
+    gauges, _ = section_gauges(design, _gauge_grid(spec), pitch, spec.fabrication.gauge_depth_mm)
+    drawings = tuple(gauges_drawing(gauges, s, pitch, spec.name) for s in ("entry", "exit"))
+    rows = tuple(CutRow(f"gauges-{s}", "section-gauge", "gauge stock", "stock", 0, 0, False, 0, 0, 0, 0, 0, 0,
+                        f"{sum(g.surface == s for g in gauges)} gauges, template gauges-{s}") for s in ("entry", "exit"))
+    return replace(fab, drawings=fab.drawings + drawings, rows=fab.rows + rows)
+
+
+def _gauge_pitch(spec: PolyfocalSpec) -> float:
+    return spec.fabrication.section_pitch_mm or spec.design.lines.pitch_mm
+
+
+def _gauge_grid(spec: PolyfocalSpec) -> ConstrainedLens:
+    """The lens solved on a D/GAUGE_GRID grid for the section gauges (its nodes miss the element
+    points but at the centre and the rim, so those stay held out for the read-back check)."""
+    g = spec.design
+    return solve_case(g.case, g.resolved_foci(), g.aperture, g.thickness, "", 0.0,
+                      grid_3d(g.aperture, g.aperture / GAUGE_GRID))
 
 
 def fabrication_checks(spec: PolyfocalSpec, design: PolyfocalDesign, layup) -> list[Check]:
-    """2-D: the septa between neighbouring channels are at least the spec's wall thick."""
+    """2-D: the septa between neighbouring channels are at least the spec's wall thick; 3-D: the
+    section gauges read back against exact surface points."""
     if design.case.startswith("3d"):
-        return []
+        return [section_gauges(design, _gauge_grid(spec), _gauge_pitch(spec), spec.fabrication.gauge_depth_mm)[1]]
     return [channel_clearance_check(design, spec.design.lines.wall_mm)]
 
 

@@ -4,7 +4,7 @@ plane (z = 0) toward the antenna under test, foci at (0, ±a), rim at (X_B, ±Y_
 
 from __future__ import annotations
 
-from typing import Literal
+from typing import Annotated, Literal
 
 from pydantic import Field, model_validator
 
@@ -15,18 +15,63 @@ from antenna_cad.spec.common import AutSpec, SheetLayupSpec, SpecBase, StrictMod
 COEF = 10.0      # |normalised coefficient| (D = 1): beyond it the lens is not a lens
 
 
+H_PARAM = Annotated[float, Field(ge=MIN_RATIO, lt=0.5)]
+
+
 class KinberSpec(StrictModel):
     """Seed-001 §3.1 central-segment parameters of Kinber's construction, in units of the aperture
     D (the seed normalises D = 1; the lens is scaled to D = 2·edge_y_mm)."""
     a0: float = Field(ge=-COEF, le=COEF, description="illuminated face vertex x")
     a2: float | None = Field(None, ge=-COEF, le=COEF, description="illuminated central parabola coefficient "
                              "(None: solved from C² continuity at the junctions, seed-001 §3.1)")
-    h1: float = Field(ge=MIN_RATIO, lt=0.5, description="half-height of the central segment")
+    h1: H_PARAM | Literal["optimise"] = Field(
+        description="half-height of the central segment, or optimise: h1 = h2 in h_range for the least max "
+        "σ (3.10) over view_angle_deg (a2 then from C² continuity)")
     b0: float = Field(ge=-COEF, le=COEF, description="shadow face vertex x")
     b2: float | None = Field(None, ge=-COEF, le=COEF, description="shadow central parabola coefficient (None: "
                              "−a2, a symmetric lens only)")
     h2: float | None = Field(None, ge=MIN_RATIO, lt=0.5, description="shadow segment half-height (None: A–O–B collinear)")
-    rho1: float = Field(ge=MIN_RATIO, le=COEF, description="focal distance of F1 from the origin")
+    rho1: float = Field(ge=MIN_RATIO, le=COEF, description="focal distance ρ1 = F1A (from the entry point A)")
+    rho2: float | None = Field(None, ge=MIN_RATIO, le=COEF, description="image distance ρ2 = BF1' of a point-image "
+                               "lens (the seed's lenses 1 and 2); None: plane output fronts (lens 3)")
+    h_range: tuple[H_PARAM, H_PARAM] = Field((0.02, 0.09), description="search range of h1 = h2 (h1: optimise)")
+    view_angle_deg: float = Field(40.0, ge=1.0, le=120.0, description="full view angle of the σ analysis "
+                                  "(and of the h optimisation); the seed's 40°")
+    focal_axis_x: float | None = Field(None, ge=-COEF, le=COEF, description="where the focal circle through F1, "
+                                       "F2 crosses the axis (seed frame, origin at the lens centre); None: "
+                                       "optimised for the least max σ over the view")
+
+    @model_validator(mode="after")
+    def _optimise_consistent(self):
+        if self.h1 == "optimise":
+            for name in ("a2", "h2"):
+                if getattr(self, name) is not None:
+                    raise ValueError(f"design.kinber.{name}: with h1: optimise, h2 = h1 and a2 is solved from "
+                                     "C² continuity for every trial h; leave it out")
+        if not self.h_range[0] < self.h_range[1]:
+            raise ValueError("design.kinber.h_range: needs [low, high] with low < high")
+        return self
+
+
+class HornSpec(StrictModel):
+    """H-plane sectoral horn between the plates, its aperture centred on the design focus O1 and its
+    axis aimed at the illuminated vertex (seed-001 §3.1 FEM: input 7.2×3.4 mm, output 13×3.4 mm)."""
+    input_width_mm: float = Field(7.2, ge=MIN_MM, le=1000, description="broad wall of the feeding guide")
+    aperture_width_mm: float = Field(13.0, ge=MIN_MM, le=5000, description="H-plane aperture width")
+    length_mm: float | None = Field(None, ge=MIN_MM, le=10000, description="flare length along the axis "
+                                    "(None: the optimum H-plane horn, aperture² = 3 λ · slant length)")
+    feed_length_mm: float = Field(10.0, ge=MIN_MM, le=1000, description="straight guide behind the flare")
+    wall_mm: float = Field(1.0, ge=MIN_MM, le=50, description="side-wall thickness")
+
+
+class ParallelPlateSpec(StrictModel):
+    """The lens between two metal plates spaced by height_mm (seed-001 §3.1: a 3.4 mm parallel-plate
+    waveguide at 37.5 GHz), with its feed horn."""
+    plate_thickness_mm: float = Field(2.0, ge=MIN_MM, le=100)
+    margin_mm: float = Field(10.0, ge=0, le=1000, description="plates beyond the lens and the horn")
+    metal: str = Field("aluminium", pattern=r"^[A-Za-z0-9_. -]+$")
+    metal_density_kg_m3: float = Field(2700.0, ge=1, le=25000)
+    horn: HornSpec | None = Field(HornSpec(), description="the H-plane horn at O1 (null: plates only)")
 
 
 class BifocalDesignSpec(StrictModel):
@@ -48,6 +93,8 @@ class BifocalDesignSpec(StrictModel):
                                 "distance_mm is that plane); default: a circle, the lens less the GO edge "
                                 "margin or the test zone if larger")
     test_zone: TestZoneSpec = TestZoneSpec()
+    parallel_plate: ParallelPlateSpec | None = Field(None, description="cylindrical lens only: the lens "
+                                                     "between metal plates spaced height_mm, with its H-plane horn")
 
     @model_validator(mode="after")
     def _consistent(self):
@@ -72,6 +119,8 @@ class BifocalDesignSpec(StrictModel):
         return self._shape_fits()
 
     def _shape_fits(self):
+        if self.parallel_plate is not None and self.shape != "cylindrical":
+            raise ValueError("design.parallel_plate: only for shape: cylindrical (the plates bound the extrusion)")
         if self.shape == "cylindrical" and self.height_mm is None:
             raise ValueError("design.height_mm: required for shape: cylindrical")
         if self.shape == "revolved" and self.height_mm is not None:
@@ -90,5 +139,8 @@ class BifocalSpec(SpecBase):
             if self.design.shape != "revolved":
                 raise ValueError("fabrication.method: sheet_layup makes a lens of revolution (disc sheets); "
                                  "a cylindrical bifocal lens needs method: solid")
+            if self.design.kinber is not None and self.design.kinber.rho2 is not None:
+                raise ValueError("fabrication.method: a point-image Kinber lens (design.kinber.rho2) is verified by "
+                                 "its σ over the view, not by the layup's plane-front trace; use method: solid")
             fab.check_fits_lens(self.design.edge_y_mm, "2·design.edge_y_mm")
         return self

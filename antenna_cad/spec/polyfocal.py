@@ -10,11 +10,15 @@ that fills the lines (air, {eps_r: 1, …}, for hollow waveguides). Supported ca
   F1/F2 pair]; ``thickness`` = d.
 * ``3d`` / ``one_plane`` / ``plane_waves`` — §2.4: five foci, [F1/F2 (f1, α, φ), F3/F4 (f3, β, ξ),
   F5 (f5, ψ) in the xz plane].
+
+Each focus is given by the seed's parameters or by its position (:class:`FocusSpec`).
 """
 
 from __future__ import annotations
 
-from typing import Literal
+from typing import Annotated, Literal
+
+import numpy as np
 
 from pydantic import Field, model_validator
 
@@ -22,12 +26,77 @@ from antenna_cad.spec.bounds import MIN_DEG, MIN_MM, MIN_RATIO
 from antenna_cad.spec.common import SpecBase, StrictModel
 
 
+COORD = Annotated[float, Field(ge=-1e4, le=1e4)]
+COORD_MM = Annotated[float, Field(ge=-1e7, le=1e7)]
+MIN_F = 0.01              # shortest focal distance (normalised units)
+
+
 class FocusSpec(StrictModel):
-    """One focus, or a mirror pair of foci, in the seed's parameters (angles in degrees)."""
-    f: float = Field(gt=0.01, le=1e4, description="focal distance (normalised units): from the surface "
-                     "centre in 2-D (seed-001 (1.2)/(1.5)), from the lens centre O in 3-D (2.1)")
-    angle_deg: float = Field(0.0, ge=0, lt=80, description="angle to the lens axis (α, β, ψ)")
-    azimuth_deg: float = Field(0.0, ge=-90, le=90, description="3-D only: azimuth from Oy (φ, ξ)")
+    """One focus, or a mirror pair of foci: the seed's parameters (f, angles in degrees) or the
+    position of the focus (of the pair's upper member) in the lens frame — origin O at the lens
+    centre, z the axis toward the output, y transverse (2-D: (y, z); 3-D: (x, y, z)), normalised
+    units (``position``) or millimetres (``position_mm``)."""
+    f: float | None = Field(None, gt=MIN_F, le=1e4, description="focal distance (normalised units): from the "
+                            "surface centre in 2-D (seed-001 (1.2)/(1.5)), from the lens centre O in 3-D (2.1)")
+    angle_deg: float | None = Field(None, ge=0, lt=80, description="angle to the lens axis (α, β, ψ); default 0")
+    azimuth_deg: float | None = Field(None, ge=-90, le=90, description="3-D only: azimuth from Oy (φ, ξ); default 0")
+    position: tuple[COORD, ...] | None = Field(None, min_length=2, max_length=3, description="the focus "
+                                               "position, normalised units (instead of f and the angles)")
+    position_mm: tuple[COORD_MM, ...] | None = Field(None, min_length=2, max_length=3, description="the focus "
+                                                     "position in mm (divided by design.unit_mm)")
+
+    @model_validator(mode="after")
+    def _one_form(self):
+        given = [k for k in ("position", "position_mm") if getattr(self, k) is not None]
+        if len(given) > 1:
+            raise ValueError("give position or position_mm, not both")
+        if given and any(getattr(self, k) is not None for k in ("f", "angle_deg", "azimuth_deg")):
+            raise ValueError(f"{given[0]} replaces f, angle_deg and azimuth_deg; leave them out")
+        if not given and self.f is None:
+            raise ValueError("give f (with angle_deg, azimuth_deg) or the position (position or position_mm)")
+        return self
+
+    def resolved(self, where: str, case: str, thickness: float, unit_mm: float, single: bool) -> dict[str, float]:
+        """{f, angle_deg, azimuth_deg} in the seed's parameters. ``single``: the focus is no mirror
+        pair (§1.5's F, §2.4's F5), so it must lie on the axis (2-D) or in the xz plane (3-D).
+        Raises ValueError "<where>.position: rule" for a position the case cannot take."""
+        if self.f is not None:
+            return {"f": self.f, "angle_deg": self.angle_deg or 0.0, "azimuth_deg": self.azimuth_deg or 0.0}
+        key = "position" if self.position is not None else "position_mm"
+        pos = np.array(self.position if self.position is not None else self.position_mm, float)
+        pos = pos / (1.0 if self.position is not None else unit_mm)
+        field = f"{where}.{key}"
+        dims = 2 if case.startswith("2d") else 3
+        if len(pos) != dims:
+            raise ValueError(f"{field}: {'2-D foci take (y, z)' if dims == 2 else '3-D foci take (x, y, z)'}; "
+                             f"got {len(pos)} numbers")
+        if dims == 2:
+            y, z = pos
+            z_ref = -thickness / 2              # the entry-surface centre: focal distances from it
+            if z >= z_ref:
+                raise ValueError(f"{field}: the focus must lie in front of the entry surface (z < "
+                                 f"{z_ref:.6g} normalised, −thickness/2)")
+            if y < 0:
+                raise ValueError(f"{field}: give the upper focus of the ±pair (y ≥ 0)")
+            if single and y != 0:
+                raise ValueError(f"{field}: this focus lies on the axis (y = 0)")
+            f, angle, azimuth = float(np.hypot(y, z - z_ref)), float(np.degrees(np.arctan2(y, z_ref - z))), 0.0
+        else:
+            x, y, z = pos
+            f = float(np.linalg.norm(pos))
+            if z >= 0:
+                raise ValueError(f"{field}: the focus must lie in front of the lens (z < 0)")
+            if single and (y != 0 or x < 0):
+                raise ValueError(f"{field}: the fifth focus lies in the xz plane at x ≥ 0 (y = 0)")
+            if not single and y < 0:
+                raise ValueError(f"{field}: give the focus of the pair with y ≥ 0 (its mirror is in y)")
+            angle = float(np.degrees(np.arccos(-z / f)))
+            azimuth = 0.0 if single else float(np.degrees(np.arctan2(x, y)))
+        if not f > MIN_F:
+            raise ValueError(f"{field}: focal distance {f:.6g} below {MIN_F} normalised units")
+        if not angle < 80:
+            raise ValueError(f"{field}: angle to the axis {angle:.4g}° (rule: < 80°)")
+        return {"f": f, "angle_deg": angle, "azimuth_deg": azimuth}
 
 
 class LinesSpec(StrictModel):
@@ -72,7 +141,13 @@ class PolyfocalDesignSpec(StrictModel):
     def foci_count(self) -> int:
         if self.case == "3d/one_plane/plane_waves":
             return 5
-        return sum(1 if f.angle_deg == 0 else 2 for f in self.foci)
+        return sum(1 if f["angle_deg"] == 0 else 2 for f in self.resolved_foci())
+
+    def resolved_foci(self) -> list[dict[str, float]]:
+        """The foci as the seed's {f, angle_deg, azimuth_deg}, positions converted (FocusSpec.resolved)."""
+        singles = {"2d/one_plane/plane_waves": {0}, "3d/one_plane/plane_waves": {2}}.get(self.case, set())
+        return [f.resolved(f"design.foci[{i}]", self.case, self.thickness, self.unit_mm, i in singles)
+                for i, f in enumerate(self.foci)]
 
     @model_validator(mode="after")
     def _supported(self):
@@ -85,17 +160,17 @@ class PolyfocalDesignSpec(StrictModel):
                              f"focus entries (got {len(self.foci)})")
         if self.dimensions == "2d" and any(f.azimuth_deg for f in self.foci):
             raise ValueError("design.foci: azimuth_deg is for 3-D lenses only")
-        if self.case == "2d/two_planes/foci" and len(self.foci) == 2:
-            a, b = self.foci
-            if b.angle_deg == 0 or a.angle_deg == b.angle_deg:
+        foci = self.resolved_foci()
+        if self.case == "2d/two_planes/foci" and len(foci) == 2:
+            a, b = foci
+            if b["angle_deg"] == 0 or a["angle_deg"] == b["angle_deg"]:
                 raise ValueError("design.foci: the second pair needs an angle > 0 and ≠ the first")
-        if self.case == "2d/one_plane/plane_waves" and (self.foci[0].angle_deg != 0 or self.foci[1].angle_deg == 0):
+        if self.case == "2d/one_plane/plane_waves" and (foci[0]["angle_deg"] != 0 or foci[1]["angle_deg"] == 0):
             raise ValueError("design.foci: §1.5 takes [F on the axis (angle 0), the F1/F2 pair (angle > 0)]")
         if self.case == "3d/one_plane/plane_waves":
-            f1, f3 = self.foci[0], self.foci[1]
-            if abs(f1.f - f3.f) < 1e-9:
+            if abs(foci[0]["f"] - foci[1]["f"]) < 1e-9:
                 raise ValueError("design.foci: §2.4 needs f1 ≠ f3 ((2.47) divides by f1² − f3²)")
-            if self.foci[2].azimuth_deg != 0:
+            if self.foci[2].azimuth_deg:
                 raise ValueError("design.foci: the fifth focus lies in the xz plane (leave azimuth_deg out)")
         if self.lines.wall_mm >= self.lines.pitch_mm:
             raise ValueError("design.lines.wall_mm: must be < lines.pitch_mm")
@@ -109,9 +184,20 @@ class MetalFabSpec(StrictModel):
     method: Literal["machined_metal"]
     metal: str = Field("aluminium", pattern=r"^[A-Za-z0-9_. -]+$")
     metal_density_kg_m3: float = Field(2700.0, ge=1, le=25000)
+    section_pitch_mm: float | None = Field(None, ge=1.0, le=10000, description="3-D: 1:1 section gauges of both "
+                                           "port surfaces at x = k·pitch (None: the element pitch)")
+    gauge_depth_mm: float = Field(20.0, ge=1.0, le=1000, description="3-D: gauge height beyond the surface's "
+                                  "extreme (its straight datum edge)")
 
 
 class PolyfocalSpec(SpecBase):
     kind: Literal["polyfocal"]
     fabrication: MetalFabSpec
     design: PolyfocalDesignSpec
+
+    @model_validator(mode="after")
+    def _gauges_3d(self):
+        if self.design.dimensions == "2d" and self.fabrication.section_pitch_mm is not None:
+            raise ValueError("fabrication.section_pitch_mm: section gauges are for 3-D lenses (a 2-D lens has its "
+                             "section template)")
+        return self

@@ -28,6 +28,10 @@ Constructions
   parameters (a0, a2, h1, b0, b2, h2, ρ1, ρ2); ``synthesize_bifocal(construction="kinber")`` fits its
   central segments to the spec's foci and tilt (see :func:`synthesize_bifocal`).
 
+Modules: the shared closed-form steps are :mod:`.bifocal_steps`, Kinber's construction and its RMS
+:mod:`.kinber`, the verification trace and defocus study :mod:`.bifocal_trace`, the solid figures
+(face splines, volume, slab radius) :mod:`.bifocal_solids`; their public names are re-exported here.
+
 The single-surface hyperbolic comparison lens (seed-000 §2.1, (1.9) corrected, (1.1)) and its scan-range
 study are the shared :mod:`antenna_cad.raytrace.collimator`.
 
@@ -36,28 +40,31 @@ extrudes it (exact in every section); ``revolved`` turns it about the axis, whic
 into a ring of radius a — the design is then exact only for feeds in the meridional plane.
 """
 
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 from typing import Literal
 
 import numpy as np
-from scipy.interpolate import CubicHermiteSpline
 from scipy.optimize import brentq, least_squares
 
-from antenna_cad.raytrace.collimator import single_surface_p2p_deg, usable_half_range_mm, usable_interval_mm
 from antenna_cad.raytrace.snell import refract
-from antenna_cad.raytrace.trace2d import Interface, Trace2D, aim_at_face, trace
-from antenna_cad.synthesis import collimator
+from antenna_cad.raytrace.trace2d import Interface
+from antenna_cad.synthesis.bifocal_solids import face_spline, lens_volume_mm3, max_radius_in
+from antenna_cad.synthesis.bifocal_steps import (_back, _fwd, _hermite, _mirror, _Optics,
+                                                 _symmetric_profile, _unit)
+from antenna_cad.synthesis.bifocal_trace import (C0_MM_PER_NS, DefocusStudy, _design_focus_eikonal,
+                                                 aperture_phase, defocus_study, trace_bifocal)
 from antenna_cad.synthesis.checks import Check, DesignError
-
-C0_MM_PER_NS = 299.792458          # speed of light, mm/ns → λ0[mm] = C0_MM_PER_NS / f[GHz]
+from antenna_cad.synthesis.kinber import (KinberLens, KinberView, kinber_focal_circle_rms, kinber_lens,
+                                          kinber_rms, resolve_kinber)
 
 __all__ = [
     "BifocalDesign", "KinberLens", "DefocusStudy", "equal_edge_ellipse", "thin_ray_rho2",
     "polar_polynomial", "synthesize_bifocal", "kinber_lens", "trace_bifocal", "aperture_phase",
     "defocus_study", "kinber_rms", "kinber_focal_circle_rms", "face_spline", "lens_volume_mm3",
-    "max_radius_in",
+    "max_radius_in", "C0_MM_PER_NS",
 ]
 
 
@@ -125,120 +132,6 @@ def _fit_polar(points: np.ndarray) -> tuple[tuple[float, float, float], float]:
 
 
 # --------------------------------------------------------------------------------------------------
-# Shared closed-form steps (vector Snell, seed-000 §2.7; seed-001 §3.1 (3.2)–(3.9))
-# --------------------------------------------------------------------------------------------------
-
-def _unit(v: np.ndarray) -> np.ndarray:
-    return v / np.linalg.norm(v, axis=-1, keepdims=True)
-
-
-def _mirror(p: np.ndarray) -> np.ndarray:
-    return p * np.array([1.0, -1.0])
-
-
-@dataclass(frozen=True)
-class _Optics:
-    """One feed F (left), its conjugate (plane direction k, or image point Fp), index n and the
-    eikonal constant L: ``|F−P| + n|PQ| + e(Q) = L`` with ``e(Q) = −k·Q`` (plane) or ``|Fp−Q|``."""
-
-    F: np.ndarray
-    n: float
-    L: float
-    k: np.ndarray | None = None
-    Fp: np.ndarray | None = None
-
-    def exit_dir(self, Q: np.ndarray) -> np.ndarray:
-        return np.broadcast_to(self.k, Q.shape) if self.k is not None else _unit(self.Fp - Q)
-
-    def e(self, Q: np.ndarray) -> np.ndarray:
-        return -(Q @ self.k) if self.k is not None else np.linalg.norm(self.Fp - Q, axis=-1)
-
-
-def _smallest_positive_root(A: float, B: np.ndarray, C: np.ndarray, budget: np.ndarray,
-                            n: float) -> np.ndarray:
-    """Root s > 0 of ``A s² + 2B s + C = 0`` with ``budget − n s > 0`` (NaN if none)."""
-    disc = B**2 - A * C
-    sq = np.sqrt(np.where(disc >= 0.0, disc, np.nan))
-    q = -(B + np.copysign(sq, B))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        r1, r2 = q / A, C / q
-    good = lambda r: np.isfinite(r) & (r > 0.0) & (budget - n * r > 0.0)  # noqa: E731
-    r1 = np.where(good(r1), r1, np.inf)
-    r2 = np.where(good(r2), r2, np.inf)
-    r = np.minimum(r1, r2)
-    return np.where(np.isfinite(r), r, np.nan)
-
-
-def _fwd(P: np.ndarray, NP: np.ndarray, o: _Optics) -> tuple[np.ndarray, np.ndarray]:
-    """Ray F→P (surface 1, normal NP) refracted into the lens → exit point Q on surface 2 and the
-    surface-2 normal there (∥ n·v − w). Plane exit: t linear (seed-000 §2.7 step 2); point exit:
-    quadratic (seed-001 (3.4)–(3.5))."""
-    d = _unit(P - o.F)
-    v, ok = refract(d, NP, 1.0, o.n)
-    r1 = np.linalg.norm(P - o.F, axis=-1)
-    if o.k is not None:
-        t = (o.L - r1 + P @ o.k) / (o.n - v @ o.k)
-    else:
-        w0 = o.Fp - P
-        R0 = o.L - r1
-        t = _smallest_positive_root(1.0 - o.n**2, o.n * R0 - np.sum(v * w0, -1),
-                                    np.sum(w0 * w0, -1) - R0**2, R0, o.n)
-    t = np.where(ok & (t > 0.0), t, np.nan)
-    Q = P + t[:, None] * v
-    NQ = _unit(o.n * v - o.exit_dir(Q))
-    return Q, NQ
-
-
-def _back(Q: np.ndarray, NQ: np.ndarray, o: _Optics) -> tuple[np.ndarray, np.ndarray]:
-    """Inverse step: from a surface-2 point Q (normal NQ) trace the conjugate ray backwards into the
-    lens and find the surface-1 point P with the same eikonal (seed-000 §2.7 step 3, quadratic
-    ``(1−n²)s² + 2(w·d_b + nK)s + |w|² − K² = 0``; seed-001 (3.8)–(3.9))."""
-    vb, ok = refract(-o.exit_dir(Q), NQ, 1.0, o.n)
-    K = o.L - o.e(Q)
-    w = Q - o.F
-    s = _smallest_positive_root(1.0 - o.n**2, np.sum(w * vb, -1) + o.n * K, np.sum(w * w, -1) - K**2,
-                                K, o.n)
-    s = np.where(ok, s, np.nan)
-    P = Q + s[:, None] * vb
-    NP = _unit(_unit(P - o.F) + o.n * vb)          # ∥ d − n·v with v = −vb
-    return P, NP
-
-
-def _slopes(N: np.ndarray) -> np.ndarray:
-    """dz/dy of a profile z = f(y) from its normal (N ∥ (1, −f'))."""
-    return -N[:, 1] / N[:, 0]
-
-
-def _symmetric_profile(pts: np.ndarray, nrm: np.ndarray, y_max: float | None = None
-                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Fold points to y ≥ 0, mirror to a full even profile, sort, drop duplicates.
-    Returns (y, z, dz/dy) arrays, strictly increasing y."""
-    y = pts[:, 1].copy()
-    z = pts[:, 0].copy()
-    sl = _slopes(nrm)
-    neg = y < 0
-    y[neg], sl[neg] = -y[neg], -sl[neg]
-    keep = np.isfinite(y) & np.isfinite(z) & np.isfinite(sl)
-    if y_max is not None:
-        keep &= y <= y_max
-    y, z, sl = y[keep], z[keep], sl[keep]
-    order = np.argsort(y)
-    y, z, sl = y[order], z[order], sl[order]
-    uniq = np.concatenate([[True], np.diff(y) > 1e-9 * max(1.0, float(y[-1]) if len(y) else 1.0)])
-    y, z, sl = y[uniq], z[uniq], sl[uniq]
-    if y[0] <= 1e-12 * max(1.0, y[-1]):
-        y0, z0, s0 = y[:1] * 0.0, z[:1], sl[:1] * 0.0
-        y, z, sl = y[1:], z[1:], sl[1:]
-        return (np.concatenate([-y[::-1], y0, y]), np.concatenate([z[::-1], z0, z]),
-                np.concatenate([-sl[::-1], s0, sl]))
-    return np.concatenate([-y[::-1], y]), np.concatenate([z[::-1], z]), np.concatenate([-sl[::-1], sl])
-
-
-def _hermite(y: np.ndarray, z: np.ndarray, sl: np.ndarray) -> CubicHermiteSpline:
-    return CubicHermiteSpline(y, z, sl)
-
-
-# --------------------------------------------------------------------------------------------------
 # The design record
 # --------------------------------------------------------------------------------------------------
 
@@ -252,7 +145,8 @@ class BifocalDesign:
     :meth:`polyline`). ``poly_*`` are the seed's (1.11) coefficients (ρ_ν in mm, A_ν, B_ν with θ in
     radians), least-squares fitted; ``poly_fit_residual_mm`` is the max radial deviation of that fit.
     ``residual_path_error_mm``: peak-to-peak eikonal error of an exact trace through the Hermite
-    profiles from (O1, O2) to their plane fronts.
+    profiles from (O1, O2) to their plane fronts (or, for a point-image Kinber lens, to the image
+    points ``image_points_mm``; ``exit_directions`` are then the chief rays' directions ω_B).
     """
 
     construction: str
@@ -284,6 +178,8 @@ class BifocalDesign:
     residual_path_error_mm: tuple[float, float]
     checks: tuple[Check, ...]
     params: dict = field(default_factory=dict)     # construction-specific inputs/outputs
+    image_points_mm: np.ndarray | None = None      # (2, 2) O1', O2' of a point-image Kinber lens (else plane fronts)
+    view: KinberView | None = None                 # Kinber: σ (3.10) over the view angle (D = 1)
 
     # -- smooth representation -------------------------------------------------------------------
     def profile(self, surface: Literal["illuminated", "shadow"], y_mm: np.ndarray) -> np.ndarray:
@@ -412,164 +308,6 @@ def _rim_profile(pts, nrm, A1, N_edge, yb, cut=1e-4):
     p = np.concatenate([pts[fy], A1[None]])
     m = np.concatenate([nrm[fy], N_edge[None]])
     return _symmetric_profile(p, m)
-
-
-# --------------------------------------------------------------------------------------------------
-# Kinber's method of steps (seed-001 §3.1)
-# --------------------------------------------------------------------------------------------------
-
-@dataclass(frozen=True)
-class KinberLens:
-    """Seed-001 §3.1 lens in the seed's own frame (x axis = our z, origin at the lens centre O,
-    normalised units, D = aperture). ``F1`` below the axis; ``F1p`` its image point (None for a
-    plane output, then ``k`` is the output direction ω_B)."""
-
-    n: float
-    aperture: float
-    F1: np.ndarray
-    F1p: np.ndarray | None
-    k: np.ndarray | None
-    omega_B_rad: float
-    alpha_A_rad: float
-    L: float
-    surface1: np.ndarray            # (N, 2) full even profile (x, y), with slopes
-    slopes1: np.ndarray
-    surface2: np.ndarray
-    slopes2: np.ndarray
-    segments: int
-
-    def x1(self, y):
-        return _hermite(self.surface1[:, 1], self.surface1[:, 0], self.slopes1)(np.asarray(y, float))
-
-    def x2(self, y):
-        return _hermite(self.surface2[:, 1], self.surface2[:, 0], self.slopes2)(np.asarray(y, float))
-
-    def focus_angle_deg(self) -> float:
-        """"Angular position of the foci" as the digest reads it: the direction of F1' seen from the
-        surface-2 vertex (b0, 0), or ω_B for a plane output."""
-        if self.F1p is None:
-            return float(np.degrees(self.omega_B_rad))
-        b0 = float(self.x2(0.0))
-        return float(np.degrees(np.arctan2(self.F1p[1], self.F1p[0] - b0)))
-
-
-def kinber_lens(n: float, a0: float, a2: float, h1: float, b0: float, b2: float, h2: float | None,
-                rho1: float, rho2: float = np.inf, aperture: float = 1.0,
-                points_per_segment: int = 41, max_segments: int = 400,
-                allow_partial: bool = False, build_to: float = 1.02) -> KinberLens:
-    """Kinber's exact stepwise bifocal synthesis, seed-001 §3.1, in the seed's frame.
-
-    Central segments ``x1 = a0 + a2 y²`` (|y| ≤ h1) and ``x2 = b0 + b2 y²`` (|y| ≤ h2). If ``h2`` is None
-    it is set by A–O–B collinearity (``x_B/h2 = −x_A/h1``). Foci from (3.1); F1 rays through the newest
-    surface-1 segment give the next surface-2 segment (3.2)–(3.5); F2' rays through the newest
-    surface-2 segment give the next surface-1 segment (3.6)–(3.9) (computed as the mirror image of the
-    F1 backward step). ``rho2 = inf`` gives the plane-output lens (digest's derived form).
-    """
-    if h2 is None:                     # b2 h² + (x_A/h1) h + b0 = 0, root with h > 0
-        xa = a0 + a2 * h1**2
-        cq = [b2, xa / h1, b0] if abs(b2) > 0 else [xa / h1, b0]
-        roots = np.roots(cq)
-        roots = roots[np.isreal(roots) & (roots.real > 0)].real
-        if len(roots) == 0:
-            raise DesignError("design.kinber.h2", "A–O–B collinearity has no positive h2")
-        h2 = float(np.min(roots))
-    y1 = np.linspace(-h1, h1, points_per_segment)
-    y2 = np.linspace(-h2, h2, points_per_segment)
-    s1 = np.stack([a0 + a2 * y1**2, y1], -1)
-    n1 = _unit(np.stack([np.ones_like(y1), -2 * a2 * y1], -1))
-    s2 = np.stack([b0 + b2 * y2**2, y2], -1)
-    n2 = _unit(np.stack([np.ones_like(y2), -2 * b2 * y2], -1))
-    A, NA, B, NB = s1[:1], n1[:1], s2[-1:], n2[-1:]
-    v = _unit(B - A)
-    d_out, ok_a = refract(-v, NA, n, 1.0)        # from A back toward F1 (in air)
-    w, ok_b = refract(v, NB, n, 1.0)             # leaving B toward F1'
-    if not (ok_a.all() and ok_b.all()):
-        raise DesignError("design.kinber", "central ray A→B is totally reflected (3.1)")
-    F1 = (A + rho1 * d_out)[0]
-    omega_B = float(np.arctan2(w[0, 1], w[0, 0]))
-    alpha_A = float(np.arctan2(v[0, 1], v[0, 0]))
-    nab = n * float(np.linalg.norm(B - A))
-    if np.isinf(rho2):
-        k = w[0]
-        L = rho1 + nab - float(B[0] @ k)
-        o = _Optics(F1, n, L, k=k)
-        F1p = None
-    else:
-        k = None
-        F1p = (B + rho2 * w)[0]
-        L = rho1 + nab + rho2
-        o = _Optics(F1, n, L, Fp=F1p)
-    surf1_p, surf1_n = [s1], [n1]
-    surf2_p, surf2_n = [s2], [n2]
-    last1, last1n, last2, last2n = s1, n1, s2, n2
-    half = aperture / 2.0
-    segs = 0
-    for segs in range(1, max_segments + 1):
-        q, qn = _fwd(last1, last1n, o)                                   # new surface-2 segment
-        p, pn = _back(_mirror(last2), _mirror(last2n), o)                # F1 backward of mirror…
-        p, pn = _mirror(p), _mirror(pn)                                  # …mirrored = F2' step
-        good_q = np.all(np.isfinite(q), -1)
-        good_p = np.all(np.isfinite(p), -1)
-        if not (good_q.any() and good_p.any()):
-            break
-        surf2_p.append(q[good_q]); surf2_n.append(qn[good_q])
-        surf1_p.append(p[good_p]); surf1_n.append(pn[good_p])
-        last1, last1n, last2, last2n = p[good_p], pn[good_p], q[good_q], qn[good_q]
-        if (np.min(np.abs(surf1_p[-1][:, 1])) > build_to * half
-                and np.min(np.abs(surf2_p[-1][:, 1])) > build_to * half) \
-                or not (good_q.all() and good_p.all()):
-            break
-    P1 = np.concatenate(surf1_p); N1 = np.concatenate(surf1_n)
-    P2 = np.concatenate(surf2_p); N2 = np.concatenate(surf2_n)
-    ya, za, sa = _symmetric_profile(P1, N1)
-    yb_, zb, sb = _symmetric_profile(P2, N2)
-    if (ya[-1] < half or yb_[-1] < half) and not allow_partial:
-        raise DesignError("design.kinber", f"the method of steps stopped at |y| = "
-                          f"{min(ya[-1], yb_[-1]):.4g} before the aperture edge {half:.4g} (TIR or no root)")
-    return KinberLens(n, aperture, F1, F1p, k, omega_B, alpha_A, L,
-                      np.stack([za, ya], -1), sa, np.stack([zb, yb_], -1), sb, segs)
-
-
-def kinber_rms(lens: KinberLens, source: np.ndarray, image: np.ndarray, n_rays: int = 100,
-               half_aperture: float | None = None) -> float:
-    """Eikonal RMS (3.10) of seed-001 §3.1 for a point source and a point image (seed frame):
-    ``σ = sqrt(Σ (L_i − L_0)² / N)``, L_i = |S − P_i| + n|P_i Q_i| + |Q_i − S'| along exactly traced
-    rays aimed uniformly in y at surface 1, L_0 the ray aimed at the surface-1 vertex (so σ includes
-    piston, as in the seed). Rays leaving |y| > half_aperture (default D/2) on either face are dropped."""
-    h = lens.aperture / 2.0 if half_aperture is None else half_aperture
-    s1 = Interface.from_points(lens.surface1[:, 1], lens.surface1[:, 0], lens.n, lens.slopes1)
-    s2 = Interface.from_points(lens.surface2[:, 1], lens.surface2[:, 0], 1.0, lens.slopes2)
-    S = np.asarray(source, float)
-    Sp = np.asarray(image, float)
-    yt = np.linspace(-h, h, n_rays)
-    tgt = np.stack([lens.x1(yt), yt], -1)
-    tr = trace(np.tile(S, (n_rays, 1)), _unit(tgt - S), [s1, s2], 1.0)
-    ok = tr.ok & (np.abs(tr.points[1][:, 1]) <= h) & (np.abs(tr.points[2][:, 1]) <= h)
-    Li = tr.opl[ok] + np.linalg.norm(tr.points[-1][ok] - Sp, axis=-1)
-    c = trace(S[None], _unit(np.array([[float(lens.x1(0.0)), 0.0]]) - S), [s1, s2], 1.0)
-    L0 = c.opl[0] + np.linalg.norm(c.points[-1][0] - Sp)
-    return float(np.sqrt(np.mean((Li - L0) ** 2)))
-
-
-def kinber_focal_circle_rms(lens: KinberLens, x_axis: float, half_view_deg: float = 20.0,
-                            num: int = 41) -> tuple[np.ndarray, np.ndarray]:
-    """RMS (3.10) vs source angle for sources on the circle through F1, F2 centred on the axis and
-    crossing it at ``x_axis`` (seed-001 §4.2); source angle measured from the surface-1 vertex; image
-    S' = −S (point symmetry of the two-plane-symmetric lens 1). Point-image lenses only."""
-    F = lens.F1
-    xc = (F[0] ** 2 + F[1] ** 2 - x_axis**2) / (2.0 * (F[0] - x_axis))
-    R = abs(x_axis - xc)
-    V = np.array([float(lens.x1(0.0)), 0.0])
-    phis = np.radians(np.linspace(-half_view_deg, half_view_deg, num))
-    out = []
-    for phi in phis:
-        d = np.array([-np.cos(phi), -np.sin(phi)])
-        w = V - np.array([xc, 0.0])
-        bq = w @ d
-        t = -bq + np.sqrt(bq * bq - (w @ w - R * R))
-        S = V + t * d
-        out.append(kinber_rms(lens, S, -S))
-    return np.degrees(phis), np.array(out)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -716,7 +454,7 @@ def synthesize_bifocal(*, edge_y_mm: float, eps_r: float, edge_x_mm: float | Non
 
 
 def _assemble(construction, shape, eps_r, n, yb, s, a, al, L, rho1, ill_h, sh_h, edge_t, params,
-              antenna_x_mm, clearance, zero_rim) -> BifocalDesign:
+              antenna_x_mm, clearance, zero_rim, images=None) -> BifocalDesign:
     """Common tail: realizability checks, (1.11) fit, design record, exact-trace residuals."""
     if shape not in ("revolved", "cylindrical"):
         raise DesignError("design.shape", f"must be 'revolved' or 'cylindrical'; got {shape!r}")
@@ -735,6 +473,12 @@ def _assemble(construction, shape, eps_r, n, yb, s, a, al, L, rho1, ill_h, sh_h,
         c = float(antenna_x_mm)
     checks = _design_checks(n, float(zi[-1]), yb, a, al, c, rho1, rho2, y_dense, z_ill_d, z_sh_d,
                             zero_rim)
+    if images is not None:          # a point image beyond the lens (seed-001 §3.1, finite ρ2)
+        gap = float(np.min(images[:, 0]) - np.max(z_sh_d))
+        checks.append(Check.upper("kinber_image_beyond_lens", -gap, 0.0, "mm",
+                                  "shadow face beyond the image points O1', O2' by (z)"))
+        if checks[-1].status == "fail":
+            raise DesignError("design.kinber.rho2", f"the image points lie inside the lens: {checks[-1].message}")
     checks.append(Check.upper("bifocal_rim_closure", params["chain_rim_gap_mm"], 1e-2 * yb, "mm",
                               "closest approach of the constructed points to the rim",
                               warn_margin=0.99e-2 * yb))
@@ -751,7 +495,7 @@ def _assemble(construction, shape, eps_r, n, yb, s, a, al, L, rho1, ill_h, sh_h,
         illuminated_mm=ill, illuminated_normals=nrm(si), illuminated_slopes=si,
         shadow_mm=sh, shadow_normals=nrm(ss), shadow_slopes=ss,
         poly_illuminated=pi_, poly_shadow=ps_, poly_fit_residual_mm=max(ri, rs),
-        residual_path_error_mm=(np.nan, np.nan), checks=tuple(checks), params=params)
+        residual_path_error_mm=(np.nan, np.nan), checks=tuple(checks), params=params, image_points_mm=images)
     res = tuple(float(np.ptp(_design_focus_eikonal(design, k))) for k in (0, 1))
     chk = Check.upper("bifocal_design_focus_path_error", max(res), 1e-6 * 2 * yb, "mm",
                       "peak-to-peak eikonal error at the design foci (exact trace)")
@@ -764,24 +508,15 @@ def _assemble(construction, shape, eps_r, n, yb, s, a, al, L, rho1, ill_h, sh_h,
 
 
 def _kinber_design(n, eps_r, yb, kp, shape, antenna_x_mm, clearance) -> BifocalDesign:
-    """Seed-001 §3.1 plane-output lens from normalised parameters (D = 1), scaled to D = 2·Y_B and
-    moved into this module's frame (feed plane z = 0 through the foci)."""
+    """Seed-001 §3.1 lens from normalised parameters (D = 1; :func:`resolve_kinber`: C² a2/b2, h
+    optimised over the view, plane or point output), scaled to D = 2·Y_B and moved into this
+    module's frame (feed plane z = 0 through the foci). A point-image lens (finite ρ2) records its
+    image points O1', O2' (the seed's F2', F1' in this frame's orientation)."""
     need = ("a0", "a2", "h1", "b0", "b2", "rho1")
     missing = [k for k in need if k not in kp]
     if missing:
         raise DesignError("design.kinber", f"missing Kinber parameters {missing} (seed-001 §3.1 table)")
-    kp = dict(kp)
-    if kp["a2"] is None:                 # seed-001 §3.1: a2 (and b2 of a symmetric lens) from C² continuity
-        from antenna_cad.synthesis.kinber import solve_c2
-        if kp.get("h2") is None:
-            raise DesignError("design.kinber.h2", "required when a2 is solved from C² continuity (the "
-                              "A–O–B collinearity would couple h2 to a2)")
-        kp["a2"], kp["b2"], _ = solve_c2(n, kp["a0"], kp["h1"], kp["b0"], kp["h2"], kp["rho1"], np.inf, kp["b2"],
-                                         -kp["b2"] if kp["b2"] is not None else 1.0)
-    elif kp["b2"] is None:
-        raise DesignError("design.kinber.b2", "required when a2 is given")
-    lens = kinber_lens(n, kp["a0"], kp["a2"], kp["h1"], kp["b0"], kp["b2"], kp.get("h2"), kp["rho1"],
-                       np.inf, aperture=1.0)
+    lens, kp, view = resolve_kinber(n, kp)
     scale = 2.0 * yb
     shift = np.array([lens.F1[0], 0.0])
     a = abs(float(lens.F1[1])) * scale
@@ -792,146 +527,24 @@ def _kinber_design(n, eps_r, yb, kp, shape, antenna_x_mm, clearance) -> BifocalD
     P2 = (lens.surface2 - shift) * scale
     ill_h = _finish_profile(P1[:, 1], P1[:, 0], lens.slopes1, yb)
     sh_h = _finish_profile(P2[:, 1], P2[:, 0], lens.slopes2, yb)
-    L = scale * (lens.L + lens.k[0] * lens.F1[0])
+    images = None
+    if lens.F1p is None:
+        L = scale * (lens.L + lens.k[0] * lens.F1[0])
+    else:
+        L = scale * lens.L
+        o1p = _mirror((lens.F1p - shift) * scale)
+        images = np.array([o1p, _mirror(o1p)])
     rho1 = float(_hermite(*ill_h)(0.0))
-    params = {f"kinber_{k}": (None if kp.get(k) is None else float(kp[k])) for k in need + ("h2",)}
-    params.update(kinber_segments=lens.segments, chain_rim_gap_mm=0.0,
+    params = {f"kinber_{k}": float(kp[k]) for k in need + ("h2",)}
+    params.update(kinber_rho2=float(kp["rho2"]) if kp.get("rho2") is not None else None,
+                  kinber_segments=lens.segments, chain_rim_gap_mm=0.0,
                   kinber_omega_B_deg=float(np.degrees(al)), kinber_alpha_A_deg=float(np.degrees(lens.alpha_A_rad)))
     edge_t = float(sh_h[1][-1] - ill_h[1][-1])
-    return _assemble("kinber", shape, eps_r, n, yb, float("nan"), a, al, L, rho1, ill_h, sh_h, edge_t,
-                     params, antenna_x_mm, clearance, zero_rim=False)
+    design = _assemble("kinber", shape, eps_r, n, yb, float("nan"), a, al, L, rho1, ill_h, sh_h, edge_t,
+                       params, antenna_x_mm, clearance, zero_rim=False, images=images)
+    return _replace(design, view=view)
 
 
 def _replace(d: BifocalDesign, **kw) -> BifocalDesign:
     from dataclasses import replace
     return replace(d, **kw)
-
-
-# --------------------------------------------------------------------------------------------------
-# Verification: exact trace, aperture phase, defocus study, single-surface comparison
-# --------------------------------------------------------------------------------------------------
-
-def _aim(design: BifocalDesign, feed: np.ndarray, n_rays: int, margin: float = 0.999) -> np.ndarray:
-    return aim_at_face(design.interfaces()[0], feed, margin * design.edge_y_mm, n_rays)
-
-
-def trace_bifocal(design: BifocalDesign, feed_y_mm: float, feed_z_mm: float = 0.0, n_rays: int = 201,
-                  surfaces: Literal["spline", "polynomial"] = "spline",
-                  z_plane_mm: float | None = None) -> Trace2D:
-    """Exact 2-D trace from a feed at (feed_z_mm, feed_y_mm) through both faces to the AUT plane
-    ``z = c`` (or ``z_plane_mm``). Rays are aimed at the illuminated face uniformly in y over the
-    aperture; rays leaving the aperture (|y| > Y_B on either face) are flagged not ok."""
-    feed = np.array([feed_z_mm, feed_y_mm], float)
-    d = _aim(design, feed, n_rays)
-    zt = design.antenna_x_mm if z_plane_mm is None else z_plane_mm
-    tr = trace(np.tile(feed, (n_rays, 1)), d, design.interfaces(surfaces), 1.0, zt)
-    ok = tr.ok & (np.abs(tr.points[1][:, 1]) <= design.edge_y_mm) & (np.abs(tr.points[2][:, 1]) <= design.edge_y_mm)
-    return Trace2D(tr.points, tr.directions, tr.opl, ok)
-
-
-def _design_focus_eikonal(design: BifocalDesign, k: int, n_rays: int = 401) -> np.ndarray:
-    """Eikonal |O_k P| + n|PQ| − u_k·Q of rays from design focus k (c-free form of (3.16))."""
-    F = design.foci_mm[k]
-    tr = trace(np.tile(F, (n_rays, 1)), _aim(design, F, n_rays, 0.995), design.interfaces("spline"), 1.0)
-    Q = tr.points[-1][tr.ok]
-    return tr.opl[tr.ok] - Q @ design.exit_directions[k]
-
-
-def aperture_phase(tr: Trace2D, wavelength_mm: float) -> tuple[np.ndarray, np.ndarray, float]:
-    """Phase on the target plane (seed-000 §4.2 with vector Snell): returns (y on the plane, phase
-    error in degrees with the least-squares linear ramp removed, peak-to-peak in degrees)."""
-    y = tr.points[-1][tr.ok, 1]
-    ph = 360.0 * tr.opl[tr.ok] / wavelength_mm
-    lin = np.polyval(np.polyfit(y, ph, 1), y)
-    err = ph - lin
-    return y, err, float(np.ptp(err))
-
-
-@dataclass(frozen=True)
-class DefocusStudy:
-    """Aperture phase error (peak-to-peak, linear fit removed) vs feed displacement along the focal
-    line, for the bifocal lens (feed plane z = 0) and a single-surface hyperbolic lens of the same
-    aperture 2·Y_B and focal distance X_B (feed line z = −f), both at ``wavelength_mm``."""
-
-    feed_y_mm: np.ndarray
-    p2p_deg: np.ndarray
-    single_p2p_deg: np.ndarray
-    budget_deg: float
-    usable_half_range_mm: float          # bifocal: outer end of the band around the focus a with p2p ≤ budget
-    single_usable_half_range_mm: float
-    usable_half_angle_deg: float         # atan(range / X_B)
-    single_usable_half_angle_deg: float
-    single_thickness_mm: float
-    wavelength_mm: float
-    usable_inner_mm: float = 0.0         # inner end of that band: 0 when it runs through the axis
-
-def defocus_study(design: BifocalDesign, budget_deg: float = 22.5, frequency_ghz: float = 10.0,
-                  feed_y_mm: np.ndarray | None = None, n_rays: int = 201,
-                  surfaces: Literal["spline", "polynomial"] = "spline") -> DefocusStudy:
-    """Seed-000 §5.9 study by exact trace: p2p phase vs feed y on the line z = 0, the usable scan band
-    around the design focus at ``budget_deg`` (default ΔΦ_m = π/8 = 22.5°; it runs through the axis
-    for the seed's lenses, not for fast ones such as seed-001's), and the same for the single-surface lens
-    (seed-000 §2.1, §5.5) with f = X_B, D = 2Y_B and the same lens-to-AUT gap."""
-    lam = C0_MM_PER_NS / frequency_ghz
-    if feed_y_mm is None:
-        feed_y_mm = np.linspace(0.0, 6.0 * design.focus_offset_mm, 49)
-    feed_y_mm = np.asarray(feed_y_mm, float)
-    bif = lambda y: aperture_phase(trace_bifocal(design, y, n_rays=n_rays, surfaces=surfaces), lam)[2]  # noqa: E731
-    f, D = design.edge_x_mm, 2 * design.edge_y_mm
-    gap = design.antenna_x_mm - design.rho2_mm
-    sgl = lambda y: single_surface_p2p_deg(f, D, design.eps_r, y, gap, lam, n_rays)  # noqa: E731
-    pb, inner, rb = usable_interval_mm(bif, feed_y_mm, budget_deg, design.focus_offset_mm)
-    ps, rs = usable_half_range_mm(sgl, feed_y_mm, budget_deg)
-    d = collimator.thickness_mm(D, f, float(np.sqrt(design.eps_r)))
-    return DefocusStudy(feed_y_mm, pb, ps, float(budget_deg), rb, rs,
-                        float(np.degrees(np.arctan2(rb, f))), float(np.degrees(np.arctan2(rs, f))), d, lam,
-                        inner)
-
-
-# --------------------------------------------------------------------------------------------------
-# Solid figures for CAD and layup (pure numpy; the solids themselves live in geometry/bifocal.py)
-# --------------------------------------------------------------------------------------------------
-
-def face_spline(design: BifocalDesign, surface: Literal["illuminated", "shadow"]) -> CubicHermiteSpline:
-    """The C¹ Hermite profile z(y) of one face (the same curve as :meth:`BifocalDesign.profile`)."""
-    pts = design.illuminated_mm if surface == "illuminated" else design.shadow_mm
-    sl = design.illuminated_slopes if surface == "illuminated" else design.shadow_slopes
-    return _hermite(pts[:, 1], pts[:, 0], sl)
-
-
-def _gauss_integral(fun, knots: np.ndarray, order: int = 4) -> float:
-    """∫ fun over [knots[0], knots[-1]], Gauss–Legendre per knot interval (exact for piecewise
-    polynomials of degree ≤ 2·order − 1 whose breaks are among the knots)."""
-    x, w = np.polynomial.legendre.leggauss(order)
-    a, b = knots[:-1, None], knots[1:, None]
-    xs = 0.5 * (b - a) * x + 0.5 * (a + b)
-    return float(np.sum(0.5 * (b - a) * w * fun(xs)))
-
-
-def lens_volume_mm3(design: BifocalDesign, height_mm: float | None = None) -> float:
-    """Exact volume of the lens between its Hermite faces: revolved ``2π∫₀^{Y_B} y (z_sh − z_ill) dy``,
-    cylindrical ``h ∫_{−Y_B}^{Y_B} (z_sh − z_ill) dy`` (piecewise-polynomial integrands, Gauss exact)."""
-    si, ss = face_spline(design, "illuminated"), face_spline(design, "shadow")
-    knots = np.unique(np.concatenate([design.illuminated_mm[:, 1], design.shadow_mm[:, 1]]))
-    if design.shape == "cylindrical":
-        return float(height_mm) * _gauss_integral(lambda y: ss(y) - si(y), knots)
-    knots = knots[knots >= 0.0]
-    return 2.0 * np.pi * _gauss_integral(lambda y: y * (ss(y) - si(y)), knots)
-
-
-def max_radius_in(design: BifocalDesign, z_lo_mm: float, z_hi_mm: float, num: int = 4001) -> float:
-    """Largest |y| of the lens section within the slab z ∈ [z_lo, z_hi] (lens frame): the largest y ≥ 0
-    with ``z_ill(y) ≤ z_hi`` and ``z_sh(y) ≥ z_lo`` (the lens chord at y meets the slab). Dense scan,
-    then the boundary refined by root finding; exactly Y_B when the rim X_B lies in the slab.
-    Returns 0 when the slab misses the lens."""
-    si, ss = face_spline(design, "illuminated"), face_spline(design, "shadow")
-    yb = design.edge_y_mm
-    y = np.linspace(0.0, yb, num)
-    good = (si(y) <= z_hi_mm) & (ss(y) >= z_lo_mm)
-    if not good.any():
-        return 0.0
-    i = int(np.nonzero(good)[0][-1])
-    if i == num - 1:
-        return float(yb)
-    g = lambda t: min(z_hi_mm - float(si(t)), float(ss(t)) - z_lo_mm)  # noqa: E731  ≥ 0 inside
-    return float(brentq(g, y[i], y[i + 1], xtol=1e-12 * yb, rtol=1e-15))

@@ -81,7 +81,7 @@ def solve_case(case: str, foci: list[dict], aperture: float, thickness: float, l
     return five_focal_3d(ff, aperture, coords).shifted(thickness)
 
 
-def _grid_3d(aperture: float, pitch: float) -> np.ndarray:
+def grid_3d(aperture: float, pitch: float) -> np.ndarray:
     k = _element_coords(aperture, pitch)
     g = np.concatenate([-k[:0:-1], k])
     x, y = np.meshgrid(g, g, indexing="ij")
@@ -118,8 +118,8 @@ def synthesize_polyfocal(*, case: str, foci: list[dict], unit_mm: float, apertur
         dense = dense.take(np.isin(np.round(np.abs(surface[:, 1]), 12), np.round(dense_y, 12)))
         surfaces = None
     else:
-        elements = solve_case(case, foci, aperture, thickness, law, straight_index, _grid_3d(aperture, pitch))
-        dense = solve_case(case, foci, aperture, thickness, law, straight_index, _grid_3d(aperture, aperture / 24))
+        elements = solve_case(case, foci, aperture, thickness, law, straight_index, grid_3d(aperture, pitch))
+        dense = solve_case(case, foci, aperture, thickness, law, straight_index, grid_3d(aperture, aperture / 24))
         surfaces = _surface_grids(case, foci, aperture, thickness)
     checks = [Check.upper(f"focus_{i + 1}_eikonal_spread", r / aperture, EXACT_LIMIT, "",
                           f"design focus {i + 1}: eikonal spread over the lines / D (seed-001 (1.1)/(2.1))")

@@ -13,7 +13,7 @@ from scipy.optimize import brentq
 
 from antenna_cad.spec.slot_array import SlotArraySpec
 from antenna_cad.synthesis.slot_array import trifocal as tr
-from antenna_cad.synthesis.slot_array.fov import THESIS_SIGMA_80, field_curve, reference_formers, sigma_at
+from antenna_cad.synthesis.slot_array.fov import field_curve, sigma_at
 from antenna_cad.synthesis.slot_array.trifocal_two_mirror import initial_segments, trifocal_two_mirror
 
 RECIPE = dict(f1=(-0.25, -0.23), f_z=-0.25, c=(-0.16, 0.25), beta_c=math.radians(61.647))   # Ka recipe, D units
@@ -85,7 +85,7 @@ def test_design_beams_are_perfect_and_sigma_is_minimal_there(former):
     curve = field_curve(former, 0.345, n_angles=7)
     between = float(np.interp(math.degrees(alpha) / 2, curve.angle_deg, curve.sigma))
     assert between > 1e3 * max(s for s, _ in design)
-    assert curve.sigma_fov() == pytest.approx(1.3e-3, rel=0.15)        # the Ka recipe's σ(80°), see README
+    assert curve.sigma_fov() == pytest.approx(1.54e-3, rel=0.15)       # the Ka recipe's σ(80°), see README
 
 
 def test_thesis_two_mirror_set_is_incompatible_at_b():
@@ -100,12 +100,17 @@ def test_thesis_two_mirror_set_is_incompatible_at_b():
     assert err.value.field == "beamformer.beta_c_deg"
 
 
-def test_r10_ellipse_sigma_at_80_deg_within_a_factor_2():
-    """R10 (partial): the §2.4 ellipse gives σ(80°) within ×2 of the thesis's 5.6e-4. The thesis's
-    other three designs are not reproducible (β_C, O1, n missing; see the report)."""
-    bf, hw = reference_formers()["single_mirror"]
-    value = field_curve(bf, hw).sigma_fov()
-    assert THESIS_SIGMA_80["single_mirror"] / 2 < value < 2 * THESIS_SIGMA_80["single_mirror"]
+def test_trifocal_march_feasibility_is_fragmented():
+    """Evidence for R10 (test_fov_sigma.py): at the recipe's C the march covers the guides for isolated
+    β_C only, so the §3.8 search over (C, β_C) moves in a landscape full of holes."""
+    built, failed = [], []
+    for beta in (60.0, 61.0, 61.647, 62.0, 63.0):
+        try:
+            trifocal_two_mirror(**(RECIPE | {"beta_c": math.radians(beta)}), half_width=0.35, margin=0.02, n_seg=21)
+            built.append(beta)
+        except tr.MarchError:
+            failed.append(beta)
+    assert built == [61.647, 63.0] and failed == [60.0, 61.0, 62.0]
 
 
 def _spec(**bf):

@@ -22,12 +22,14 @@ def fov_block(design: SlotArrayDesign) -> tuple[Plot, Table, dict[str, float]]:
                   round(float(c.angle_deg.max()), 1)) for c in curves)
     plot = Plot("fov-sigma", "RMS path error σ against field angle (β = 90°)", "beam azimuth φ deg",
                 "σ × 10⁴ (units of the aperture width)", series,
-                f"source moved radially to minimum σ at every polar angle; {FOV_DEG:g}° field of view = |φ| ≤ "
-                f"{FOV_DEG / 2:g}°; a curve ends where rays miss the surfaces", hlines=())
+                f"σ of (2.7): RMS of the paths to the front about the central ray's, 50 rays; source moved radially "
+                f"to minimum σ at every polar angle; {FOV_DEG:g}° field of view = |φ| ≤ {FOV_DEG / 2:g}°; reference "
+                "formers optimised for it from the thesis's values (§3.8); a curve ends where rays miss", hlines=())
     table = Table("fov-sigma", f"σ at the {FOV_DEG:g}° field of view (largest σ for |φ| ≤ {FOV_DEG / 2:g}°)",
                   ("former", "σ(80°)", "thesis σ(80°)", "largest φ traced deg"), rows,
-                  "thesis values: seed-003 §3.8 (Fig. 3.15), each for a design optimised for 80°; NaN: the "
-                  "rays miss before 40°")
+                  "thesis values: seed-003 §3.8 (Fig. 3.15), each for a design optimised for 80°; the reference "
+                  "formers here are optimised for it too (ellipse: dF/D; bifocal two-mirror: a2, h1, b2, h2; "
+                  "trifocal two-mirror: C, β_C), the R9 mirror–lens is not; NaN: the rays miss before 40°")
     figures = {"fov_traced_half_angle_deg": float(own.angle_deg.max())}
     if np.isfinite(own.sigma_fov()):                      # NaN: rays miss before the edge of the field of view
         figures["sigma_fov80_design"] = own.sigma_fov()

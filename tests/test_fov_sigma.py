@@ -11,17 +11,16 @@ import pytest
 
 from antenna_cad.synthesis.checks import DesignError
 from antenna_cad.synthesis.slot_array.ellipse import ellipse_mirror
-from antenna_cad.synthesis.slot_array.fov import THESIS_SIGMA_80, field_curve, reference_curves, sigma_at
+from antenna_cad.synthesis.slot_array.fov import THESIS_SIGMA_80, reference_curves, sigma_at
 from antenna_cad.synthesis.slot_array.optimise import EVALUATIONS, OPTIMISED, THESIS_START, optimise
 
-# Why the trifocal two-mirror value of the thesis is not reproduced (evidence in the README, "Slot arrays:
-# σ against field angle"): the thesis's own parameter set admits no march and β_C is not given
-# (test_trifocal.py); the marches that cover the guides are isolated in β_C
-# (test_trifocal_march_feasibility_is_fragmented); the best one found by the §3.8 search has
-# σ(80°) = 7.6e-4, ≈ 10× the thesis's 0.8e-4, rising from 1.5e-5 at its outer beam (26.8°) to the
-# edge of the field of view. The bar stays; strict xfail: the test fails the day the value is reached.
+# Why the trifocal two-mirror value of the thesis is not reproduced (evidence in the README, "σ against
+# field angle and the §3.8 optimisation"): the thesis's own parameter set admits no march and β_C is not
+# given (test_trifocal.py); the best design the §3.8 search finds has σ(80°) = 6.0e-4, 7.5× the thesis's
+# 0.8e-4, rising from 7e-6 near its outer beam (27.1°) to the edge of the field of view. The bar stays;
+# strict xfail: the test fails the day the value is reached.
 TRIFOCAL_NOT_REPRODUCED = pytest.mark.xfail(strict=True, reason="seed-003 §3.8: trifocal two-mirror σ(80°) "
-                                            "= 0.8e-4 not reproduced (7.6e-4 at best; see README)")
+                                            "= 0.8e-4 not reproduced (6.0e-4 at best; see README)")
 
 
 @pytest.fixture(scope="module")

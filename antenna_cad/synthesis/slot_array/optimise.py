@@ -10,7 +10,9 @@ bounds here (normalised to D):
   against which the formers are compared;
 - ``bifocal_two_mirror``: the initial-segment curvatures and half-widths a2, h1, b2, h2 (§3.3);
   a0, b0 (thickness d0 = 0.5) and ρ1 stay, as in the thesis's own optimisation for 50°;
-- ``trifocal_two_mirror``: C (x_C, z_C) and β_C (§3.6); the foci stay at the thesis's values.
+- ``trifocal_two_mirror``: C (x_C, z_C) and β_C (§3.6); the foci stay at the thesis's values (O2 follows
+  from the C¹ condition at B, t_B does not change σ at β = 90°). Freeing the foci too (6 parameters,
+  300 evaluations) ended, from the thesis's start, where the 15-angle σ was no better than the start.
 
 Search: bounded Nelder–Mead (scipy) from the given values, deterministic, with a budget of
 ``evaluations`` objective calls (each ≈ 0.05–1.5 s); a parameter set whose construction fails or
@@ -59,15 +61,16 @@ FREE = {
 THESIS_START = {
     "single_mirror": ({"minor_semi_axis": 245 / 300, "focal_separation": 75 / 300}, 0.5),
     "bifocal_two_mirror": ({"a0": 0.25, "a2": -0.01, "h1": 0.005, "b0": -0.25, "b2": 0.1, "h2": 0.055, "rho1": 1.2}, 0.5),
-    "trifocal_two_mirror": ({"f1": (-0.25, -0.23), "f_z": -0.25, "c_x": -0.16, "c_z": 0.25, "beta_c_deg": 61.647}, 0.345),
+    "trifocal_two_mirror": ({"f1_x": -0.25, "f1_z": -0.23, "f_z": -0.25, "c_x": -0.16, "c_z": 0.25, "beta_c_deg": 61.647},
+                            0.345),
 }
 EVALUATIONS = {"single_mirror": 12, "bifocal_two_mirror": 150, "trifocal_two_mirror": 150}
-OPTIMISED = {    # σ(80°): 1.03e-3 → 8.03e-4, 9.89e-4 → 2.04e-4, 1.54e-3 → 7.65e-4 (128 evaluations: converged)
+OPTIMISED = {    # σ(80°): 1.03e-3 → 8.03e-4, 9.89e-4 → 2.04e-4, 1.54e-3 → 5.98e-4
     "single_mirror": THESIS_START["single_mirror"][0] | {"focal_separation": 0.45},
     "bifocal_two_mirror": THESIS_START["bifocal_two_mirror"][0] | {
         "a2": 0.04999977382894413, "h1": 0.0036454718140077015, "b2": -0.04139871192051561, "h2": 0.09202692186307208},
     "trifocal_two_mirror": THESIS_START["trifocal_two_mirror"][0] | {
-        "c_x": -0.15846200143628256, "c_z": 0.24606928784266308, "beta_c_deg": 61.93306116941136},
+        "c_x": -0.1476825510530287, "c_z": 0.2489904038697887, "beta_c_deg": 62.14497602320981},
 }
 
 
@@ -91,7 +94,7 @@ class Optimum:
 def build(former: str, params: dict, half_width: float) -> BeamFormer:
     """The normalised (D = 1) former of ``params`` (the names of :data:`FREE` plus the fixed ones:
     single_mirror: minor_semi_axis, focal_separation; bifocal_two_mirror: a0, a2, h1, b0, b2, h2,
-    rho1; trifocal_two_mirror: f1, f_z, c_x, c_z, beta_c_deg) over |x| ≤ ``half_width``."""
+    rho1; trifocal_two_mirror: f1_x, f1_z, f_z, c_x, c_z, beta_c_deg) over |x| ≤ ``half_width``."""
     p = params
     if former == "single_mirror":
         from antenna_cad.synthesis.slot_array.ellipse import ellipse_mirror
@@ -102,7 +105,7 @@ def build(former: str, params: dict, half_width: float) -> BeamFormer:
         return bifocal_two_mirror(**{k: float(p[k]) for k in keys}, half_width=half_width)
     if former == "trifocal_two_mirror":
         from antenna_cad.synthesis.slot_array.trifocal_two_mirror import trifocal_two_mirror
-        return trifocal_two_mirror(f1=p["f1"], f_z=p["f_z"], c=(p["c_x"], p["c_z"]),
+        return trifocal_two_mirror(f1=(p["f1_x"], p["f1_z"]), f_z=p["f_z"], c=(p["c_x"], p["c_z"]),
                                    beta_c=np.radians(p["beta_c_deg"]), half_width=half_width + 0.005,
                                    margin=0.02, n_seg=21)
     raise DesignError("beamformer.type", f"no §3.8 optimiser for {former!r} (have: {', '.join(FREE)})")

@@ -138,3 +138,20 @@ def test_spec_optimize_searches_the_free_parameters_and_reports_them():
     with pytest.raises(DesignError) as err:
         synthesize(SlotArraySpec.model_validate(raw))
     assert err.value.field == "beamformer.optimize"
+
+
+def test_spec_optimize_on_the_trifocal_recipe_maps_c_and_beta_c():
+    """The trifocal search's C and β_C (units of D, thesis frame) reach the built former."""
+    import yaml
+
+    from antenna_cad.kinds.slot_array import synthesize
+    from antenna_cad.spec.slot_array import SlotArraySpec
+    raw = yaml.safe_load(open("recipes/ka-slot-array-trifocal-two-mirror.yaml"))
+    raw["beamformer"] |= {"optimize": True, "optimize_evaluations": 2}
+    design = synthesize(SlotArraySpec.model_validate(raw))
+    fig, bf = design.figures, design.beamformer
+    assert (fig["optimised_c_x_start"], fig["optimised_beta_c_deg_start"]) == (-0.16, raw["beamformer"]["beta_c_deg"])
+    assert fig["optimised_sigma_fov80_found"] <= fig["optimised_sigma_fov80_start"]
+    assert math.degrees(bf.params["beta_c_rad"]) == pytest.approx(fig["optimised_beta_c_deg"], abs=1e-12)
+    b0, b2 = bf.params["b0"], bf.params["b2"]                  # mirror 1 passes through the C found
+    assert b0 + b2 * fig["optimised_c_x"] ** 2 == pytest.approx(fig["optimised_c_z"], abs=1e-12)

@@ -173,9 +173,10 @@ def synthesize_slot_array(
         beta_c = (np.radians(bp["beta_c_deg"]) if bp.get("beta_c_deg") is not None else
                   optimise_beta_c(f1=bp["f1"], f_z=bp["f"][1], c=bp["c"], half_width=hw)[0])
         if optimize:
-            opt = optimise(beamformer_type, {"f1_x": bp["f1"][0], "f1_z": bp["f1"][1], "f_z": bp["f"][1], "c_x": bp["c"][0],
-                                             "c_z": bp["c"][1], "beta_c_deg": float(np.degrees(beta_c))}, hw, evaluations)
-            found = opt.params({})
+            start = {"f1_x": bp["f1"][0], "f1_z": bp["f1"][1], "f_z": bp["f"][1], "c_x": bp["c"][0], "c_z": bp["c"][1],
+                     "beta_c_deg": float(np.degrees(beta_c))}
+            opt = optimise(beamformer_type, start, hw, evaluations)
+            found = opt.params(start)
             bp |= {"c": (found["c_x"], found["c_z"]), "f1": (found["f1_x"], found["f1_z"]), "f": (0.0, found["f_z"])}
             beta_c = float(np.radians(found["beta_c_deg"]))
         bf = trifocal_two_mirror(f1=bp["f1"], f_z=bp["f"][1], c=bp["c"], beta_c=beta_c, half_width=hw + 0.005,

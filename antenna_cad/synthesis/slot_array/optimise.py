@@ -21,8 +21,8 @@ curve; the reported σ before and after are the full 15-angle curves.
 
 :data:`THESIS_START` holds the start of each former's search: the §2.4 ellipse, the R8 bifocal
 two-mirror (§3.3, optimised by the thesis for 50°) and, for the trifocal two-mirror, the thesis's foci
-with the C and β_C of the Ka recipe (the thesis's own C = (−0.08, 0.25) with z_O2 = −1.02 admits no
-march; β_C is not given). :data:`OPTIMISED` is what :func:`optimise` finds from there with
+with C = (−0.16, 0.25), β_C = 61.647°, the first set found to march over the guides (the thesis's own
+C = (−0.08, 0.25) with z_O2 = −1.02 admits no march; β_C is not given). :data:`OPTIMISED` is what :func:`optimise` finds from there with
 :data:`EVALUATIONS` (the report's reference formers; a slow test re-runs the search).
 """
 

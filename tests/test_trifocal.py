@@ -13,7 +13,7 @@ from scipy.optimize import brentq
 
 from antenna_cad.spec.slot_array import SlotArraySpec
 from antenna_cad.synthesis.slot_array import trifocal as tr
-from antenna_cad.synthesis.slot_array.fov import THESIS_SIGMA_80, field_curve, reference_formers, sigma_at
+from antenna_cad.synthesis.slot_array.fov import field_curve, sigma_at
 from antenna_cad.synthesis.slot_array.trifocal_two_mirror import initial_segments, trifocal_two_mirror
 
 RECIPE = dict(f1=(-0.25, -0.23), f_z=-0.25, c=(-0.16, 0.25), beta_c=math.radians(61.647))   # Ka recipe, D units
@@ -85,7 +85,7 @@ def test_design_beams_are_perfect_and_sigma_is_minimal_there(former):
     curve = field_curve(former, 0.345, n_angles=7)
     between = float(np.interp(math.degrees(alpha) / 2, curve.angle_deg, curve.sigma))
     assert between > 1e3 * max(s for s, _ in design)
-    assert curve.sigma_fov() == pytest.approx(1.3e-3, rel=0.15)        # the Ka recipe's σ(80°), see README
+    assert curve.sigma_fov() == pytest.approx(1.54e-3, rel=0.15)       # the Ka recipe's σ(80°), see README
 
 
 def test_thesis_two_mirror_set_is_incompatible_at_b():
@@ -100,12 +100,15 @@ def test_thesis_two_mirror_set_is_incompatible_at_b():
     assert err.value.field == "beamformer.beta_c_deg"
 
 
-def test_r10_ellipse_sigma_at_80_deg_within_a_factor_2():
-    """R10 (partial): the §2.4 ellipse gives σ(80°) within ×2 of the thesis's 5.6e-4. The thesis's
-    other three designs are not reproducible (β_C, O1, n missing; see the report)."""
-    bf, hw = reference_formers()["single_mirror"]
-    value = field_curve(bf, hw).sigma_fov()
-    assert THESIS_SIGMA_80["single_mirror"] / 2 < value < 2 * THESIS_SIGMA_80["single_mirror"]
+def test_march_covers_the_guides_over_a_contiguous_range_of_beta_c():
+    """At the recipe's C the march covers the guides for every β_C from 61° to 63° (a guide-segment root
+    lying on the end of the newest first-surface segment, rounded to just outside it, once stopped the
+    march at 61°, 62°, 61.9331°: spurious holes the §3.8 search fell into) and fails with a named
+    reason below that range."""
+    for beta in (61.0, 61.3, 61.647, 62.0, 62.5, 63.0):
+        trifocal_two_mirror(**(RECIPE | {"beta_c": math.radians(beta)}), half_width=0.35, margin=0.02, n_seg=21)
+    with pytest.raises(tr.MarchError, match="no F2 ray reaches the guide curve"):
+        trifocal_two_mirror(**(RECIPE | {"beta_c": math.radians(60.0)}), half_width=0.35, margin=0.02, n_seg=21)
 
 
 def _spec(**bf):
@@ -124,8 +127,8 @@ def test_spec_rules_name_the_field(change, field):
 
 @pytest.mark.slow
 def test_optimiser_finds_beta_c_of_the_recipe():
-    """§3.8: β_C omitted → bounded search over 55–70°; the recipe's 61.647° is its result, and it beats
-    the neighbours it was chosen against."""
+    """β_C omitted → bounded search over 55–70°; the recipe's β_C is its result."""
     from antenna_cad.synthesis.slot_array.trifocal_two_mirror import optimise_beta_c
     beta, score = optimise_beta_c(f1=RECIPE["f1"], f_z=RECIPE["f_z"], c=RECIPE["c"], half_width=0.345)
-    assert math.degrees(beta) == pytest.approx(61.647, abs=0.1) and score < 1.2e-3     # flat near the optimum
+    recipe = yaml.safe_load(open("recipes/ka-slot-array-trifocal-two-mirror.yaml"))["beamformer"]["beta_c_deg"]
+    assert math.degrees(beta) == pytest.approx(recipe, abs=0.01) and score < 1.2e-3

@@ -137,6 +137,11 @@ class BeamFormerSpec(StrictModel):
                              "seed); omitted: found by the §3.8 optimiser")
     t_b: float | None = Field(None, ge=0, le=5, description="t at B (normalised); default: slot_line_offset_mm at x = 0")
     scale_mm: float | None = Field(None, ge=1, le=100000, description="physical size of the normalised D = 1")
+    optimize: bool = Field(False, description="seed-003 §3.8: search the former's free parameters, from the given "
+                           "values, for minimum σ over the 80° field of view (not the mirror–lens formers; trifocal_mirror_lens "
+                           "searches O1 when o1 is omitted)")
+    optimize_evaluations: int = Field(40, ge=1, le=2000, description="budget of the §3.8 search: σ curves "
+                                      "computed (≈ 0.05 s ellipse, 0.4 s bifocal, 1 s trifocal each)")
     slot_line_offset_mm: float = Field(10.0, ge=0, le=10000, description="t0: last mirror → first slot line")
     layer_height_mm: float = Field(1.6, ge=MIN_MM, le=500)
     coupling_slot_mm: float = Field(1.1, ge=MIN_MM, le=500)
@@ -166,7 +171,8 @@ class BeamFormerSpec(StrictModel):
     def params(self) -> dict:
         extra = ({"t_b": self.t_b, "beta_c_deg": self.beta_c_deg} if self.type == "trifocal_two_mirror" else
                  {"t_b": self.t_b, "o1": self.o1} if self.type == "trifocal_mirror_lens" else {})
-        return {k: getattr(self, k) for k in BEAMFORMER_PARAMS[self.type]} | extra
+        opt = {"optimize": self.optimize, "optimize_evaluations": self.optimize_evaluations}
+        return {k: getattr(self, k) for k in BEAMFORMER_PARAMS[self.type]} | extra | opt
 
 
 class FeedsSpec(StrictModel):

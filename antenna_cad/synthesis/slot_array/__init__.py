@@ -24,7 +24,7 @@ slotted guide is ≈ 1 % lower (10.7 vs 10.80 GHz, §3.1).
 Modules (one per concern): :mod:`.scan` (§3.1 scan law), :mod:`.taper` (§3.2), :mod:`.curves`,
 :mod:`.beamformer` (the shared result and ray traces) and one module per former
 (:mod:`.ellipse`, :mod:`.bifocal_two_mirror`, :mod:`.bifocal_mirror_lens`, :mod:`.trifocal_two_mirror`
-and :mod:`.trifocal_mirror_lens` on the march of :mod:`.trifocal`), :mod:`.slot_line`, :mod:`.fov` (σ against field angle),
+and :mod:`.trifocal_mirror_lens` on the march of :mod:`.trifocal`), :mod:`.slot_line`, :mod:`.fov` (σ against field angle), :mod:`.optimise` (§3.8),
 :mod:`.layout`, :mod:`.feeds`, :mod:`.design`. The names below are re-exported so that
 ``from antenna_cad.synthesis.slot_array import ...`` keeps working.
 """

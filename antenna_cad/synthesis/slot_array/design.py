@@ -14,6 +14,7 @@ from antenna_cad.synthesis.slot_array.common import BEAMFORMERS, C_MM_GHZ, FEED_
 from antenna_cad.synthesis.slot_array.curves import Curve, _make_curve, offset_curve
 from antenna_cad.synthesis.slot_array.ellipse import ellipse_mirror
 from antenna_cad.synthesis.slot_array.feeds import FeedSet, place_feeds
+from antenna_cad.synthesis.slot_array.optimise import FREE, Optimum, optimise
 from antenna_cad.synthesis.slot_array.layout import (SlotLayout, build_slot_layout, cell_pattern, check_coupling_clearance,
                                                      check_slot_webs, check_slots_in_wall)
 from antenna_cad.synthesis.slot_array.scan import (ScanFigures, guide_gamma_per_mm, guide_wavelength_mm, ideal_gain_dbi,
@@ -98,6 +99,9 @@ def synthesize_slot_array(
     bifocal_mirror_lens: lens_a2, lens_vertex, x0, p1, p2, f0, n; trifocal_two_mirror: f1, f (x, z
     pairs), c, beta_c_deg (None: optimised, §3.8), optional t_b (t at B, normalised; replaces t0);
     trifocal_mirror_lens: f1, f, x_a, gamma_a_rad, n, o1 ((0, z) or None: optimised, §3.8), optional t_b.
+    ``optimize`` (all but bifocal_mirror_lens): the given values are the start of the §3.8 search over the
+    former's free parameters (:mod:`.optimise`, ``optimize_evaluations`` σ curves); the found values
+    are used and reported in ``figures`` (``optimised_*``).
     ``slot_line_offset_mm`` is
     t0, the distance along the guide from the last mirror to the first slot line at x = 0.
     Slots: ``lengths_mm`` (per cell for the longitudinal layouts, s1..s3 for transverse_3),
@@ -111,6 +115,10 @@ def synthesize_slot_array(
     number; with ``strict=False`` failures are returned in ``checks``.
     """
     bp = dict(beamformer_params or {})
+    optimize, evaluations = bool(bp.pop("optimize", False)), int(bp.pop("optimize_evaluations", 40))
+    opt = None
+    if optimize and beamformer_type not in FREE:
+        raise DesignError("beamformer.optimize", f"no §3.8 optimiser for {beamformer_type} (have: {', '.join(FREE)})")
     a, eps = float(guide_width_mm), float(fill_eps_r)
     if count < 1 or pitch_mm <= 0 or length_mm <= 0:
         raise DesignError("array", f"need count >= 1, pitch_mm > 0, length_mm > 0 "
@@ -137,6 +145,10 @@ def synthesize_slot_array(
     checks = list(scan.checks)
     if beamformer_type == "single_mirror":
         D = span if scale_mm is None else float(scale_mm)
+        if optimize:
+            opt = optimise(beamformer_type, {"minor_semi_axis": bp["minor_semi_axis_mm"] / D,
+                                             "focal_separation": bp["focal_separation_mm"] / D}, 0.5, evaluations)
+            bp["focal_separation_mm"] = opt.found[0] * D
         bf = ellipse_mirror(bp["minor_semi_axis_mm"], bp["focal_separation_mm"], D / 2)
         aim_point = np.zeros(2)
     elif beamformer_type == "bifocal_two_mirror":
@@ -145,6 +157,9 @@ def synthesize_slot_array(
                               f"be inf (got {bp['rho2']})")
         D = span if scale_mm is None else float(scale_mm)
         keys = ("a0", "a2", "h1", "b0", "b2", "h2", "rho1")
+        if optimize:
+            opt = optimise(beamformer_type, {k: float(bp[k]) for k in keys}, 0.5, evaluations)
+            bp = opt.params(bp)
         bf = bifocal_two_mirror(**{k: float(bp[k]) for k in keys}, half_width=0.5, scale_mm=D)
         aim_point = np.array([0.0, bp["a0"] * D])
     elif beamformer_type == "bifocal_mirror_lens":
@@ -159,6 +174,13 @@ def synthesize_slot_array(
         hw = (np.abs(guide_x).max() + a / 2 + wall_mm) / D
         beta_c = (np.radians(bp["beta_c_deg"]) if bp.get("beta_c_deg") is not None else
                   optimise_beta_c(f1=bp["f1"], f_z=bp["f"][1], c=bp["c"], half_width=hw)[0])
+        if optimize:
+            start = {"f1_x": bp["f1"][0], "f1_z": bp["f1"][1], "f_z": bp["f"][1], "c_x": bp["c"][0], "c_z": bp["c"][1],
+                     "beta_c_deg": float(np.degrees(beta_c))}
+            opt = optimise(beamformer_type, start, hw, evaluations)
+            found = opt.params(start)
+            bp |= {"c": (found["c_x"], found["c_z"]), "f1": (found["f1_x"], found["f1_z"]), "f": (0.0, found["f_z"])}
+            beta_c = float(np.radians(found["beta_c_deg"]))
         bf = trifocal_two_mirror(f1=bp["f1"], f_z=bp["f"][1], c=bp["c"], beta_c=beta_c, half_width=hw + 0.005,
                                  margin=0.02, scale_mm=D)
         aim_point = np.array([0.0, bf.params["b0"] * D])
@@ -259,6 +281,8 @@ def synthesize_slot_array(
         "slot_line_sag_mm": float(t.max() - t.min()),
         "load_length_mm": load_length_mm, "load_power_fraction": 1.0 - taper_eta,
     }
+    if opt is not None:
+        figures |= _optimum_figures(opt)
     if "beta_c_rad" in bf.params:                          # trifocal: the parameters the seed leaves out
         figures |= {"beta_c_deg": float(np.degrees(bf.params["beta_c_rad"])), "mirror2_vertex_z": bf.params["a0"],
                     "march_guide_half_width": bf.params["guide_half_width"]}
@@ -269,6 +293,15 @@ def synthesize_slot_array(
                            float(guide_height_mm), float(wall_mm), eps, float(layer_height_mm),
                            float(coupling_slot_mm), termination, load_length_mm, spread, figures,
                            tuple(checks))
+
+
+def _optimum_figures(opt: Optimum) -> dict[str, float]:
+    """The §3.8 search as report figures: σ(80°) before and after, the evaluations, start and found values."""
+    out = {"optimised_sigma_fov80_start": opt.sigma_start, "optimised_sigma_fov80_found": opt.sigma_found,
+           "optimised_evaluations": float(opt.evaluations)}
+    for name, a, b in zip(opt.names, opt.start, opt.found):
+        out |= {f"optimised_{name}_start": float(a), f"optimised_{name}": float(b)}
+    return out
 
 
 def termination_check(termination: str, load_length_mm: float, guide_wavelength_max_mm: float,

@@ -4,9 +4,16 @@ A source at polar angle ψ about the former's focal-locus centre is moved radial
 minimises σ; its beam azimuth φ and σ are recorded. At broadside (β = 90°, where the thesis compares
 the formers) the phase at the slot line of guide x is Ψ(x) = L(x) + n_w t(x) = L(x) − L̄(x) + const,
 L the traced path from the source to the guide entry and L̄ the mean design eikonal that sets the slot
-line (:func:`antenna_cad.synthesis.slot_array.slot_line_t_mm`): σ is the RMS of Ψ about its best line
-a + x sin φ over N = 50 guides across the aperture, in units of the aperture width (D for the thesis's
-formers). σ(FOV) is the largest σ for |φ| ≤ FOV/2 (the thesis quotes it at an 80° field of view).
+line (:func:`antenna_cad.synthesis.slot_array.slot_line_t_mm`). σ is (2.7) as the thesis defines it
+(seed-003 §3.3, L486): σ = √(Σ (L_i − L_0)² / N), L_i the path of ray i to the output front, L_0 that
+of the central ray, N = 50 rays. Here the central ray ends at x = 0 and the N rays on N guides spread
+evenly across the aperture; the front of an off-design source is the plane through the central ray's
+end whose tilt sin φ minimises σ (least squares through the origin: the thesis does not say how it
+tilts it), so L_i − L_0 = Ψ(x_i) − Ψ(0) − x_i sin φ. σ is in units of the aperture width (D = 1 for
+the thesis's formers; the geometry is normalised to D, L486/L1184). Referring to the central ray
+rather than to the mean path makes σ larger where the error is even in x (up to 1.5× for pure
+defocus; 1.3× on the ellipse at 40°). σ(FOV) is the largest σ for |φ| ≤ FOV/2: the thesis quotes it
+at an 80° field of view, Fig. 3.15's abscissa being the field angle (L1188–1190).
 """
 
 from __future__ import annotations
@@ -46,16 +53,17 @@ class FieldCurve:
 
 
 def sigma_at(bf: BeamFormer, source_mm, x_mm: np.ndarray) -> tuple[float, float]:
-    """(σ in units of the aperture width 2·max|x|, sin φ) of one source; NaN if rays miss."""
+    """(σ (2.7) in units of the aperture width 2·max|x|, sin φ) of one source, the central ray at
+    x = 0 the reference (module docstring); NaN if rays miss."""
+    x = np.concatenate([[0.0], x_mm])
     try:
-        L = traced_eikonal_mm(bf, np.asarray(source_mm, float), x_mm)
+        L = traced_eikonal_mm(bf, np.asarray(source_mm, float), x)
     except DesignError:
         return float("nan"), float("nan")
-    ref = np.mean([bf.eikonal(x_mm, j) for j in range(len(bf.foci_mm))], axis=0)
-    A = np.column_stack([np.ones_like(x_mm), x_mm])
-    coef, *_ = np.linalg.lstsq(A, L - ref, rcond=None)
-    res = L - ref - A @ coef
-    return float(np.sqrt(np.mean(res**2)) / (2 * np.abs(x_mm).max())), float(coef[1])
+    psi = L - np.mean([bf.eikonal(x, j) for j in range(len(bf.foci_mm))], axis=0)
+    d = psi[1:] - psi[0]
+    tilt = float(np.dot(x_mm, d) / np.dot(x_mm, x_mm))
+    return float(np.sqrt(np.mean((d - tilt * x_mm) ** 2)) / (2 * np.abs(x_mm).max())), tilt
 
 
 def field_curve(bf: BeamFormer, half_width_mm: float, name: str | None = None, n_angles: int = 15,
@@ -94,22 +102,17 @@ def field_curve(bf: BeamFormer, half_width_mm: float, name: str | None = None, n
 
 def reference_formers() -> dict[str, tuple[BeamFormer, float]]:
     """The formers compared in the report, normalised (D = 1), with the half-aperture of their guides:
-    the §2.4 ellipse (b = 245, c = 75 mm at D = 300 mm), the R8 bifocal two-mirror (plane fronts),
-    the R9 bifocal mirror–lens and the trifocal two-mirror of the Ka recipe (march to 0.40 D)."""
+    the ellipse, the bifocal two-mirror and the trifocal two-mirror each optimised for the 80° field of
+    view from the thesis's values (:data:`antenna_cad.synthesis.slot_array.optimise.OPTIMISED`, §3.8),
+    and the R9 bifocal mirror–lens (§3.4, no free parameters searched)."""
     from antenna_cad.synthesis.slot_array.bifocal_mirror_lens import bifocal_mirror_lens
-    from antenna_cad.synthesis.slot_array.bifocal_two_mirror import bifocal_two_mirror
-    from antenna_cad.synthesis.slot_array.ellipse import ellipse_mirror
+    from antenna_cad.synthesis.slot_array.optimise import OPTIMISED, THESIS_START, build
     from antenna_cad.synthesis.slot_array.trifocal_mirror_lens import KA_RECIPE, trifocal_mirror_lens
-    from antenna_cad.synthesis.slot_array.trifocal_two_mirror import trifocal_two_mirror
-    return {
-        "single_mirror": (ellipse_mirror(245 / 300, 75 / 300, 0.5), 0.5),
-        "bifocal_two_mirror": (bifocal_two_mirror(a0=.25, a2=-.01, h1=.005, b0=-.25, b2=.1, h2=.055, rho1=1.2), 0.5),
-        "bifocal_mirror_lens": (bifocal_mirror_lens(lens_a2=-.15, lens_vertex=.42, x0=.06, p1=.8325, p2=3.0,
-                                                    f0=1.4, n=np.sqrt(2.2)), 0.5),
-        "trifocal_two_mirror": (trifocal_two_mirror(f1=(-0.25, -0.23), f_z=-0.25, c=(-0.16, 0.25),
-                                                    beta_c=np.radians(61.647), half_width=0.35, margin=0.02), 0.345),
-        "trifocal_mirror_lens": (trifocal_mirror_lens(**KA_RECIPE, half_width=0.505, margin=0.02), 0.5),
-    }
+    out = {name: (build(name, params, THESIS_START[name][1]), THESIS_START[name][1]) for name, params in OPTIMISED.items()}
+    out["trifocal_mirror_lens"] = (trifocal_mirror_lens(**KA_RECIPE, half_width=0.505, margin=0.02), 0.5)
+    out["bifocal_mirror_lens"] = (bifocal_mirror_lens(lens_a2=-.15, lens_vertex=.42, x0=.06, p1=.8325, p2=3.0,
+                                                      f0=1.4, n=np.sqrt(2.2)), 0.5)
+    return out
 
 
 @lru_cache(maxsize=1)

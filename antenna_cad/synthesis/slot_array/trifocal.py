@@ -305,6 +305,9 @@ def guide_from_surface(fo: Foci, surf: Surface, p0: float, field: str) -> tuple[
                     return end
             if math.isfinite(glo) and math.isfinite(ghi) and glo * ghi <= 0:
                 return float(brentq(lambda v: g(p, v), lo, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200))
+            for end, gv in ((lo, glo), (hi, ghi)):      # a root on the segment's end, rounded to just outside it
+                if end in (new.u0, new.u1) and abs(gv) < 1e-11:
+                    return float(end)
             if lo <= new.u0 and hi >= new.u1:
                 break
             w *= 2.0

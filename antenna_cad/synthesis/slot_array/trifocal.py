@@ -300,14 +300,11 @@ def guide_from_surface(fo: Foci, surf: Surface, p0: float, field: str) -> tuple[
         lo, hi = max(n_guess - w, new.u0), min(n_guess + w, new.u1)
         for _ in range(60):
             glo, ghi = g(p, lo), g(p, hi)
-            for end, ge in ((lo, glo), (hi, ghi)):       # root at a segment end (p at a join)
-                if abs(ge) < 1e-14 and end in (new.u0, new.u1):
-                    return end
+            for end, gv in ((lo, glo), (hi, ghi)):      # a root on the segment's end (p at a join), or
+                if end in (new.u0, new.u1) and abs(gv) < 1e-11:   # rounded to just outside it
+                    return float(end)
             if math.isfinite(glo) and math.isfinite(ghi) and glo * ghi <= 0:
                 return float(brentq(lambda v: g(p, v), lo, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200))
-            for end, gv in ((lo, glo), (hi, ghi)):      # a root on the segment's end, rounded to just outside it
-                if end in (new.u0, new.u1) and abs(gv) < 1e-11:
-                    return float(end)
             if lo <= new.u0 and hi >= new.u1:
                 break
             w *= 2.0

@@ -5,6 +5,7 @@ figure drawn."""
 import json
 import os
 import re
+import threading
 from pathlib import Path
 
 import pypdf
@@ -115,3 +116,12 @@ def test_beside_runs_in_a_child_and_hands_back_its_error(tmp_path, monkeypatch):
         raise OSError(28, "No space left on device")
     with pytest.raises(OSError, match="No space left"):
         Beside(fails).join()
+
+
+def test_beside_is_serial_off_the_main_thread(tmp_path, monkeypatch):
+    monkeypatch.delenv(SERIAL_ENV, raising=False)
+    marker = tmp_path / "pid"
+    worker = threading.Thread(target=lambda: Beside(lambda: marker.write_text(str(os.getpid()))).join())
+    worker.start()
+    worker.join()
+    assert int(marker.read_text()) == os.getpid()

@@ -6,7 +6,9 @@ the other, so the PDF is drawn in a child process while the parent draws the pag
 child is a plain ``os.fork`` (the state it needs is already in memory, nothing is pickled on the
 way in; multiprocessing would refuse inside a daemonic dask worker); it draws with the same code
 on the same data, so the bytes equal a serial run's. Its exception comes back to the caller;
-Ctrl-C ends it at once (the parent's handler removes the build folder).
+Ctrl-C ends it at once (the parent's handler removes the build folder). Only the main thread forks:
+a build running in a worker thread (a sweep's dask worker, whose workers already fill the cores)
+writes serially, so no lock held by another thread can be copied into the child.
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ import os
 import pickle
 import signal
 import sys
+import threading
 from collections.abc import Callable
 
 SERIAL_ENV = "ANTENNA_CAD_SERIAL"       # "1": run in the caller's process (one core, or to compare bytes)
@@ -25,7 +28,8 @@ class Beside:
 
     def __init__(self, work: Callable[[], None]):
         self._work, self._pid, self._fd = work, None, None
-        if os.environ.get(SERIAL_ENV) == "1" or (os.cpu_count() or 1) < 2 or not hasattr(os, "fork"):
+        if (os.environ.get(SERIAL_ENV) == "1" or (os.cpu_count() or 1) < 2 or not hasattr(os, "fork")
+                or threading.current_thread() is not threading.main_thread()):
             return
         read_fd, write_fd = os.pipe()
         sys.stdout.flush()

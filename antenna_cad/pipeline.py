@@ -25,13 +25,6 @@ from contextlib import contextmanager
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
-from antenna_cad.export.manifest import write_manifest
-from antenna_cad.export.report import write_report
-from antenna_cad.export.mesh import ANGULAR_DEFLECTION_RAD, write_stl
-from antenna_cad.export.step import write_step
-from antenna_cad.fabrication.cutlist import cutlist_csv
-from antenna_cad.fabrication.outline import CHORD_TOL_MM
-from antenna_cad.fabrication.templates import dxf_document, write_dxf, write_svg, write_tiled_pdf
 from antenna_cad.limits import counts, limit_checks
 from antenna_cad.registry import adapter
 from antenna_cad.spec.common import SpecBase, resolve_material
@@ -123,7 +116,10 @@ def check_output(out_root: Path, name: str) -> None:
 
 def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan: Plan | None = None) -> BuildResult:
     """Build every artifact of ``spec`` into ``out_root/<name>/`` atomically (``plan``: from
-    :func:`prepare`, when the caller has it already)."""
+    :func:`prepare`, when the caller has it already). The writers (CAD, DXF, PDF, plots) are imported
+    here, not with the module, so ``validate`` stays free of them."""
+    from antenna_cad.export.report import write_report
+    from antenna_cad.fabrication.cutlist import cutlist_csv
     report = progress or (lambda stage, fraction: None)
     seconds: dict[str, float] = {}
     clock = time.perf_counter()
@@ -211,6 +207,8 @@ def _remove_leftovers(out_root: Path, name: str) -> None:
 
 
 def _write_solids(spec, model, out: Path, stage) -> list[dict]:
+    from antenna_cad.export.mesh import write_stl
+    from antenna_cad.export.step import write_step
     if spec.outputs.step:
         write_step(model, spec.name, out / f"{spec.name}.step")
     stage("step")
@@ -236,6 +234,7 @@ def _write_templates(spec, fab, out: Path) -> list[dict]:
     outline's bounding box, the SVG's size) that ``make-lens check`` measures again."""
     if not spec.outputs.templates or not fab.drawings:
         return []
+    from antenna_cad.fabrication.templates import dxf_document, write_dxf, write_svg, write_tiled_pdf
     folder = out / "templates"
     folder.mkdir()
     entries = []
@@ -251,6 +250,9 @@ def _write_templates(spec, fab, out: Path) -> list[dict]:
 
 
 def _write_manifest(spec, out: Path, figures, checks, parts, layup, fab, templates, verification) -> None:
+    from antenna_cad.export.manifest import write_manifest
+    from antenna_cad.export.mesh import ANGULAR_DEFLECTION_RAD
+    from antenna_cad.fabrication.outline import CHORD_TOL_MM
     material = resolve_material(spec.material)
     content = {
         "name": spec.name, "kind": spec.kind, "spec": spec.model_dump(mode="json"),

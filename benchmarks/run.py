@@ -4,7 +4,7 @@ machine and read the load average it records.
 
     PYTHONPATH=. python benchmarks/run.py [--runs 3] [--recipe NAME ...] [--series] [--naive [--naive-guides N]]
                                           [--large]
-                                          [--compare OLD.json] [--no-fail]
+                                          [--compare OLD.json] [--before OLD_CHECKOUT] [--no-fail]
 
 Each recipe runs in a fresh interpreter, so its import time and peak RSS are its own; the stage
 times are the median of ``--runs`` builds in that process after imports. Writes
@@ -30,7 +30,10 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-CAD_MODULES = ("build123d", "OCP", "trimesh", "manifold3d")
+CAD_MODULES = ("build123d", "OCP", "trimesh", "manifold3d", "ezdxf", "matplotlib")
+WRITERS = ("antenna_cad.export.report", "antenna_cad.export.report_pdf", "antenna_cad.export.mesh",
+           "antenna_cad.export.step", "antenna_cad.fabrication.templates", "ezdxf")
+DEFAULT_RECIPE = "xps-collimator-0.5m.yaml"     # the README's first build: its validate is timed too
 EXPONENT_LIMIT = 1.1
 BUDGET = {"recipe_s": 10.0, "peak_mb": 500.0, "cli_s": 1.0, "naive_speedup": 20.0, "large_luneburg_s": 60.0}
 NOT_BUDGETED = ("fullwave",)        # the full-wave stage has its own budget (its issue): reported apart
@@ -51,6 +54,11 @@ def _imports() -> float:
     import build123d  # noqa: F401  (import cost measured apart from the build)
 
     import antenna_cad.pipeline  # noqa: F401
+    for writer in WRITERS:        # imported by the pipeline at use (validate stays light): measured here
+        try:
+            __import__(writer)
+        except ImportError:       # an older tree (--before) without that module
+            pass
     return time.perf_counter() - start
 
 
@@ -163,21 +171,32 @@ def child_large() -> dict:
 
 # ---------------------------------------------------------------- parent
 
-def _run_child(*args: str) -> dict:
-    env = os.environ | {"PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
-    done = subprocess.run([sys.executable, __file__, "--child", *args], capture_output=True, text=True, env=env)
+def _run_child(*args: str, root: Path = ROOT) -> dict:
+    """One child in a fresh interpreter; ``root``: the source tree it imports (``--before``: an older
+    checkout, whose own run.py answers)."""
+    env = os.environ | {"PYTHONPATH": str(root) + os.pathsep + os.environ.get("PYTHONPATH", "")}
+    cpu = _children_cpu_s()
+    done = subprocess.run([sys.executable, str(root / "benchmarks" / "run.py"), "--child", *args],
+                          capture_output=True, text=True, env=env)
     if done.returncode:
         raise SystemExit(f"benchmark child {args} failed:\n{done.stderr[-3000:]}")
-    return json.loads(done.stdout.strip().splitlines()[-1])
+    return json.loads(done.stdout.strip().splitlines()[-1]) | {"cpu_s": _children_cpu_s() - cpu}
 
 
-def _cli_timing(args: list[str]) -> dict:
-    start = time.perf_counter()
-    done = subprocess.run([sys.executable, "-c", CLI_PROBE, *args], capture_output=True, text=True, cwd=ROOT,
-                          env=os.environ | {"PYTHONPATH": str(ROOT)})
+def _children_cpu_s() -> float:
+    """CPU seconds (user + system) of the finished children and theirs (imports and builds of a
+    recipe child, its forked report writer included): steadier than wall time on a loaded machine."""
+    times = os.times()
+    return times.children_user + times.children_system
+
+
+def _cli_timing(args: list[str], root: Path = ROOT) -> dict:
+    cpu, start = _children_cpu_s(), time.perf_counter()
+    done = subprocess.run([sys.executable, "-c", CLI_PROBE, *args], capture_output=True, text=True, cwd=root,
+                          env=os.environ | {"PYTHONPATH": str(root)})
     wall = time.perf_counter() - start
     cad = [line.split(":", 1)[1] for line in done.stderr.splitlines() if line.startswith("CAD-MODULES:")]
-    return {"args": " ".join(args), "seconds": wall, "exit": done.returncode,
+    return {"args": " ".join(args), "seconds": wall, "cpu_s": _children_cpu_s() - cpu, "exit": done.returncode,
             "cad_modules": [m for m in (cad[-1].split(",") if cad else []) if m]}
 
 
@@ -187,13 +206,17 @@ def fitted_exponent(items: list[float], seconds: list[float]) -> tuple[float, fl
     return float(np.polyfit(x, y, 1)[0]), float((y[-1] - y[-2]) / (x[-1] - x[-2]))
 
 
+def _commit(root: Path) -> str:
+    return subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
+                          cwd=root).stdout.strip()
+
+
 def _machine() -> dict:
     cpu = next((line.split(":", 1)[1].strip() for line in Path("/proc/cpuinfo").read_text().splitlines()
                 if line.startswith("model name")), platform.processor())
     mem_kb = next(int(line.split()[1]) for line in Path("/proc/meminfo").read_text().splitlines()
                   if line.startswith("MemTotal"))
-    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
-                            cwd=ROOT).stdout.strip()
+    commit = _commit(ROOT)
     dirty = subprocess.run(["git", "status", "--porcelain", "--", "antenna_cad"], capture_output=True,
                            text=True, cwd=ROOT).stdout.strip()
     return {"cpu": cpu, "cores": os.cpu_count(), "memory_gb": round(mem_kb / 2**20, 1),
@@ -263,10 +286,38 @@ def _markdown(results: dict) -> str:
                   "| what | items | naive s | ours s | speed-up |", "|---|---:|---:|---:|---:|"]
         lines += [f"| {r['what']} | {r['items']} | {r['naive_s']:.2f} | {r['ours_s']:.3f} | {r['speedup']:.0f}× |"
                   for r in results["naive"]["rows"]]
+    if "before" in results:
+        lines += _side_by_side(results)
     lines += ["", "Budgets", "", "| budget | value | limit | ok | note |", "|---|---:|---:|---|---|"]
     lines += [f"| {b['what']} | {b['value']:.2f} {b['unit']} | {b['limit']:g} {b['unit']} | "
               f"{'yes' if b['ok'] else '**no**'} | {b['why']} |" for b in results["budgets"]]
     return "\n".join(lines) + "\n"
+
+
+def _side_by_side(results: dict) -> list[str]:
+    """The before/after tables of a ``--before`` run (each pair measured back to back)."""
+    old = results["before"]
+    lines = ["", f"Before (commit {old['commit']}) and after (commit {results['machine']['commit']}), each recipe "
+             "run in both trees back to back (load average at the start of each run)", "",
+             "| recipe | load | before s | after s | before / after | CPU s before | CPU s after | before MB | "
+             "after MB | slowest stage before | slowest stage after |",
+             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---|"]
+    for name, r in results["recipes"].items():
+        if name not in old["recipes"]:
+            continue
+        b = old["recipes"][name]
+        tb, ta = sum(b["stages"].values()), sum(r["stages"].values())
+        sb, sa = (max(x["stages"], key=x["stages"].get) for x in (b, r))
+        lines.append(f"| {name} | {b.get('load', 0):.1f}/{r.get('load', 0):.1f} | {tb:.2f} | {ta:.2f} | "
+                     f"{tb / ta:.2f}× | {b.get('cpu_s', 0):.1f} | {r.get('cpu_s', 0):.1f} | "
+                     f"{b['peak_mb']:.0f} | {r['peak_mb']:.0f} | "
+                     f"{sb} {b['stages'][sb]:.2f} s | {sa} {r['stages'][sa]:.2f} s |")
+    lines += ["", "| command | before s | after s | CPU s before | CPU s after | CAD modules before | CAD modules after |",
+              "|---|---:|---:|---:|---:|---|---|"]
+    lines += [f"| make-lens {a['args']} | {b['seconds']:.2f} | {a['seconds']:.2f} | {b['cpu_s']:.2f} | {a['cpu_s']:.2f} | "
+              f"{', '.join(b['cad_modules']) or 'none'} | {', '.join(a['cad_modules']) or 'none'} |"
+              for b, a in zip(old["cli"], results["cli"])]
+    return lines
 
 
 STAGE_ORDER = ("load", "synthesize", "model", "fabricate", "verify", "step", "stl", "templates", "report",
@@ -284,6 +335,8 @@ def main() -> int:
                         help="per-slot booleans on the first N guides only (default: all 40; ~15 s a guide)")
     parser.add_argument("--large", action="store_true", help="the D/λ = 100 Luneburg layup with templates")
     parser.add_argument("--compare", type=Path, help="an older results.json to compare totals with")
+    parser.add_argument("--before", type=Path, help="an older checkout (git worktree) run side by side: each "
+                        "recipe and command there, then here, so both see the same load")
     parser.add_argument("--no-fail", action="store_true", help="report missed budgets without exit 1")
     args = parser.parse_args()
     if args.child:
@@ -295,10 +348,23 @@ def main() -> int:
 
     recipes = args.recipe or sorted(p.name for p in (ROOT / "recipes").glob("*.yaml"))
     results: dict = {"machine": _machine(), "argv": sys.argv[1:], "recipes": {}, "cli": []}
+    before = args.before.resolve() if args.before else None
+    if before:
+        results["before"] = {"commit": _commit(before), "recipes": {}, "cli": []}
     for name in recipes:
         print(f"recipe {name} …", file=sys.stderr, flush=True)
-        results["recipes"][Path(name).stem] = _run_child("recipe", str(ROOT / "recipes" / name), str(args.runs))
-    results["cli"] = [_cli_timing(["--help"]), _cli_timing(["validate", f"recipes/{recipes[0]}"])]
+        if before and (before / "recipes" / name).is_file():
+            load = os.getloadavg()[0]
+            results["before"]["recipes"][Path(name).stem] = _run_child(
+                "recipe", str(before / "recipes" / name), str(args.runs), root=before) | {"load": load}
+        load = os.getloadavg()[0]
+        results["recipes"][Path(name).stem] = _run_child("recipe", str(ROOT / "recipes" / name),
+                                                         str(args.runs)) | {"load": load}
+    probes = [["--help"]] + [["validate", f"recipes/{r}"] for r in dict.fromkeys([recipes[0], DEFAULT_RECIPE])]
+    for probe in probes:
+        if before:
+            results["before"]["cli"].append(_cli_timing(probe, before))
+        results["cli"].append(_cli_timing(probe))
     failures = []
     if args.series:
         results["series"] = {}

@@ -230,11 +230,11 @@ def test_rebuild_is_byte_identical_and_atomic(built, tmp_path, monkeypatch):
     assert second["files"] == manifest["files"]
     before = {e["path"]: e["sha256"] for e in second["files"]}
 
-    import antenna_cad.pipeline as pipeline
+    import antenna_cad.fabrication.templates as templates     # the pipeline imports its writers at use
 
     def broken(*args, **kwargs):
         raise RuntimeError("interrupted")
-    monkeypatch.setattr(pipeline, "write_tiled_pdf", broken)
+    monkeypatch.setattr(templates, "write_tiled_pdf", broken)
     with pytest.raises(RuntimeError):
         build(spec, tmp_path)
     after = {e["path"]: hashlib.sha256((again.out_dir / e["path"]).read_bytes()).hexdigest()

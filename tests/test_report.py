@@ -3,12 +3,15 @@ Debian's `chromium` + `chromium-driver`, installed by .ci/run) with no console e
 figure drawn."""
 
 import json
+import os
 import re
+import threading
 from pathlib import Path
 
 import pypdf
 import pytest
 
+from antenna_cad.export.beside import SERIAL_ENV, Beside
 from antenna_cad.pipeline import build
 from antenna_cad.registry import adapter
 from antenna_cad.spec import load_spec
@@ -91,3 +94,34 @@ def test_report_is_reproducible(reports, tmp_path):
     again = build(load_spec(ROOT / "recipes" / "ptfe-lens-120mm.yaml"), tmp_path)
     for file in ("report.html", "report.pdf"):
         assert (again.out_dir / file).read_bytes() == (reports["ptfe-lens-120mm"].out_dir / file).read_bytes()
+
+
+def test_report_pdf_drawn_beside_equals_serial(reports, tmp_path, monkeypatch):
+    """The fixture drew report.pdf in a child process beside report.html (2 cores); one after the
+    other in one process gives the same bytes."""
+    monkeypatch.setenv(SERIAL_ENV, "1")
+    serial = build(load_spec(ROOT / "recipes" / "ptfe-lens-120mm.yaml"), tmp_path)
+    for file in ("report.html", "report.pdf"):
+        assert (serial.out_dir / file).read_bytes() == (reports["ptfe-lens-120mm"].out_dir / file).read_bytes()
+
+
+def test_beside_runs_in_a_child_and_hands_back_its_error(tmp_path, monkeypatch):
+    monkeypatch.delenv(SERIAL_ENV, raising=False)
+    marker = tmp_path / "pid"
+    done = Beside(lambda: marker.write_text(str(os.getpid())))
+    done.join()
+    assert int(marker.read_text()) != os.getpid()                    # written by another process
+
+    def fails():
+        raise OSError(28, "No space left on device")
+    with pytest.raises(OSError, match="No space left"):
+        Beside(fails).join()
+
+
+def test_beside_is_serial_off_the_main_thread(tmp_path, monkeypatch):
+    monkeypatch.delenv(SERIAL_ENV, raising=False)
+    marker = tmp_path / "pid"
+    worker = threading.Thread(target=lambda: Beside(lambda: marker.write_text(str(os.getpid()))).join())
+    worker.start()
+    worker.join()
+    assert int(marker.read_text()) == os.getpid()

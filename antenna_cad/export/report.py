@@ -16,6 +16,7 @@ from matplotlib import colormaps
 from matplotlib.colors import to_hex
 
 from antenna_cad import __version__
+from antenna_cad.export.beside import Beside
 from antenna_cad.export.mesh import picture_meshes
 from antenna_cad.export.page_parts import page as html_page, table as _table
 from antenna_cad.export.plots import assembly_png, plot_svg
@@ -65,11 +66,15 @@ def report_content(out: Path, spec, figures, checks, verification, model, fab, p
 
 
 def write_report(out: Path, spec, figures, checks, verification, model, fab, parts) -> None:
-    """Write report.html and report.pdf of one build into folder ``out``."""
+    """Write report.html and report.pdf of one build into folder ``out``: the PDF in a child process
+    beside the page (:mod:`antenna_cad.export.beside`; same bytes as one after the other)."""
     from antenna_cad.export.report_pdf import write_report_pdf
     content = report_content(out, spec, figures, checks, verification, model, fab, parts)
-    write_report_html(out / REPORT_HTML, content)
-    write_report_pdf(out / REPORT_PDF, content)
+    pdf = Beside(lambda: write_report_pdf(out / REPORT_PDF, content))
+    try:
+        write_report_html(out / REPORT_HTML, content)
+    finally:
+        pdf.join()
 
 
 def write_report_html(path: Path, r: ReportContent) -> None:

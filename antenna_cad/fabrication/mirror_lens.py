@@ -21,6 +21,17 @@ PROCESS = {"spray": "spray the conductive paint", "plating": "electroplate",
            "foil": "bond the metal foil", "vacuum_metallization": "vacuum-metallize"}
 
 
+def flange_geometry(design: MirrorLensDesign, width_mm: float, thickness_mm: float):
+    """(inner radius at both faces, outer radius, z0, z1): a ring on the side wall against the mirror rim."""
+    p, D = design.profiles, design.diameter_mm
+    (r0, z0), (r1, z1) = (p.s[-1] * D, p.f[-1] * D), (p.R_b[-1] * D, p.Z_b[-1] * D)
+    top = z1
+    bottom = max(z0, z1 - thickness_mm)
+    wall = lambda z: r0 + (r1 - r0) * (z - z0) / (z1 - z0)        # noqa: E731
+    outer = max(r0, r1) + width_mm
+    return (wall(bottom), wall(top)), outer, bottom, top
+
+
 def gauge_drawing(design: MirrorLensDesign, title: str, material: Material) -> Drawing:
     """Section of the body (drawing x = r from −R to R, y = z), front face at the bottom, with a
     table of both exact profiles and the mirror face marked."""

@@ -15,13 +15,16 @@ import math
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-import ezdxf
 import numpy as np
 from shapely.geometry import Polygon, box
 
 from antenna_cad.fabrication.vector_pdf import (PT_PER_MM, VectorPdf, num, polyline_ops, text_ops, text_width,
                                                 wrap_text)
+
+if TYPE_CHECKING:
+    import ezdxf
 
 _EZDXF_MARKER = re.compile(r"(\d+\.\d+\.\d+) @ \d{4}-\d\d-\d\dT[\d:.]+\+00:00")
 A4_MM = (210.0, 297.0)
@@ -147,6 +150,7 @@ def text_box(text: str, cap_height: float) -> tuple[float, float]:
 
 
 def dxf_document(drawing: Drawing) -> ezdxf.document.Drawing:
+    import ezdxf            # at use: validating a spec builds drawings but writes no DXF
     doc = ezdxf.new("R2010", setup=False)
     doc.units = ezdxf.units.MM
     doc.header["$INSUNITS"] = ezdxf.units.MM
@@ -172,6 +176,7 @@ def write_dxf(doc: ezdxf.document.Drawing, path: Path) -> None:
     CLASSES section (whose order depends on what ezdxf did first in the process) is sorted."""
     doc.classes.add_required_classes(doc.dxfversion)
     doc.classes.classes = dict(sorted(doc.classes.classes.items()))
+    import ezdxf
     previous = ezdxf.options.write_fixed_meta_data_for_testing
     ezdxf.options.write_fixed_meta_data_for_testing = True
     try:

@@ -10,6 +10,7 @@ Output is byte-reproducible: no dates, no IDs, objects numbered in writing order
 
 from __future__ import annotations
 
+import importlib.util
 import zlib
 from functools import cache
 from pathlib import Path
@@ -46,27 +47,27 @@ def polyline_ops(points, closed: bool) -> str:
 
 
 @cache
-def _helvetica():
-    """Helvetica's Adobe font metrics (the AFM file matplotlib ships for the PDF standard fonts)."""
-    from matplotlib import _afm, cbook
-    from matplotlib._mathtext_data import uni2type1
-    with open(cbook._get_data_path("fonts/pdfcorefonts/Helvetica.afm"), "rb") as fh:
-        return _afm.AFM(fh), uni2type1
+def _helvetica() -> dict[str, float]:
+    """Advance widths (1/1000 em) of Helvetica's glyphs by character, read from the font's Adobe
+    Font Metrics (the AFM file matplotlib ships for the PDF standard fonts; read as text, without
+    importing matplotlib, so building drawings stays light) and named by the Adobe Glyph List."""
+    from fontTools.agl import AGL2UV
+    mpl = importlib.util.find_spec("matplotlib").submodule_search_locations[0]
+    widths = {}
+    for line in (Path(mpl) / "mpl-data/fonts/pdfcorefonts/Helvetica.afm").read_text(encoding="latin-1").splitlines():
+        if line.startswith("C "):
+            fields = dict(item.strip().split(" ", 1) for item in line.split(";") if item.strip())
+            if fields["N"] in AGL2UV:
+                widths[chr(AGL2UV[fields["N"]])] = float(fields["WX"])
+    return widths
 
 
 def text_width(text: str, size: float) -> float:
-    """Advance width of ``text`` (as written: spelled out) in Helvetica at font size ``size``."""
-    afm, names = _helvetica()
-    units = 0.0
-    for ch in spelled(text):
-        if ord(ch) < 128:
-            units += afm.get_width_char(ord(ch))
-        else:
-            try:
-                units += afm.get_width_from_char_name(names.get(ord(ch), "bullet"))
-            except KeyError:
-                units += 1000.0                         # unknown glyph: a full em, never too short
-    return units * size / 1000.0
+    """Advance width of ``text`` as drawn (spelled out, in WinAnsiEncoding) in Helvetica at font size
+    ``size``; a glyph the font lacks counts a full em, never too short."""
+    widths = _helvetica()
+    drawn = spelled(text).encode("cp1252", errors="replace").decode("cp1252")
+    return sum(widths.get(ch, 1000.0) for ch in drawn) * size / 1000.0
 
 
 def wrap_text(text: str, width: float, size: float) -> list[str]:

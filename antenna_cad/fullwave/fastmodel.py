@@ -15,7 +15,6 @@ Its error against Meep is measured over the table in ``tests/data/fullwave_table
 from __future__ import annotations
 
 import numpy as np
-from scipy.special import j0
 
 SAMPLES_PER_LAMBDA = 40     # radial samples of the screen
 RHO_MAX = 2.0               # spatial frequencies kept, units of 1/λ (≥ e^-20 decay beyond at L ≥ 2 λ)
@@ -28,6 +27,7 @@ def thin_screen_deg(delta_d_mm: np.ndarray, n: float, wavelength_mm: float) -> n
 
 
 def _hankel(u: np.ndarray, r: np.ndarray, dr: float, rho: np.ndarray) -> np.ndarray:
+    from scipy.special import j0     # at use (scipy.special costs ~0.2 s; validating needs none)
     return 2 * np.pi * (j0(2 * np.pi * np.outer(rho, r)) @ (u * r[:, None])) * dr
 
 
@@ -35,6 +35,7 @@ def propagate(u: np.ndarray, r: np.ndarray, radius_mm: float, wavelength_mm: flo
               r_obs: np.ndarray) -> np.ndarray:
     """Scalar fields of the axisymmetric aperture fields u[:, j] (samples ``r``, spacing uniform) after
     ``distance_mm`` of free space, at radii ``r_obs``: angular spectrum by Hankel transform."""
+    from scipy.special import j0
     dr = r[1] - r[0]
     d_rho = 1.0 / (4.0 * radius_mm)
     rho = np.arange(0.0, RHO_MAX / wavelength_mm, d_rho) + 0.5 * d_rho

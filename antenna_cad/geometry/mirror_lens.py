@@ -17,6 +17,7 @@ from build123d import Axis, Compound, Cylinder, Edge, Pos, Solid
 
 from antenna_cad.fabrication.box import Panel
 from antenna_cad.fabrication.layup import LayupPlan
+from antenna_cad.fabrication.mirror_lens import flange_geometry
 from antenna_cad.geometry.bifocal import sanding_allowance
 from antenna_cad.geometry.layup import panel_solid, pedestal_solid, sheet_solid
 from antenna_cad.geometry.model import Model, ModelPart, relative_volume_check
@@ -80,17 +81,6 @@ def feed_solid(design: MirrorLensDesign, aperture_mm: float, length_mm: float) -
     """Placeholder horn: a solid frustum, aperture centred on the focus (z = 0), body toward −Z."""
     a, t = aperture_mm / 2, FEED_THROAT * aperture_mm / 2
     return revolve_closed(polyline_edges([(0.0, 0.0), (a, 0.0), (t, -length_mm), (0.0, -length_mm), (0.0, 0.0)]))
-
-
-def flange_geometry(design: MirrorLensDesign, width_mm: float, thickness_mm: float):
-    """(inner radius at both faces, outer radius, z0, z1): a ring on the side wall against the mirror rim."""
-    p, D = design.profiles, design.diameter_mm
-    (r0, z0), (r1, z1) = (p.s[-1] * D, p.f[-1] * D), (p.R_b[-1] * D, p.Z_b[-1] * D)
-    top = z1
-    bottom = max(z0, z1 - thickness_mm)
-    wall = lambda z: r0 + (r1 - r0) * (z - z0) / (z1 - z0)        # noqa: E731
-    outer = max(r0, r1) + width_mm
-    return (wall(bottom), wall(top)), outer, bottom, top
 
 
 def flange_solid(design: MirrorLensDesign, width_mm: float, thickness_mm: float, bolts: int,

@@ -73,7 +73,7 @@ def plan(spec: MirrorLensSpec, design: MirrorLensDesign):
 
 
 def _ring(spec: MirrorLensSpec, design: MirrorLensDesign):
-    from antenna_cad.geometry.mirror_lens import flange_geometry
+    from antenna_cad.fabrication.mirror_lens import flange_geometry
     f = spec.design.flange
     return flange_geometry(design, f.width_mm, f.thickness_mm)
 

@@ -30,7 +30,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from antenna_cad.kinds.asbuilt import Lens, Medium, trace_lens
 from antenna_cad.radiation.aperture import PatternFigures, bor_aperture, grid_aperture, pattern_figures
@@ -354,6 +353,7 @@ def _integral_error(design, gap_mm: float, meter: AutMeter, feed_y_mm: float, di
 def _first_crossing(fun, grid: np.ndarray, level: float) -> float:
     """First point of the increasing ``grid`` where ``fun`` reaches ``level`` (brentq to 1e-4 of
     the grid span between samples; the grid's end when it never does, 0 at once)."""
+    from scipy.optimize import brentq       # at use: validating a spec loads no optimizer
     prev = grid[0]
     if fun(prev) >= level:
         return float(prev)

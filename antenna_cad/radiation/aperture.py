@@ -21,7 +21,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import optimize, special
 
 SAMPLES_PER_BEAMWIDTH = 16       # u-grid density: samples per λ/extent (peaks and edges are refined)
 
@@ -51,6 +50,7 @@ class Cut:
     bessel: bool = False
 
     def __call__(self, u) -> np.ndarray:
+        from scipy import special          # at use: scipy.optimize/special cost ~0.4 s, validate needs neither
         u = np.atleast_1d(np.asarray(u, float))
         arg = (2 * np.pi / self.wavelength_mm) * np.outer(u, self.s_mm)
         kernel = special.j0(arg) if self.bessel else np.exp(-1j * arg)
@@ -163,6 +163,7 @@ class Beam:
 
 
 def _refine_max(cut: Cut, u: np.ndarray, i: int) -> tuple[float, float]:
+    from scipy import optimize
     lo, hi = u[max(i - 1, 0)], u[min(i + 1, len(u) - 1)]
     res = optimize.minimize_scalar(lambda t: -abs(cut(t)[0]) ** 2, bounds=(lo, hi), method="bounded",
                                    options={"xatol": 1e-10})
@@ -188,6 +189,7 @@ def _side(p: np.ndarray, i0: int, step: int) -> tuple[int | None, int | None]:
 
 def beam_figures(cut: Cut) -> Beam:
     """Peak, half-power beamwidth (θ, both −3 dB points by root finding) and first sidelobe."""
+    from scipy import optimize
     u = cut.u_grid()
     p = np.abs(cut(u)) ** 2
     i0 = int(np.argmax(p))

@@ -21,7 +21,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import special
 
 from antenna_cad.radiation.aperture import matvec, trapezoid_weights
 
@@ -46,6 +45,7 @@ def _kz(kappa: np.ndarray, wavelength_mm: float) -> np.ndarray:
 
 def propagate_bor(r_mm, field, wavelength_mm: float, distance_mm: float, rho_mm) -> np.ndarray:
     """E(ρ, z = distance) of the axisymmetric aperture field E(r) (module docstring)."""
+    from scipy import special      # at use: validating a spec loads no scipy.special
     r, rho = np.asarray(r_mm, float), np.asarray(rho_mm, float)
     kappa = _spectrum_axis(wavelength_mm, distance_mm, r.max() + rho.max(), False)
     spec = matvec(special.j0(np.outer(kappa, r)), np.asarray(field, complex) * r * trapezoid_weights(r))

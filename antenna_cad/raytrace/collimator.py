@@ -13,7 +13,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from antenna_cad.raytrace.trace2d import Interface, Trace2D, aim_at_face, trace
 from antenna_cad.synthesis.collimator import profile_z_mm, thickness_mm
@@ -105,6 +104,7 @@ def axial_defocus_limits(focal_length_mm: float, diameter_mm: float, eps_r: floa
     """Feed-displacement limits along the axis by the phase rule (seed-000 Table 2.1, σ < 1 and
     σ > 1): the σ = (feed distance)/f where the p-p phase reaches ``budget_deg`` moving toward the
     lens and away from it (None when it never does up to ``sigma_max``: the table's "−")."""
+    from scipy.optimize import brentq       # at use: validating a spec loads no optimizer
     def p2p(sigma):
         return axial_p2p_deg(focal_length_mm, diameter_mm, eps_r, sigma, back_mm, wavelength_mm)
 
@@ -132,6 +132,7 @@ def usable_interval_mm(p2p_deg, feed_y_mm: np.ndarray, budget_deg: float,
     """``p2p_deg`` on the increasing grid ``feed_y_mm`` and the interval [lo, hi] around ``start_mm``
     (a design focus) where it stays within the budget, each end by brentq between grid points (the
     grid ends when never reached; lo = hi = start when the budget is exceeded at the start)."""
+    from scipy.optimize import brentq
     vals = np.array([p2p_deg(y) for y in feed_y_mm])
     if not p2p_deg(start_mm) <= budget_deg:
         return vals, start_mm, start_mm

@@ -15,7 +15,6 @@ from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
-from scipy.interpolate import CubicHermiteSpline, CubicSpline
 
 from antenna_cad.raytrace.snell import reflect, refract, transmission
 
@@ -41,6 +40,7 @@ class Interface:
                     dz_dy: np.ndarray | None = None) -> "Interface":
         """Cubic profile through samples (y strictly increasing): Hermite when slopes are known
         (C¹, 4th-order accurate), else a not-a-knot cubic spline. Extrapolates past the ends."""
+        from scipy.interpolate import CubicHermiteSpline, CubicSpline   # at use: validate needs no spline
         y = np.asarray(y, float)
         z = np.asarray(z, float)
         spl = (CubicHermiteSpline(y, z, np.asarray(dz_dy, float)) if dz_dy is not None

@@ -21,6 +21,12 @@ from antenna_cad.synthesis.slot_array.optimise import EVALUATIONS, OPTIMISED, TH
 # strict xfail: the test fails the day the value is reached.
 TRIFOCAL_NOT_REPRODUCED = pytest.mark.xfail(strict=True, reason="seed-003 §3.8: trifocal two-mirror σ(80°) "
                                             "= 0.8e-4 not reproduced (6.0e-4 at best; see README)")
+# The trifocal mirror–lens (§3.7): the thesis's beam angle α = 29° admits no march; with O1 found by the
+# search the beams sit at ±14° and σ(80°) = 1.0e-3 against the thesis's 1.2e-4 (README, "the trifocal
+# mirror-lens beam former"). Same rule: the bar stays, strict xfail.
+MIRROR_LENS_NOT_REPRODUCED = pytest.mark.xfail(strict=True, reason="seed-003 §3.8: trifocal mirror–lens σ(80°) "
+                                               "= 1.2e-4 not reproduced (1.0e-3; see README)")
+NOT_REPRODUCED = {"trifocal_two_mirror": TRIFOCAL_NOT_REPRODUCED, "trifocal_mirror_lens": MIRROR_LENS_NOT_REPRODUCED}
 
 
 @pytest.fixture(scope="module")
@@ -46,10 +52,10 @@ def test_design_foci_are_perfect_for_every_reference_former(curves):
         assert c.sigma.min() < 5e-5, name
 
 
-R10_FORMERS = [n for n in THESIS_SIGMA_80 if n in OPTIMISED]     # a fourth former slots in via OPTIMISED
+R10_FORMERS = list(THESIS_SIGMA_80)       # the four formers of Fig. 3.15, all among the reference curves
 
 
-@pytest.mark.parametrize("name", [n if n != "trifocal_two_mirror" else pytest.param(n, marks=TRIFOCAL_NOT_REPRODUCED)
+@pytest.mark.parametrize("name", [pytest.param(n, marks=NOT_REPRODUCED[n]) if n in NOT_REPRODUCED else n
                                   for n in R10_FORMERS])
 def test_r10_each_sigma_80_within_a_factor_2_of_the_thesis(curves, name):
     """R10: σ over the 80° field of view, each former optimised (§3.8), within ×2 of Fig. 3.15's value."""

@@ -11,7 +11,7 @@ import numpy as np
 
 from antenna_cad.kinds.patterns_arrays import array_patterns, best_focus, imaged_case, path_mm
 from antenna_cad.spec.common import resolve_material
-from antenna_cad.spec.graded import GradedSpec
+from antenna_cad.spec.graded import GradedLayupSpec, GradedSpec
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.collimator import wavelength_mm
 from antenna_cad.synthesis.graded_design import GradedDesign, ray_paths, synthesize_graded
@@ -31,16 +31,24 @@ def synthesize(spec: GradedSpec) -> GradedDesign:
 
 
 def plan(spec: GradedSpec, design: GradedDesign):
-    """No layup: the slabs are machined from blanks of their permittivity."""
-    return None, ()
+    """Sheet layup: the foam sheets of every slab (no box); solid: none, the slabs are machined."""
+    fab = spec.fabrication
+    if not isinstance(fab, GradedLayupSpec):
+        return None, ()
+    from antenna_cad.fabrication.graded_layup import plan_graded_layup
+    return plan_graded_layup(design, resolve_material(spec.material), spec.design.height_mm,
+                             fab.sheet_thickness_mm, fab.kerf_mm, fab.board.width_mm, fab.board.length_mm), ()
 
 
 def model(spec: GradedSpec, design: GradedDesign, layup, panels):
     from antenna_cad.geometry.graded import build_model
-    return build_model(design, resolve_material(spec.material), spec.design.height_mm)
+    return build_model(design, resolve_material(spec.material), spec.design.height_mm, layup)
 
 
 def fabricate(spec: GradedSpec, design: GradedDesign, layup, panels):
+    if layup is not None:
+        from antenna_cad.fabrication.graded_layup import fabricate_graded_layup
+        return fabricate_graded_layup(design, layup, spec.name)
     from antenna_cad.fabrication.graded import fabricate_graded
     return fabricate_graded(design, resolve_material(spec.material), spec.design.height_mm,
                             spec.fabrication.stock_allowance_mm, spec.name)
@@ -74,6 +82,9 @@ def summary(spec: GradedSpec, design: GradedDesign, layup) -> dict[str, float]:
                "sigma_max": float(design.sigma.max()),
                "bifocal_comparison_sigma_max": float(design.comparison_sigma.max()),
                "bifocal_over_trifocal_sigma_ratio": float(design.comparison_sigma.max() / design.sigma.max())}
+    if layup is not None:
+        figures |= {"sheet_count": layup.count, "sheet_layers": layup.layers,
+                    "sheet_thickness_mm": layup.sheet_thickness_mm, "top_layer_mm": layup.top_layer_mm}
     return figures | _angles(design)
 
 

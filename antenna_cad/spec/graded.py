@@ -3,17 +3,18 @@
 A 2-D (cylindrical) lens whose index varies across the aperture only, n = n(y), synthesized in the
 seed's normalised units (D = 1) and scaled by ``design.unit_mm`` (= D in millimetres). ``material``
 is the base dielectric whose loss and density the slabs carry; each slab's εr comes from the
-synthesized law. Fabrication ``solid``: the slabs are machined from blanks of their permittivity.
+synthesized law. Fabrication ``solid``: the slabs are machined from blanks of their permittivity;
+``sheet_layup``: each slab cut from foam sheets of its grade, stacked along the extrusion (issue 14).
 """
 
 from __future__ import annotations
 
-from typing import Literal
+from typing import Annotated, Literal, Union
 
 from pydantic import Field, model_validator
 
 from antenna_cad.spec.bounds import MIN_DEG, MIN_RATIO
-from antenna_cad.spec.common import SolidSpec, SpecBase, StrictModel
+from antenna_cad.spec.common import BoardSpec, SheetThickness, SolidSpec, SpecBase, StrictModel
 
 
 class SlabsSpec(StrictModel):
@@ -47,7 +48,20 @@ class GradedDesignSpec(StrictModel):
         return self
 
 
+class GradedLayupSpec(StrictModel):
+    """Every slab cut from foam sheets of its grade (the slab's εr), stacked along the extrusion
+    between the plates; each sheet's outline is its slab's section."""
+    method: Literal["sheet_layup"]
+    sheet_thickness_mm: SheetThickness = Field(description="foam sheet thickness; a top layer left over by "
+                                               "design.height_mm is planed down")
+    board: BoardSpec = BoardSpec()
+    kerf_mm: float = Field(0.0, ge=0, le=10, description="cutting kerf (the tool path is offset by half)")
+
+
+GradedFabrication = Annotated[Union[GradedLayupSpec, SolidSpec], Field(discriminator="method")]
+
+
 class GradedSpec(SpecBase):
     kind: Literal["graded"]
-    fabrication: SolidSpec
+    fabrication: GradedFabrication
     design: GradedDesignSpec

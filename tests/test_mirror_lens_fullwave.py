@@ -202,4 +202,4 @@ def test_recipe_feed_on_surface_full_wave_stage(meep):
     assert "2 runs" in v.checks[0].message
     assert f["fullwave_ideal_on_axis_phase_efficiency_db"] > -0.7          # measured −0.51 dB
     assert f["fullwave_feed_back_lobe_db"] < -15                           # measured −21.3 dB
-    assert f["fullwave_fabricated_minus_ideal_rms_deg"] == 0.0
+    assert f["fullwave_fabricated_minus_ideal_rms_deg"] < 1e-9                # the same deck, run once

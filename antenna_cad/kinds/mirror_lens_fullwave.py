@@ -13,8 +13,9 @@ feed is the runner's point source on the front vertex, the focus the synthesis a
 start in the dielectric, seed-004 §2.4), a transverse dipole or the Huygens element (Er + Hφ), which
 radiates toward +z, into the body, in this frame (measured in the tests); the plane lies
 ``plane_offset_lambda`` in front of the feed, and the parts-free run gives the element's back lobe.
-Variants: ``ideal`` (the exact marched profiles) and ``fabricated`` (the CAD's splines; a solid body with its flange ring; a sanded layup has the exact faces, so its
-deck equals the ideal one and runs once). Figures ``fullwave_<variant>_on_axis_*`` and
+Variants: ``ideal`` (the exact marched profiles) and ``fabricated`` (the CAD's splines; a solid body
+with its flange ring; a sanded layup has the exact faces, so its deck equals the ideal one and runs
+once). Figures ``fullwave_<variant>_on_axis_*`` and
 ``fullwave_fabricated_minus_ideal_*``, compared in a table with the GO aperture phase of
 :mod:`antenna_cad.raytrace.mirror_lens` over the same window (0.5 λ ≤ r ≤ 0.9 R).
 """

@@ -8,9 +8,14 @@ field enters on a Huygens sheet 1.5 λ in front of the front vertex, radiating t
 reflected beam passes back through the sheet to the aperture plane ``plane_offset_lambda`` in front
 of it, where the co-polar field is read. The sheet's own back lobe is measured by the same deck
 without parts and subtracted (the fields add linearly). The feed and its support are not meshed: their blockage of the outgoing beam
-is ignored, as in the GO trace. Variants: ``ideal`` (the exact marched profiles) and ``fabricated``
-(the CAD's splines; a solid body with its flange ring; a sanded layup has the exact faces, so its
-deck equals the ideal one and runs once). Figures ``fullwave_<variant>_on_axis_*`` and
+is ignored, as in the GO trace. The feed-on-surface body (f0 = 0) leaves no room for the sheet: the
+feed is the runner's point source on the front vertex, the focus the synthesis assumes (its rays
+start in the dielectric, seed-004 §2.4), a transverse dipole or the Huygens element (Er + Hφ), which
+radiates toward +z, into the body, in this frame (measured in the tests); the plane lies
+``plane_offset_lambda`` in front of the feed, and the parts-free run gives the element's back lobe.
+Variants: ``ideal`` (the exact marched profiles) and ``fabricated`` (the CAD's splines; a solid body
+with its flange ring; a sanded layup has the exact faces, so its deck equals the ideal one and runs
+once). Figures ``fullwave_<variant>_on_axis_*`` and
 ``fullwave_fabricated_minus_ideal_*``, compared in a table with the GO aperture phase of
 :mod:`antenna_cad.raytrace.mirror_lens` over the same window (0.5 λ ≤ r ≤ 0.9 R).
 """
@@ -27,11 +32,12 @@ from antenna_cad.fullwave.aperture import aperture_stats, difference_stats, phas
 from antenna_cad.fullwave.deck import DECIMALS, PROFILE_POINTS, make_deck
 from antenna_cad.fullwave.runner import feed_pattern
 from antenna_cad.fullwave.verify import budget_decision, deck_files
-from antenna_cad.synthesis.checks import Check, DesignError
+from antenna_cad.synthesis.checks import Check
 from antenna_cad.verification import Plot, Series, Table, Verification
 
 METAL_CELLS = 2.0       # drawn conductor thickness in grid cells (the field behind the mirror is zero)
 MODEL = "full-wave (Meep, body of revolution, mirror a perfect conductor)"
+POINT_FEED = {"dipole": "dipole", "cos_q": "huygens"}     # the point source of a feed on the surface
 
 
 def _polygon(r: np.ndarray, z: np.ndarray) -> list:
@@ -72,11 +78,13 @@ def body_parts(design, variant: str, *, eps_r: float, coating_mm: float, resolut
 
 def decks(design, settings, parts: dict[str, list[dict]]) -> dict[str, dict]:
     """Every variant's deck on one domain (the widest part), plus ``free``: the same domain without
-    parts, whose field on the aperture plane is the sheet's back lobe."""
+    parts, whose field on the aperture plane is the feed's (sheet's or point element's) back lobe."""
     radius = max(max(pt[0] for part in ps for pt in part["polygon"]) for ps in parts.values())
+    point = POINT_FEED[settings.feed_pattern] if design.profiles.feed_on_surface else None
     out = {v: make_deck(ps, frequency_ghz=design.frequency_ghz, resolution=settings.resolution_px_per_lambda,
                         feed_z_mm=0.0, feed_pattern=settings.feed_pattern, feed_q=settings.feed_q,
-                        radius_mm=radius, plane_offset_lambda=settings.plane_offset_lambda, reflected=True)
+                        radius_mm=radius, plane_offset_lambda=settings.plane_offset_lambda, reflected=True,
+                        point_feed=point)
            for v, ps in parts.items()}
     first = next(iter(out.values()))
     out["free"] = dict(first, parts=[], field_map=False)
@@ -86,12 +94,6 @@ def decks(design, settings, parts: dict[str, list[dict]]) -> dict[str, dict]:
 def full_wave_verification(design, settings, parts: dict[str, list[dict]], go) -> Verification:
     """The stage: runs (or declines, saying why) and returns figures, the comparison table, plots
     and the deck folder. ``go``: the GO on-axis aperture field (ApertureFieldMM) of the body as fabricated."""
-    if design.profiles.feed_on_surface:
-        why = ("the feed sits on the front face (feed_on_surface): there is no free space between it and "
-               "the body for the Huygens sheet, and a meshed point source would not be the analytic feed")
-        if settings.full_wave == "on":
-            raise DesignError("verification.full_wave", f"on, but {why}")
-        return Verification(checks=(_note(f"not run: {why}", 0.0, settings),))
     all_decks = decks(design, settings, parts)
     names, deck_list = list(all_decks), list(all_decks.values())
     jobs = max(1, min(len(deck_list), os.cpu_count() or 1))
@@ -112,14 +114,17 @@ def full_wave_verification(design, settings, parts: dict[str, list[dict]], go) -
         p2p, rms = difference_stats(r, fields["fabricated"], fields["ideal"], lam, R)
         figures |= {"fullwave_fabricated_minus_ideal_p2p_deg": p2p, "fullwave_fabricated_minus_ideal_rms_deg": rms}
     sel = window(r, lam, R)
-    sheet_back = np.abs(back[sel]).mean() / np.abs(fields["ideal"][sel]).mean()
+    point = all_decks["free"]["feed"].get("kind") == "point"
+    feed_back = np.abs(back[sel]).mean() / np.abs(fields["ideal"][sel]).mean()
     figures |= {"fullwave_resolution_px_per_lambda": settings.resolution_px_per_lambda,
                 "fullwave_seconds": float(sum(float(o["seconds"]) for o in unique.values())),
-                "fullwave_sheet_back_lobe_db": float(20 * np.log10(sheet_back))}
-    go_r, go_phase, go_amp = _go_curves(go, settings)
+                f"fullwave_{'feed' if point else 'sheet'}_back_lobe_db": float(20 * np.log10(feed_back))}
+    go_r, go_phase, go_amp = _go_curves(go, settings, point)
     go_p2p, go_rms = phase_stats(go_r, _centred(go_r, go_phase, lam, R), lam, R)
     figures |= {"fullwave_go_on_axis_p2p_deg": go_p2p, "fullwave_go_on_axis_rms_deg": go_rms}
     name = f"Meep {results['free']['meep_version']}, {settings.resolution_px_per_lambda:g} px/λ"
+    feed = (f"point {all_decks['free']['feed']['pattern']} feed on the front vertex" if point
+            else "the feed's Huygens sheet")
     cached = sum(bool(o["cached"]) for o in unique.values())
     note = _note(f"{why}; {len(unique)} runs ({cached} from the cache; solver {figures['fullwave_seconds']:.0f} s, "
                  f"{name})", estimate, settings)
@@ -129,10 +134,10 @@ def full_wave_verification(design, settings, parts: dict[str, list[dict]], go) -
                  round(float(_taper(go_r, go_amp, lam, R)), 3), None))
     table = Table("fullwave", "Full-wave aperture field against GO (feed on the axis)",
                   ("model", "p-p deg", "RMS deg", "taper dB at 0.9 R", "phase efficiency dB"), tuple(rows),
-                  caption=f"{MODEL}, {name}; plane {settings.plane_offset_lambda:g} λ in front of the feed's sheet; "
+                  caption=f"{MODEL}, {name}; plane {settings.plane_offset_lambda:g} λ in front of {feed}; "
                           "over 0.5 λ ≤ r ≤ 0.9 R (the axis of a body of revolution carries a caustic); feed "
                           "blockage ignored; GO with the same feed pattern")
-    plots = _plots(r, fields, (go_r, go_phase, go_amp), results, lam, R)
+    plots = _plots(r, fields, (go_r, go_phase, go_amp), results, lam, R, feed)
     return Verification(figures, (note,), (table,), plots, files)
 
 
@@ -149,11 +154,15 @@ def _note(why: str, estimate: float, settings) -> Check:
                  f"full-wave stage {why}; verdicts from the 3-D GO trace, the full-wave figures beside them")
 
 
-def _go_curves(go, settings):
+def _go_curves(go, settings, point: bool):
     """GO radius ≥ 0, phase (deg) and amplitude with the deck's feed pattern (co-polar mean of the
-    E- and H-plane patterns: the m = +1 field)."""
+    E- and H-plane patterns: the m = +1 field); a point Huygens element's is (1 + cos θ)/2 in both."""
     keep = go.r_mm >= 0
-    fe, fh = feed_pattern(go.launch_angle_rad[keep], settings.feed_pattern, settings.feed_q)
+    theta = go.launch_angle_rad[keep]
+    if point and settings.feed_pattern == "cos_q":
+        fe = fh = (1 + np.cos(theta)) / 2
+    else:
+        fe, fh = feed_pattern(theta, settings.feed_pattern, settings.feed_q)
     return go.r_mm[keep], go.phase_deg[keep], go.amplitude[keep] * (fe + fh) / 2
 
 
@@ -167,7 +176,7 @@ def _taper(r, amp, lam, R):
     return 20 * np.log10(np.interp(0.9 * R, r, amp) / ref)
 
 
-def _plots(r, fields: dict, go, results: dict, lam: float, R: float) -> tuple[Plot, ...]:
+def _plots(r, fields: dict, go, results: dict, lam: float, R: float, feed: str) -> tuple[Plot, ...]:
     sel = r <= R
     ref = (r >= 0.5 * lam) & (r <= 1.5 * lam)
     phase = [Series(f"full-wave {v}", r[sel], phase_deg(r, e, lam, R)[sel]) for v, e in fields.items()]
@@ -186,8 +195,8 @@ def _plots(r, fields: dict, go, results: dict, lam: float, R: float) -> tuple[Pl
     if "map_abs" in results["ideal"]:
         m = results["ideal"]["map_abs"]
         plots.append(Plot("fullwave-field-map", "|E| in the (r, z) plane, ideal body", "z (mm)", "r (mm)", (),
-                          caption="dB relative to the maximum; the sheet launches the feed's wave toward +z, the "
-                                  "mirror sends the beam back toward −z through it",
+                          caption=f"dB relative to the maximum; {feed} launches the wave toward +z, the "
+                                  "mirror sends the beam back toward −z, past the feed",
                           image=(20 * np.log10(np.maximum(m / m.max(), 1e-3)),
                                  tuple(float(x) for x in results["ideal"]["map_extent_mm"]))))
     return tuple(plots)

@@ -28,7 +28,7 @@ from pathlib import Path
 from antenna_cad.export.manifest import write_manifest
 from antenna_cad.export.report import write_report
 from antenna_cad.export.mesh import ANGULAR_DEFLECTION_RAD, write_stl
-from antenna_cad.export.step import write_step
+from antenna_cad.export.step import start_step
 from antenna_cad.fabrication.cutlist import cutlist_csv
 from antenna_cad.fabrication.outline import CHORD_TOL_MM
 from antenna_cad.fabrication.templates import dxf_document, write_dxf, write_svg, write_tiled_pdf
@@ -155,8 +155,12 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
         final = out_root / spec.name
         tmp = out_root / f".{spec.name}.tmp-{os.getpid()}"
         IN_PROGRESS.add(tmp)
+        step = None
         try:
             tmp.mkdir()
+            if spec.outputs.step:         # written by a child process beside STL, templates, report
+                step = start_step(model, spec.name, tmp / f"{spec.name}.step")
+            stage("step")
             parts = _write_solids(spec, model, tmp, stage)
             templates = _write_templates(spec, p.fab, tmp)
             stage("templates")
@@ -167,6 +171,11 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
             if spec.outputs.report:
                 write_report(tmp, spec, figures, checks, verification, model, p.fab, parts)
             stage("report")
+            if step is not None:
+                finish_step, step = step, None
+                finish_step(True)
+                seconds["step"] += time.perf_counter() - clock      # the wait: what STEP adds to the build
+                clock = time.perf_counter()
             _write_manifest(spec, tmp, figures, checks, parts, p.layup, p.fab, templates, verification)
             stage("manifest")
             _swap_into_place(tmp, final)
@@ -174,6 +183,8 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
             raise OutputError(f"{out_root}: writing the build failed ({exc.strerror or exc}); "
                               "the previous build is untouched") from None
         finally:
+            if step is not None:
+                step(False)
             shutil.rmtree(tmp, ignore_errors=True)
             IN_PROGRESS.discard(tmp)
     files = sorted(q.relative_to(final).as_posix() for q in final.rglob("*") if q.is_file())
@@ -211,18 +222,16 @@ def _remove_leftovers(out_root: Path, name: str) -> None:
 
 
 def _write_solids(spec, model, out: Path, stage) -> list[dict]:
-    if spec.outputs.step:
-        write_step(model, spec.name, out / f"{spec.name}.step")
-    stage("step")
     parts = []
     if spec.outputs.stl:
         (out / "stl").mkdir()
     for part in sorted(model.parts, key=lambda p: p.label):
         entry = {"label": part.label, "material": part.material.name, "role": part.role,
                  "volume_mm3": part.volume_mm3, "solids": len(part.shape.solids()),
-                 "valid": bool(part.shape.is_valid)}
+                 "valid": part.is_valid()}
         if spec.outputs.stl:
-            mesh = write_stl(part.shape, out / "stl" / f"{part.label}.stl", spec.outputs.mesh_tolerance_mm)
+            mesh = write_stl(part.shape, out / "stl" / f"{part.label}.stl", spec.outputs.mesh_tolerance_mm,
+                             part.prism)
             entry |= {"file": f"stl/{part.label}.stl", "triangles": len(mesh.faces),
                       "mesher": mesh.metadata["mesher"], "watertight": mesh.metadata["watertight"],
                       "bodies": mesh.metadata["bodies"], "bodies_watertight": mesh.metadata["bodies_watertight"]}

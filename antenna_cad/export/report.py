@@ -139,7 +139,7 @@ def _pictures(model) -> tuple[bytes, dict[str, str], int]:
     for p in parts[1:]:
         bb.add(p.shape.bounding_box())
     tol = max(bb.diagonal / PICTURE_FACETS, 0.05)
-    meshes = list(zip(picture_meshes([p.shape for p in parts], tol), [colour[p.material.name] for p in parts]))
+    meshes = list(zip(picture_meshes([p.shape for p in parts], tol, [p.prism for p in parts]), [colour[p.material.name] for p in parts]))
     return assembly_png(meshes), colour, len(parts)
 
 

@@ -55,7 +55,7 @@ def _imports() -> float:
 
 
 def _peak_mb(who: str = "self") -> float:
-    """Peak RSS of this process, or (``children``) of its largest child (the STEP writer)."""
+    """Peak RSS of this process, or (``children``) of its largest child (STEP or template writer)."""
     import resource
     return resource.getrusage(resource.RUSAGE_CHILDREN if who == "children" else resource.RUSAGE_SELF).ru_maxrss / 1024.0
 
@@ -271,8 +271,9 @@ def _markdown(results: dict) -> str:
              f"{m['date']}; commit {m['commit']}; load average at start {m['load_average_start']:.2f}.",
              f"Command: `PYTHONPATH=. python benchmarks/run.py {' '.join(results['argv'])}`. "
              "Seconds after imports, median of the runs in one process; import and peak RSS per fresh interpreter.",
-             "`step` is the wait for the STEP file, written by a child process beside the later stages; "
-             "`cpu` is CPU seconds of the build (process and children), `child MB` the STEP writer's peak.",
+             "`step`, `templates`: the waits for the STEP file and the templates, written by child processes "
+             "beside STL, cut list and report; `cpu`: CPU seconds of the build (process and children); "
+             "`child MB`: the largest child's peak RSS.",
              "", "| recipe | " + " | ".join(stages) + " | total | cpu | import | peak MB | child MB | slowest |",
              "|---|" + "---:|" * (len(stages) + 5) + "---|"]
     for name, r in results["recipes"].items():

@@ -81,6 +81,7 @@ def test_slotted_plate_mesh_matches_its_brep():
     assert abs(ours.volume - solid.volume) <= 1e-3 * ours.area * TOL     # vertices on the exact arcs
     assert abs(occt.volume - solid.volume) <= ours.area * TOL
     np.testing.assert_allclose(ours.bounds, _box(solid), atol=1e-9)
+    assert abs(prism.volume_mm3() / solid.volume - 1) < 1e-9
     again = mesh_prism(prism, TOL)
     assert np.array_equal(again.vertices, ours.vertices) and np.array_equal(again.faces, ours.faces)
 
@@ -105,7 +106,9 @@ def test_ring_mesh_matches_its_brep(r_in, axis_y):
     r_out = r_in + 60.0
     solid = annulus_solid(r_in, r_out, -5.0, 5.0)
     solid = solid.rotate(Axis.X, -90) if axis_y else solid
-    mesh = mesh_prism(RingPrism(r_in, r_out, -5.0, 5.0, axis_y), TOL)
+    ring = RingPrism(r_in, r_out, -5.0, 5.0, axis_y)
+    mesh = mesh_prism(ring, TOL)
+    assert abs(ring.volume_mm3() / solid.volume - 1) < 1e-9
     assert mesh.is_watertight and mesh.is_winding_consistent
     assert 0 < solid.volume - mesh.volume <= mesh.area * TOL       # inscribed polygons, within the chord
     box = _box(solid)
@@ -122,25 +125,25 @@ def _box_model():
 
 
 def test_step_from_the_child_is_byte_identical(tmp_path):
-    from antenna_cad.export.step import start_step, write_step
+    from antenna_cad.export.forked import Job
+    from antenna_cad.export.step import write_step
     model = _box_model()
     write_step(model, "x", tmp_path / "here.step")
-    finish = start_step(model, "x", tmp_path / "child.step")
+    job = Job(write_step, (model, "x", tmp_path / "child.step"), [tmp_path / "child.step"])
     assert (tmp_path / "child.step").exists()           # listed before it is written
-    finish(True)
+    assert job.finish() is None
     assert (tmp_path / "child.step").read_bytes() == (tmp_path / "here.step").read_bytes()
 
 
-def test_step_child_errors_reach_the_parent(tmp_path, monkeypatch):
-    from antenna_cad.export import step
-    from antenna_cad.export.step import start_step
+def test_child_values_and_errors_reach_the_parent(tmp_path):
+    from antenna_cad.export.forked import Job
 
-    def fails(*_):
+    def fails():
         raise ValueError("no STEP today")
-    monkeypatch.setattr(step, "write_step", fails)         # the forked child inherits it
-    finish = start_step(_box_model(), "x", tmp_path / "x.step")
-    with pytest.raises(RuntimeError, match="x.step: ValueError: no STEP today"):
-        finish(True)
-    monkeypatch.undo()
-    finish = start_step(_box_model(), "x", tmp_path / "y.step")
-    finish(False)                                        # stopped: killed and reaped, no error
+    assert Job(lambda a, b: {"sum": a + b}, (2, 3)).finish() == {"sum": 5}
+    with pytest.raises(RuntimeError, match="ValueError: no STEP today"):
+        Job(fails, ()).finish()
+    with pytest.raises(OSError) as err:                  # kept an OSError: the build's one-line OutputError
+        Job((tmp_path / "absent" / "f").write_text, ("x",)).finish()
+    assert err.value.errno == 2
+    Job(__import__("time").sleep, (30,)).finish(wait=False)        # stopped: killed and reaped at once

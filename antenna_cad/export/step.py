@@ -1,17 +1,8 @@
-"""STEP assembly writer: one labelled product per part, millimetres, fixed timestamp.
-
-OCCT's STEP transfer is single-threaded and the slowest stage of the large slot arrays (~1.5 ms a
-slot), so :func:`start_step` runs :func:`write_step` in a forked child while the build goes on with
-STL, templates and report on the other core (issue 16); the file's bytes are the same either way.
-"""
+"""STEP assembly writer: one labelled product per part, millimetres, fixed timestamp."""
 
 from __future__ import annotations
 
-import ctypes
-import os
 import re
-import signal
-from collections.abc import Callable
 from pathlib import Path
 
 from build123d import Compound, Unit, export_step
@@ -34,48 +25,6 @@ def write_step(model: Model, name: str, path: Path) -> None:
                        timestamp=STEP_TIMESTAMP, write_pcurves=model.step_pcurves):
         raise RuntimeError(f"STEP export failed: {path}")
     path.write_text(snap_near_zero(_renumber_occurrences(path.read_text())))
-
-
-def start_step(model: Model, name: str, path: Path) -> Callable[[bool], None]:
-    """Begin :func:`write_step` in a forked child (in this process where there is no fork); returns
-    ``finish(wait)``: wait for the file (raising the child's error) or, with ``wait=False``, stop it.
-    The child dies with its parent (Linux PR_SET_PDEATHSIG) and on Ctrl-C, like the parent."""
-    if not hasattr(os, "fork"):
-        write_step(model, name, path)
-        return lambda wait: None
-    path.touch()                                   # listed from the start (the report lists the files)
-    read_fd, write_fd = os.pipe()
-    pid = os.fork()
-    if pid == 0:                                   # the child: write, report, exit without cleanup
-        code = 0
-        try:
-            os.close(read_fd)
-            signal.set_wakeup_fd(-1)
-            signal.signal(signal.SIGINT, signal.SIG_DFL)
-            _die_with_parent()
-            write_step(model, name, path)
-        except BaseException as exc:              # noqa: BLE001 — everything goes back to the parent
-            code = 1
-            os.write(write_fd, f"{type(exc).__name__}: {exc}".encode()[:4000])
-        os._exit(code)
-    os.close(write_fd)
-
-    def finish(wait: bool) -> None:
-        if not wait:
-            os.kill(pid, signal.SIGKILL)
-        with os.fdopen(read_fd, "rb") as pipe:
-            message = pipe.read().decode(errors="replace")
-        _, status = os.waitpid(pid, 0)
-        if wait and status:
-            raise RuntimeError(f"STEP export failed: {path.name}: {message or f'child status {status}'}")
-    return finish
-
-
-def _die_with_parent() -> None:
-    try:
-        ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)       # PR_SET_PDEATHSIG = 1
-    except (OSError, AttributeError):
-        pass
 
 
 def _labelled(label: str, solids) -> Compound:

@@ -137,10 +137,12 @@ def child_series(name: str) -> dict:
     _imports()
     rows = []
     if name == "shells_x_sheets":
+        _lift_limits()
         for layers, diameter in LUNEBURG_SERIES:
             seconds, items = _build(_luneburg_spec(layers, diameter, templates=False))
             rows.append({"value": f"{layers} layers, D {diameter:.0f} mm", "items": items["pieces"],
                          "seconds": sum(seconds.values()), "stages": seconds})
+            print(json.dumps(rows[-1]), file=sys.stderr, flush=True)      # progress: long rows
         return {"item": "pieces", "rows": rows}
     recipe, field, values, item, outputs, fixed = SERIES[name]
     for value in values:
@@ -180,12 +182,17 @@ def child_naive(guides: int) -> dict:
     return {"rows": ([extrapolated] if guides else []) + rows}
 
 
-def child_large() -> dict:
-    """The D/λ = 100 layup: ~30,000 ring pieces, above the build's hard limits (antenna_cad.limits,
-    a guard against unit slips), which are lifted here: this measures speed, not the guard."""
-    _imports()
+def _lift_limits() -> None:
+    """The large layups (up to ~30,000 ring pieces) are above the build's hard limits
+    (antenna_cad.limits, a guard against unit slips), lifted here: this measures speed, not the guard."""
     from antenna_cad import limits
     limits.LIMITS = {k: limits.Limit(v.what, v.field, v.soft, 10**7) for k, v in limits.LIMITS.items()}
+
+
+def child_large() -> dict:
+    """The D/λ = 100 layup with its templates (limits lifted, :func:`_lift_limits`)."""
+    _imports()
+    _lift_limits()
     cpu_start = _cpu_s()
     seconds, items = _build(_luneburg_spec(20, 100 * 299.792458 / 10.0, templates=True))
     return {"stages": seconds, "items": items, "peak_mb": _peak_mb(), "child_peak_mb": _peak_mb("children"),

@@ -118,7 +118,9 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
     """Build every artifact of ``spec`` into ``out_root/<name>/`` atomically (``plan``: from
     :func:`prepare`, when the caller has it already). The writers (CAD, DXF, PDF, plots) are imported
     here, not with the module, so ``validate`` stays free of them."""
+    from antenna_cad.export.forked import Job
     from antenna_cad.export.report import write_report
+    from antenna_cad.export.step import write_step
     from antenna_cad.fabrication.cutlist import cutlist_csv
     report = progress or (lambda stage, fraction: None)
     seconds: dict[str, float] = {}
@@ -151,10 +153,16 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
         final = out_root / spec.name
         tmp = out_root / f".{spec.name}.tmp-{os.getpid()}"
         IN_PROGRESS.add(tmp)
+        jobs: dict[str, Job] = {}
         try:
             tmp.mkdir()
+            if spec.outputs.step:      # STEP and templates: child processes beside STL, cut list, report
+                step_file = tmp / f"{spec.name}.step"
+                jobs["step"] = Job(write_step, (model, spec.name, step_file), [step_file])
+            if spec.outputs.templates and p.fab.drawings:
+                jobs["templates"] = Job(_write_templates, (spec, p.fab, tmp), _template_files(spec, p.fab, tmp))
+            stage("step")
             parts = _write_solids(spec, model, tmp, stage)
-            templates = _write_templates(spec, p.fab, tmp)
             stage("templates")
             (tmp / "cutlist.csv").write_text(cutlist_csv(list(p.fab.rows), p.fab.totals_kg), encoding="utf-8")
             for file_name, text in (p.fab.files | verification.files).items():
@@ -163,6 +171,12 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
             if spec.outputs.report:
                 write_report(tmp, spec, figures, checks, verification, model, p.fab, parts)
             stage("report")
+            values = {}
+            for name in list(jobs):                   # the waits: what each child adds to the build
+                values[name] = jobs.pop(name).finish()
+                seconds[name] += time.perf_counter() - clock
+                clock = time.perf_counter()
+            templates = values.get("templates", [])
             _write_manifest(spec, tmp, figures, checks, parts, p.layup, p.fab, templates, verification)
             stage("manifest")
             _swap_into_place(tmp, final)
@@ -170,6 +184,8 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
             raise OutputError(f"{out_root}: writing the build failed ({exc.strerror or exc}); "
                               "the previous build is untouched") from None
         finally:
+            for job in jobs.values():
+                job.finish(wait=False)
             shutil.rmtree(tmp, ignore_errors=True)
             IN_PROGRESS.discard(tmp)
     files = sorted(q.relative_to(final).as_posix() for q in final.rglob("*") if q.is_file())
@@ -208,19 +224,16 @@ def _remove_leftovers(out_root: Path, name: str) -> None:
 
 def _write_solids(spec, model, out: Path, stage) -> list[dict]:
     from antenna_cad.export.mesh import write_stl
-    from antenna_cad.export.step import write_step
-    if spec.outputs.step:
-        write_step(model, spec.name, out / f"{spec.name}.step")
-    stage("step")
     parts = []
     if spec.outputs.stl:
         (out / "stl").mkdir()
     for part in sorted(model.parts, key=lambda p: p.label):
         entry = {"label": part.label, "material": part.material.name, "role": part.role,
                  "volume_mm3": part.volume_mm3, "solids": len(part.shape.solids()),
-                 "valid": bool(part.shape.is_valid)}
+                 "valid": part.is_valid()}
         if spec.outputs.stl:
-            mesh = write_stl(part.shape, out / "stl" / f"{part.label}.stl", spec.outputs.mesh_tolerance_mm)
+            mesh = write_stl(part.shape, out / "stl" / f"{part.label}.stl", spec.outputs.mesh_tolerance_mm,
+                             part.prism)
             entry |= {"file": f"stl/{part.label}.stl", "triangles": len(mesh.faces),
                       "mesher": mesh.metadata["mesher"], "watertight": mesh.metadata["watertight"],
                       "bodies": mesh.metadata["bodies"], "bodies_watertight": mesh.metadata["bodies_watertight"]}
@@ -229,14 +242,19 @@ def _write_solids(spec, model, out: Path, stage) -> list[dict]:
     return parts
 
 
+def _template_files(spec, fab, out: Path) -> list[Path]:
+    """The files :func:`_write_templates` writes."""
+    folder = out / "templates"
+    return ([folder / f"{d.label}.{ext}" for d in fab.drawings for ext in ("dxf", "svg")]
+            + [folder / f"{spec.name}-templates.pdf"])
+
+
 def _write_templates(spec, fab, out: Path) -> list[dict]:
     """DXF + SVG per drawing and one tiled PDF; returns their manifest entries (files, the CUT
     outline's bounding box, the SVG's size) that ``make-lens check`` measures again."""
-    if not spec.outputs.templates or not fab.drawings:
-        return []
     from antenna_cad.fabrication.templates import dxf_document, write_dxf, write_svg, write_tiled_pdf
     folder = out / "templates"
-    folder.mkdir()
+    folder.mkdir(exist_ok=True)
     entries = []
     for drawing in fab.drawings:
         write_dxf(dxf_document(drawing), folder / f"{drawing.label}.dxf")

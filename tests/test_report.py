@@ -11,7 +11,7 @@ from pathlib import Path
 import pypdf
 import pytest
 
-from antenna_cad.export.beside import SERIAL_ENV, Beside
+from antenna_cad.export.forked import SERIAL_ENV, Job
 from antenna_cad.pipeline import build
 from antenna_cad.registry import adapter
 from antenna_cad.spec import load_spec
@@ -105,23 +105,22 @@ def test_report_pdf_drawn_beside_equals_serial(reports, tmp_path, monkeypatch):
         assert (serial.out_dir / file).read_bytes() == (reports["ptfe-lens-120mm"].out_dir / file).read_bytes()
 
 
-def test_beside_runs_in_a_child_and_hands_back_its_error(tmp_path, monkeypatch):
+def test_job_runs_in_a_child_and_hands_back_its_error(tmp_path, monkeypatch):
     monkeypatch.delenv(SERIAL_ENV, raising=False)
     marker = tmp_path / "pid"
-    done = Beside(lambda: marker.write_text(str(os.getpid())))
-    done.join()
+    Job(lambda: marker.write_text(str(os.getpid())), ()).finish()
     assert int(marker.read_text()) != os.getpid()                    # written by another process
 
     def fails():
         raise OSError(28, "No space left on device")
     with pytest.raises(OSError, match="No space left"):
-        Beside(fails).join()
+        Job(fails, ()).finish()
 
 
-def test_beside_is_serial_off_the_main_thread(tmp_path, monkeypatch):
+def test_job_is_in_line_off_the_main_thread(tmp_path, monkeypatch):
     monkeypatch.delenv(SERIAL_ENV, raising=False)
     marker = tmp_path / "pid"
-    worker = threading.Thread(target=lambda: Beside(lambda: marker.write_text(str(os.getpid()))).join())
+    worker = threading.Thread(target=lambda: Job(lambda: marker.write_text(str(os.getpid())), ()).finish())
     worker.start()
     worker.join()
     assert int(marker.read_text()) == os.getpid()

@@ -8,6 +8,13 @@ machined bifocal lens), so a shape it does not close is meshed again with Watson
 is recorded in the mesh's metadata. Each solid's triangulation is written by OCCT's own STL
 writer and read back by trimesh (numpy, no per-node Python loop), vertices merged and degenerate
 faces dropped, so the STL is watertight for trimesh/manifold.
+
+A slotted plate (:class:`~antenna_cad.geometry.model.SlottedPrism`, the Ka lids: 3,200 slots) or
+a flat ring (:class:`~antenna_cad.geometry.model.RingPrism`, the Luneburg layups: thousands) is
+meshed from its exact description instead (:func:`mesh_prism`): arcs divided by the same chord and
+angle criteria as BRepMesh, vertices on the exact curves, faces triangulated in numpy (rings) or
+once by manifold3d (plates), walls as quads — closed by construction and many times faster than
+BRepMesh on the B-rep (issue 16).
 """
 
 from __future__ import annotations
@@ -15,6 +22,9 @@ from __future__ import annotations
 import tempfile
 from pathlib import Path
 
+import math
+
+import manifold3d
 import numpy as np
 import trimesh
 from build123d import Compound, Shape
@@ -28,6 +38,8 @@ from OCP.TopAbs import TopAbs_FACE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS
+
+from antenna_cad.geometry.model import RingPrism, SlottedPrism
 
 ANGULAR_DEFLECTION_RAD = 0.3
 MESHERS = {"delabella": IMeshTools_MeshAlgoType_Delabella, "watson": IMeshTools_MeshAlgoType_Watson}
@@ -51,16 +63,98 @@ def mesh_shape(shape: Shape, tolerance_mm: float, meshers: tuple[str, ...] = tup
     raise ValueError("mesh_shape: no mesher given")
 
 
-def picture_meshes(shapes: list[Shape], tolerance_mm: float) -> list[trimesh.Trimesh]:
+def picture_meshes(shapes: list[Shape], tolerance_mm: float,
+                   prisms: list[SlottedPrism | RingPrism | None] | None = None) -> list[trimesh.Trimesh]:
     """Unmerged triangle soups of many shapes, meshed together in one pass (for pictures: no
-    watertightness needed, no per-part meshing call)."""
-    compound = Compound(shapes)                    # a plain wrapper: the parts are not re-parented
-    for name in MESHERS:
-        if _triangulate(compound, tolerance_mm, name):
-            break
+    watertightness needed, no per-part meshing call); a shape with its ``prisms`` entry is meshed
+    from that (:func:`mesh_prism`)."""
+    prisms = prisms or [None] * len(shapes)
+    brep = [shape for shape, prism in zip(shapes, prisms) if prism is None]
+    if brep:
+        compound = Compound(brep)                  # a plain wrapper: the parts are not re-parented
+        for name in MESHERS:
+            if _triangulate(compound, tolerance_mm, name):
+                break
     with tempfile.TemporaryDirectory(prefix="antenna_cad-mesh-") as scratch:
         path = str(Path(scratch) / "part.stl")
-        return [_stl_read_back(shape.wrapped, path) for shape in shapes]
+        return [mesh_prism(prism, tolerance_mm, picture=True) if prism is not None
+                else _stl_read_back(shape.wrapped, path) for shape, prism in zip(shapes, prisms)]
+
+
+def mesh_prism(prism: SlottedPrism | RingPrism, tolerance_mm: float, picture: bool = False) -> trimesh.Trimesh:
+    """Closed triangle mesh of a slotted plate or a ring (:func:`_ring_mesh`); for a ``picture`` the
+    slot ends (a pixel wide there) by the chord tolerance alone, without the angular deflection."""
+    if isinstance(prism, RingPrism):
+        vertices, faces = _ring_mesh(prism, tolerance_mm)
+    else:
+        vertices, faces = _plate_mesh(prism, tolerance_mm, math.pi if picture else ANGULAR_DEFLECTION_RAD)
+    mesh = trimesh.Trimesh(vertices, faces, process=False)
+    mesh.metadata |= {"mesher": "prism", "bodies": 1}    # closed by construction: write_stl checks it
+    return mesh
+
+
+def _ring_mesh(ring: RingPrism, tolerance_mm: float) -> tuple[np.ndarray, np.ndarray]:
+    """Both circles in the same n equal chords (n for the outer radius, the finer one), starting on
+    +x like the revolve's seam; a disc's faces fan from its centre."""
+    n = 2 * _arc_chords(ring.r_outer_mm, tolerance_mm)
+    t = 2 * np.pi * np.arange(n) / n
+    circle = np.column_stack([np.cos(t), np.sin(t)])
+    j, k = np.arange(n), (np.arange(n) + 1) % n
+    z0, z1 = ring.z0_mm, ring.z1_mm
+    if ring.r_inner_mm > 0:
+        rings = [ring.r_outer_mm * circle, ring.r_inner_mm * circle]      # o0 0..n-1, i0 n.., o1 2n.., i1 3n..
+        vertices = np.vstack([np.column_stack([p, np.full(n, z)]) for z in (z0, z1) for p in rings])
+        o0, i0, o1, i1 = j, n + j, 2 * n + j, 3 * n + j
+        ok0, ik0, ok1, ik1 = k, n + k, 2 * n + k, 3 * n + k
+        faces = np.vstack([np.column_stack([o1, ok1, ik1]), np.column_stack([o1, ik1, i1]),       # top
+                           np.column_stack([o0, ik0, ok0]), np.column_stack([o0, i0, ik0]),       # bottom
+                           np.column_stack([o0, ok0, ok1]), np.column_stack([o0, ok1, o1]),       # outer wall
+                           np.column_stack([i0, ik1, ik0]), np.column_stack([i0, i1, ik1])])      # inner wall
+    else:
+        rim = ring.r_outer_mm * circle
+        vertices = np.vstack([np.column_stack([rim, np.full(n, z0)]), np.column_stack([rim, np.full(n, z1)]),
+                              [[0.0, 0.0, z0], [0.0, 0.0, z1]]])
+        c0, c1 = np.full(n, 2 * n), np.full(n, 2 * n + 1)
+        faces = np.vstack([np.column_stack([c1, n + j, n + k]), np.column_stack([c0, k, j]),
+                           np.column_stack([j, k, n + k]), np.column_stack([j, n + k, n + j])])
+    if ring.axis_y:                                  # turned −90° about x: (x, y, z) → (x, z, −y)
+        vertices = np.column_stack([vertices[:, 0], vertices[:, 2], -vertices[:, 1]])
+    return vertices, faces
+
+
+def _plate_mesh(prism: SlottedPrism, tolerance_mm: float, angle_rad: float) -> tuple[np.ndarray, np.ndarray]:
+    """Closed triangle mesh of a slotted plate: each semicircular slot end in n equal chords, n the
+    least meeting both the chord deviation ``tolerance_mm`` and the angular deflection (as BRepMesh
+    divides a circle), vertices on the exact arcs; the face triangulated by manifold3d (outer ring
+    counter-clockwise, slots clockwise), bottom reversed, one quad (two triangles) per ring edge."""
+    rings = [np.asarray(prism.outer_mm, float)]
+    if len(prism.slots):
+        c, u, s, r = prism.cores()
+        n = np.column_stack([-u[:, 1], u[:, 0]])
+        k = _arc_chords(float(r.min()), tolerance_mm, angle_rad)
+        theta = np.pi * np.arange(k + 1) / k
+        end = c + u * s[:, None]                   # +u end: from +n through +u to −n (clockwise)
+        start = c - u * s[:, None]                 # −u end: from −n through −u back towards +n
+        arc = lambda centre, a, b, t: centre[:, None, :] + r[:, None, None] * (
+            np.cos(t)[None, :, None] * a[:, None, :] + np.sin(t)[None, :, None] * b[:, None, :])
+        slot_rings = np.concatenate([arc(end, n, u, theta), arc(start, -n, -u, theta)], axis=1)
+        rings += list(slot_rings)
+    tri = manifold3d.triangulate(rings)
+    flat = np.concatenate(rings)
+    m = len(flat)
+    vertices = np.vstack([np.column_stack([flat, np.full(m, prism.z0_mm)]),
+                          np.column_stack([flat, np.full(m, prism.z1_mm)])])
+    first = np.cumsum([0] + [len(ring) for ring in rings[:-1]])
+    a = np.concatenate([f + np.arange(len(ring)) for f, ring in zip(first, rings)])
+    b = np.concatenate([f + (np.arange(len(ring)) + 1) % len(ring) for f, ring in zip(first, rings)])
+    faces = np.vstack([tri + m, tri[:, ::-1], np.column_stack([a, b, b + m]), np.column_stack([a, b + m, a + m])])
+    return vertices, faces
+
+
+def _arc_chords(radius_mm: float, tolerance_mm: float, angle_rad: float = ANGULAR_DEFLECTION_RAD) -> int:
+    """Chords per semicircle: sagitta ≤ tolerance and turning angle ≤ ``angle_rad``."""
+    half = math.acos(max(1.0 - tolerance_mm / radius_mm, -1.0))
+    return max(2, math.ceil(math.pi / angle_rad - 1e-9), math.ceil(math.pi / (2 * half) - 1e-9))
 
 
 def _triangulate(shape: Shape, tolerance_mm: float, mesher: str) -> bool:
@@ -110,13 +204,15 @@ def _stl_read_back(shape, path: str) -> trimesh.Trimesh:
 SNAP_MM = 1e-9       # coordinates below this are written as 0 (run-to-run noise of OCCT booleans)
 
 
-def write_stl(shape: Shape, path: Path, tolerance_mm: float) -> trimesh.Trimesh:
-    """Binary STL of ``shape``; near-zero coordinates snapped to 0 so the bytes are reproducible.
+def write_stl(shape: Shape, path: Path, tolerance_mm: float, prism: SlottedPrism | RingPrism | None = None) -> trimesh.Trimesh:
+    """Binary STL of ``shape`` (meshed from ``prism`` when given, :func:`mesh_prism`); near-zero
+    coordinates snapped to 0 so the bytes are reproducible.
     ``metadata["watertight"]``: the file as any STL reader sees it (vertices merged by position)
     is a closed 2-manifold, False when bodies touch along edges (4 faces on an edge) even though
     each body (``bodies_watertight``) is closed."""
-    mesh = mesh_shape(shape, tolerance_mm)
+    mesh = mesh_prism(prism, tolerance_mm) if prism is not None else mesh_shape(shape, tolerance_mm)
     mesh.vertices = np.where(np.abs(mesh.vertices) < SNAP_MM, 0.0, mesh.vertices)
     mesh.metadata["watertight"] = bool(trimesh.Trimesh(mesh.vertices, mesh.faces).is_watertight)
+    mesh.metadata.setdefault("bodies_watertight", mesh.metadata["watertight"])     # one body (a prism)
     path.write_bytes(trimesh.exchange.stl.export_stl(mesh))
     return mesh

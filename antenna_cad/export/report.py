@@ -16,7 +16,7 @@ from matplotlib import colormaps
 from matplotlib.colors import to_hex
 
 from antenna_cad import __version__
-from antenna_cad.export.beside import Beside
+from antenna_cad.export.forked import Job
 from antenna_cad.export.mesh import picture_meshes
 from antenna_cad.export.page_parts import page as html_page, table as _table
 from antenna_cad.export.plots import assembly_png, plot_svg
@@ -67,14 +67,16 @@ def report_content(out: Path, spec, figures, checks, verification, model, fab, p
 
 def write_report(out: Path, spec, figures, checks, verification, model, fab, parts) -> None:
     """Write report.html and report.pdf of one build into folder ``out``: the PDF in a child process
-    beside the page (:mod:`antenna_cad.export.beside`; same bytes as one after the other)."""
+    beside the page (:mod:`antenna_cad.export.forked`; same bytes as one after the other)."""
     from antenna_cad.export.report_pdf import write_report_pdf
     content = report_content(out, spec, figures, checks, verification, model, fab, parts)
-    pdf = Beside(lambda: write_report_pdf(out / REPORT_PDF, content))
+    pdf = Job(write_report_pdf, (out / REPORT_PDF, content))
     try:
         write_report_html(out / REPORT_HTML, content)
-    finally:
-        pdf.join()
+    except BaseException:
+        pdf.finish(wait=False)
+        raise
+    pdf.finish()
 
 
 def write_report_html(path: Path, r: ReportContent) -> None:
@@ -144,7 +146,7 @@ def _pictures(model) -> tuple[bytes, dict[str, str], int]:
     for p in parts[1:]:
         bb.add(p.shape.bounding_box())
     tol = max(bb.diagonal / PICTURE_FACETS, 0.05)
-    meshes = list(zip(picture_meshes([p.shape for p in parts], tol), [colour[p.material.name] for p in parts]))
+    meshes = list(zip(picture_meshes([p.shape for p in parts], tol, [p.prism for p in parts]), [colour[p.material.name] for p in parts]))
     return assembly_png(meshes), colour, len(parts)
 
 

@@ -13,7 +13,7 @@ import math
 from build123d import Axis, Edge, Plane, Pos, Solid, extrude
 
 from antenna_cad.geometry.layup import foot_sketch
-from antenna_cad.geometry.model import Model, ModelPart, relative_volume_check
+from antenna_cad.geometry.model import Model, ModelPart, RingPrism, relative_volume_check
 from antenna_cad.geometry.profiles import polyline_edges, revolve_closed
 from antenna_cad.materials import Material
 from antenna_cad.synthesis.checks import Check
@@ -124,7 +124,8 @@ def build_layup_model(plan, base: Material) -> Model:
             solid = annulus_solid(r.r_inner_mm, r.r_outer_mm, s.z_min_mm, s.z_max_mm)
             if plan.shape == "cylinder":
                 solid = solid.rotate(Axis.X, -90)
-            parts.append(ModelPart(r.label, r.material, "fabricated", solid))
+            ring = RingPrism(r.r_inner_mm, r.r_outer_mm, s.z_min_mm, s.z_max_mm, plan.shape == "cylinder")
+            parts.append(ModelPart(r.label, r.material, "fabricated", solid, ring))
         if foot is not None:
             parts.append(ModelPart(f"{s.label}-foot", plan.stand_material, "fabricated",
                                    Pos(0, 0, s.z_min_mm) * extrude(foot, s.thickness_mm)))

@@ -22,7 +22,7 @@ from OCP.GC import GC_MakeArcOfCircle
 from OCP.gp import gp_Pnt, gp_Vec
 from shapely.geometry import Polygon
 
-from antenna_cad.geometry.model import Model, ModelPart
+from antenna_cad.geometry.model import Model, ModelPart, SlottedPrism
 from antenna_cad.geometry.slot_layout import (GuideExtent, PartSizes, Stack, clip_curve, core_and_load_rings,
                                               coupling_edge, end_overlap_mm, guide_extent, horn_checks,
                                               horn_outlines, layer_indices, mirror_back_sign, plate_polygon)
@@ -115,12 +115,15 @@ def _guide_parts(design: SlotArrayDesign, g: int, idx: np.ndarray, ext: GuideExt
     holes = [slot_wire(float(s.x_mm[i]), float(s.y_mm[i]), float(s.length_mm[i]), float(s.width_mm[i]),
                        float(s.angle_rad[i]), t + h) for i in idx]
     lid = slotted_plate(gx - half, y0, gx + half, ye, t + h, t, holes)
+    outline = np.array([(gx - half, y0), (gx + half, y0), (gx + half, ye), (gx - half, ye)])
+    prism = SlottedPrism(outline, np.column_stack([s.x_mm[idx], s.y_mm[idx], s.length_mm[idx], s.width_mm[idx],
+                                                   s.angle_rad[idx]]).astype(float), t + h, 2 * t + h)
     eps = 0.01 * t
     cw = a / 2 if half > a / 2 else half + eps             # no side walls: the cavity spans the width
     box = Solid.make_box(2 * half, ye - y0, t + h).moved(Location((gx - half, y0, 0.0)))
     cavity = Solid.make_box(2 * cw, yl - y0 + eps, h + eps).moved(Location((gx - cw, y0 - eps, t)))
     parts = [ModelPart(f"waveguide-{g:02d}", metal, "fabricated", box.cut(cavity)),
-             ModelPart(f"top-{g:02d}", metal, "fabricated", lid)]
+             ModelPart(f"top-{g:02d}", metal, "fabricated", lid, prism)]
     core, load = core_and_load_rings(a, y0, y1, yl)
     shift = lambda ring: Polygon([(gx + x, y) for x, y in ring])
     parts.append(ModelPart(f"core-{g:02d}", dielectric, "fabricated", _prism(shift(core), t, t + h)))

@@ -1,14 +1,28 @@
 """Report block of the slot array: σ against field angle for this design and the reference formers
-(seed-003 §3.8, Fig. 3.15), with the σ(80°) values next to the thesis's."""
+(seed-003 §3.8, Fig. 3.15), with the σ(80°) values next to the thesis's.
+
+The reference formers' curves do not depend on the spec (4–8 s of ray tracing, issue 16): they are
+kept in ``ANTENNA_CAD_CACHE`` (default ``$XDG_CACHE_HOME`` or ``~/.cache``, ``/antenna_cad``) under
+the SHA-256 of the synthesis sources and the numpy/scipy versions, so any change to the formers or
+the σ optimiser computes them afresh; the values are stored exactly (JSON floats round-trip).
+"""
 
 from __future__ import annotations
 
+import hashlib
+import json
+import os
+from pathlib import Path
+
 import numpy as np
+import scipy
 
 from antenna_cad.synthesis.slot_array import SlotArrayDesign
-from antenna_cad.synthesis.slot_array.fov import FOV_DEG, THESIS_SIGMA_80, field_curve, reference_curves
+from antenna_cad.synthesis.slot_array.fov import FOV_DEG, THESIS_SIGMA_80, FieldCurve, field_curve, reference_curves
 from antenna_cad.synthesis.slot_array.optimise import FREE, OPTIMISED
 from antenna_cad.verification import Plot, Series, Table
+
+SYNTHESIS = Path(__file__).resolve().parents[1] / "synthesis"
 
 
 def fov_block(design: SlotArrayDesign) -> tuple[Plot, Table, dict[str, float]]:
@@ -16,7 +30,7 @@ def fov_block(design: SlotArrayDesign) -> tuple[Plot, Table, dict[str, float]]:
     s = design.slots
     half = float(np.abs(s.guide_x_mm).max() + design.guide_width_mm / 2)
     own = field_curve(design.beamformer, half, f"this design ({design.beamformer.type})")
-    curves = [own, *reference_curves()]
+    curves = [own, *cached_reference_curves()]
     series = tuple(Series(c.name, c.angle_deg, 1e4 * c.sigma, "line" if k else "points")
                    for k, c in enumerate(curves))
     searched = {name: ", ".join(f"{k} {OPTIMISED[name][k]:.4g}" for k in FREE[name].names) for name in OPTIMISED}
@@ -38,3 +52,38 @@ def fov_block(design: SlotArrayDesign) -> tuple[Plot, Table, dict[str, float]]:
     if np.isfinite(own.sigma_fov()):                      # NaN: rays miss before the edge of the field of view
         figures["sigma_fov80_design"] = own.sigma_fov()
     return plot, table, figures
+
+
+def cache_dir() -> Path:
+    base = os.environ.get("ANTENNA_CAD_CACHE") or Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache")
+    return Path(base) / "antenna_cad"
+
+
+def _sources_key() -> str:
+    digest = hashlib.sha256(f"{np.__version__} {scipy.__version__}".encode())
+    for path in sorted(SYNTHESIS.rglob("*.py")):
+        digest.update(path.relative_to(SYNTHESIS).as_posix().encode() + b"\0" + path.read_bytes())
+    return digest.hexdigest()[:32]
+
+
+def cached_reference_curves() -> tuple[FieldCurve, ...]:
+    """:func:`reference_curves`, read from the cache when the synthesis sources are unchanged
+    (an unreadable or unwritable cache only costs the computation)."""
+    path = cache_dir() / f"fov-reference-{_sources_key()}.json"
+    try:
+        rows = json.loads(path.read_text(encoding="utf-8"))
+        return tuple(FieldCurve(r["name"], np.array(r["angle_deg"], float), np.array(r["sigma"], float),
+                                float(r["aperture_mm"])) for r in rows)
+    except (OSError, ValueError, KeyError, TypeError):
+        pass
+    curves = reference_curves()
+    rows = [{"name": c.name, "angle_deg": c.angle_deg.tolist(), "sigma": c.sigma.tolist(),
+             "aperture_mm": c.aperture_mm} for c in curves]
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        part = path.with_name(f".{path.name}.{os.getpid()}.part")
+        part.write_text(json.dumps(rows), encoding="utf-8")
+        os.replace(part, path)
+    except OSError:
+        pass
+    return curves

@@ -1,0 +1,93 @@
+"""Writers run in a forked child beside the rest of the build (issue 16).
+
+OCCT's STEP transfer (~1.5 ms a slot) and the template writers (ezdxf, ~1 ms an entity) are
+single-threaded and independent of the STL, cut list and report writers, so the build forks them
+off and collects them before the manifest: two cores work at once, the bytes are the same as when
+written in line (the child runs the same function on a copy of the same memory). The files a child
+will write are created empty first, so the report lists them. A child dies with its parent (Linux
+PR_SET_PDEATHSIG) and on Ctrl-C; its error comes back as the parent's OSError (the same
+errno) or RuntimeError. The report draws report.pdf the same way beside report.html.
+
+A job runs in line (same bytes, one core) when ``ANTENNA_CAD_SERIAL=1``, on a one-core machine, without
+``os.fork``, or off the main thread: a build in a worker thread (a sweep's dask worker, whose workers
+already fill the cores) must not fork, or a lock held by another thread would be copied into the child.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import os
+import pickle
+import signal
+import threading
+from collections.abc import Callable, Iterable
+from pathlib import Path
+
+SERIAL_ENV = "ANTENNA_CAD_SERIAL"       # "1": every job in the caller's process (one core, or to compare bytes)
+
+
+def _in_line() -> bool:
+    return (os.environ.get(SERIAL_ENV) == "1" or (os.cpu_count() or 1) < 2 or not hasattr(os, "fork")
+            or threading.current_thread() is not threading.main_thread())
+
+
+class Job:
+    """A function running in a child process: :meth:`finish` waits for its value or stops it."""
+
+    def __init__(self, fn: Callable, args: tuple, placeholders: Iterable[Path] = ()):
+        self.name = getattr(fn, "__name__", "job")
+        for path in placeholders:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.touch()
+        if _in_line():
+            self.pid, self.value = None, fn(*args)
+            return
+        read_fd, write_fd = os.pipe()
+        self.pid = os.fork()
+        if self.pid == 0:
+            os.close(read_fd)
+            _run_child(fn, args, write_fd)
+        os.close(write_fd)
+        self.pipe = os.fdopen(read_fd, "rb")
+
+    def finish(self, wait: bool = True):
+        """The function's value (``wait``), or stop the child and return None."""
+        if self.pid is None:
+            return self.value if wait else None
+        if not wait:
+            os.kill(self.pid, signal.SIGKILL)
+        data = self.pipe.read()
+        self.pipe.close()
+        _, status = os.waitpid(self.pid, 0)
+        self.pid, self.value = None, None
+        if not wait:
+            return None
+        ok, value = pickle.loads(data) if data else (False, f"child ended with status {status}")
+        if not ok and isinstance(value, OSError):
+            raise value                             # the build turns it into its one-line OutputError
+        if not ok:
+            raise RuntimeError(f"{self.name} failed: {value}")
+        self.value = value
+        return value
+
+
+def _run_child(fn: Callable, args: tuple, write_fd: int) -> None:
+    """In the child: run, send (ok, value or message) back, exit without the parent's cleanup."""
+    code = 0
+    try:
+        signal.set_wakeup_fd(-1)
+        signal.signal(signal.SIGINT, signal.SIG_DFL)
+        try:
+            ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)     # PR_SET_PDEATHSIG = 1
+        except (OSError, AttributeError):
+            pass
+        payload = pickle.dumps((True, fn(*args)))
+    except BaseException as exc:                   # noqa: BLE001 — everything goes back to the parent
+        code = 1
+        payload = pickle.dumps((False, OSError(exc.errno, exc.strerror, exc.filename) if isinstance(exc, OSError)
+                                else f"{type(exc).__name__}: {exc}"[:4000]))
+    try:
+        with os.fdopen(write_fd, "wb") as pipe:
+            pipe.write(payload)
+    finally:
+        os._exit(code)

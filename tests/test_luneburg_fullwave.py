@@ -16,8 +16,8 @@ from antenna_cad.fullwave.sphere import C_MM_GHZ, aperture_gain_dbi, fine_shells
 from antenna_cad.kinds import luneburg_fullwave
 from antenna_cad.kinds.luneburg_fullwave import medium_parts
 from antenna_cad.raytrace.media import Staircase
-from antenna_cad.registry import adapter
-from antenna_cad.spec import parse_spec
+
+from tests.test_fullwave import _verify
 
 LAM = 30.0
 
@@ -32,12 +32,6 @@ def _sphere(diameter_mm=120.0, **verification):
             "verification": verification}
 
 
-def _verify(data):
-    spec = parse_spec(data)
-    kind = adapter(spec.kind)
-    design = kind.synthesize(spec)
-    layup, panels = kind.plan(spec, design)
-    return kind.verify(spec, design, layup, kind.fabricate(spec, design, layup, panels))
 
 
 def _note(v):

@@ -452,3 +452,17 @@ def assemble_former(kind: str, fo: Foci, surf: Surface, G: list, first0, guide0:
                        "interp_error": errors, "guide_half_width": float(G[-1].values[:, 0].max()), "T_curve": T,
                        "construction": (fo, surf, G)}
     return BeamFormer(kind, mirrors, lenses, foci, dirs, sig, sig / sc, sc, guide, locus, centre, eikonal, trace, params)
+
+
+def grid_then_bounded(objective, grid: np.ndarray, xatol: float, fail: DesignError) -> tuple[float, float]:
+    """(argument, value) of the least ``objective`` (§3.8): the best point of ``grid``, refined by a
+    bounded scalar search between its neighbours; ``fail`` when no grid point scores below 1 (no
+    march covers the aperture)."""
+    from scipy.optimize import minimize_scalar
+    scores = [objective(v) for v in grid]
+    k = int(np.argmin(scores))
+    if scores[k] >= 1.0:
+        raise fail
+    lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
+    res = minimize_scalar(objective, bounds=(lo, hi), method="bounded", options={"xatol": xatol})
+    return (float(res.x), float(res.fun)) if res.fun < scores[k] else (float(grid[k]), float(scores[k]))

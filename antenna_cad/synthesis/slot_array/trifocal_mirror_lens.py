@@ -99,7 +99,6 @@ def optimise_o1(*, f1, f_z: float, x_a: float, gamma_a: float, n: float, half_wi
     :func:`antenna_cad.synthesis.slot_array.fov.field_curve` on 5 field angles (1 where the march does not
     cover ``half_width``, a frozen segment misses its map by more than ``SMOOTH_TOL`` — a near-fold, where
     the eikonals would no longer hold to 1e-9 D — or the rays miss before 40°). Returns (z_O1, objective)."""
-    from scipy.optimize import minimize_scalar
 
     from antenna_cad.synthesis.slot_array.fov import field_curve
 
@@ -116,13 +115,7 @@ def optimise_o1(*, f1, f_z: float, x_a: float, gamma_a: float, n: float, half_wi
         value = field_curve(bf, half_width, n_angles=5).sigma_fov()
         return value if np.isfinite(value) else 1.0
 
-    grid = z_b + np.linspace(*window, 17)
-    scores = [objective(z) for z in grid]
-    k = int(np.argmin(scores))
-    if scores[k] >= 1.0:
-        raise DesignError(field_prefix + ".o1", f"no mirror vertex within z_B {window[0]:+g}…{window[1]:+g} D lets "
-                          f"the march cover |x| ≤ {half_width:.3g} D: change x_a, gamma_a_rad or the foci")
-    lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
-    res = minimize_scalar(objective, bounds=(lo, hi), method="bounded", options={"xatol": 1e-4})
-    return (float(res.x), float(res.fun)) if res.fun < scores[k] else (float(grid[k]), float(scores[k]))
+    fail = DesignError(field_prefix + ".o1", f"no mirror vertex within z_B {window[0]:+g}…{window[1]:+g} D lets "
+                       f"the march cover |x| ≤ {half_width:.3g} D: change x_a, gamma_a_rad or the foci")
+    return tr.grid_then_bounded(objective, z_b + np.linspace(*window, 17), 1e-4, fail)
 

@@ -105,13 +105,7 @@ def optimise_beta_c(*, f1, f_z: float, c, half_width: float, bounds_deg: tuple[f
             worst = max(worst, float(res.fun))
         return worst
 
-    grid = np.linspace(*bounds_deg, 31)
-    scores = [objective(b) for b in grid]
-    k = int(np.argmin(scores))
-    if scores[k] >= 1.0:
-        raise DesignError(field_prefix + ".beta_c_deg", f"no β_C in {bounds_deg[0]:g}–{bounds_deg[1]:g}° lets the "
-                          f"march cover |x| ≤ {half_width:.3g} D: change c or the foci")
-    lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
-    res = minimize_scalar(objective, bounds=(lo, hi), method="bounded", options={"xatol": 1e-3})
-    best = (float(res.x), float(res.fun)) if res.fun < scores[k] else (float(grid[k]), float(scores[k]))
+    fail = DesignError(field_prefix + ".beta_c_deg", f"no β_C in {bounds_deg[0]:g}–{bounds_deg[1]:g}° lets the "
+                       f"march cover |x| ≤ {half_width:.3g} D: change c or the foci")
+    best = tr.grid_then_bounded(objective, np.linspace(*bounds_deg, 31), 1e-3, fail)
     return math.radians(best[0]), best[1]

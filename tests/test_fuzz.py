@@ -7,6 +7,7 @@ with one line per problem naming its field (or the line of the YAML) — never a
 warning, a hang or another exit code.
 """
 
+import contextlib
 import json
 import os
 import tempfile
@@ -30,15 +31,22 @@ def _record(kind: str, allowed: tuple[str, ...], output: str, raw: bytes) -> Non
         assert LONG, f"{kind}: {output[-2000:]}\n--- spec ---\n{raw[:600]!r}"
 
 
-@FUZZ_SETTINGS
-@given(mutated_spec())
-def test_validate_never_crashes(raw: bytes):
+@contextlib.contextmanager
+def spec_file(raw: bytes):
+    """``raw`` written as fuzz.yaml alone in a fresh temporary folder (removed afterwards)."""
     with tempfile.TemporaryDirectory() as folder:
         spec = Path(folder) / "fuzz.yaml"
         spec.write_bytes(raw)
+        yield spec
+
+
+@FUZZ_SETTINGS
+@given(mutated_spec())
+def test_validate_never_crashes(raw: bytes):
+    with spec_file(raw) as spec:
         kind, output = outcome(["validate", str(spec)], spec)
         _record(kind, ("valid", "clean"), output, raw)
-        assert sorted(p.name for p in Path(folder).iterdir()) == ["fuzz.yaml"]      # nothing written
+        assert sorted(p.name for p in spec.parent.iterdir()) == ["fuzz.yaml"]      # nothing written
 
 
 @st.composite
@@ -59,12 +67,10 @@ def valid_candidate(draw) -> bytes:
 @FUZZ_SETTINGS.__class__(FUZZ_SETTINGS, max_examples=BUILD_EXAMPLES)
 @given(valid_candidate())
 def test_build_of_valid_specs_never_crashes(raw: bytes):
-    with tempfile.TemporaryDirectory() as folder:
-        spec = Path(folder) / "fuzz.yaml"
-        spec.write_bytes(raw)
+    with spec_file(raw) as spec:
         kind, _ = outcome(["validate", str(spec)], spec)
         assume(kind == "valid")
-        kind, output = outcome(["build", str(spec), "-o", str(Path(folder) / "out")], spec, timeout_s=900)
+        kind, output = outcome(["build", str(spec), "-o", str(spec.parent / "out")], spec, timeout_s=900)
         _record(f"build {kind}", ("build built", "build clean"), output, raw)
 
 

@@ -261,21 +261,19 @@ def continuous_sweep(k, law: Law = "classic", b_over_R: float = 1.0,
         rt = kk * math.exp(-L.log_n_rho(kk)) if kk > 0 else 0.0
         span = top - rt
 
-        def dth(t: float) -> float:
+        def radial(t: float) -> tuple[float, float, float]:
+            """(r, n, r²n² − k²) at t, r = rt + span·t² (the substitution removes the turning-point pole)."""
             r = rt + span * t * t
             n = L.n(r)
-            q = r * r * n * n - kk * kk
-            if q <= 0.0:
-                return 0.0
-            return 2.0 * span * t * kk / (r * math.sqrt(q))
+            return r, n, r * r * n * n - kk * kk
+
+        def dth(t: float) -> float:
+            r, _, q = radial(t)
+            return 2.0 * span * t * kk / (r * math.sqrt(q)) if q > 0.0 else 0.0
 
         def dl(t: float) -> float:
-            r = rt + span * t * t
-            n = L.n(r)
-            q = r * r * n * n - kk * kk
-            if q <= 0.0:
-                return 0.0
-            return 2.0 * span * t * n * n * r / math.sqrt(q)
+            r, n, q = radial(t)
+            return 2.0 * span * t * n * n * r / math.sqrt(q) if q > 0.0 else 0.0
 
         if kk > 0:
             theta += 2.0 * integrate.quad(dth, 0.0, 1.0, epsabs=1e-13, epsrel=1e-12, limit=200)[0]

@@ -21,7 +21,7 @@ from antenna_cad.export.mesh import write_stl
 from antenna_cad.export.report_pdf import A4_INCH, COURIER_ADVANCE_EM, MARGIN, text_layout
 from antenna_cad.fabrication.outline import Circle, arc_paths, circle_polygon
 from antenna_cad.fabrication.templates import (A4_MM, WINDOW_MM, Drawing, dxf_document, write_dxf,
-                                               write_tiled_pdf)
+                                               _texts_by_tile, tile_windows, write_tiled_pdf)
 from antenna_cad.fabrication.vector_pdf import PT_PER_MM, VectorPdf, text_ops
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -99,6 +99,31 @@ def test_tiled_pdf_text_whole_and_title_on_every_tile(tmp_path):
     assert any("+X far away" in t for t in texts)
     for k in range(len(pdf)):
         assert check.check_bar_mm(pdf[k]) == pytest.approx(100.0, abs=check.BAR_TOL_MM)
+
+
+def test_text_beyond_the_outline_gets_its_own_tile_unmoved():
+    """A gauge table set below the outline, past every tile that holds geometry, is printed on a
+    tile of its own at its true place, not pushed onto the outline (issue 16 review)."""
+    d = Drawing("gauge")
+    d.add_polygon(circle_polygon(0, 0, 60))
+    d.texts += [(f"row {k}: z 12.5 mm  y 40.0 mm", -50.0, -400.0 - 8 * k, 4.0) for k in range(3)]
+    tiles = tile_windows(d, d.bounds())
+    placed = _texts_by_tile(d, tiles)
+    rows = [(text, wx + px, wy + py) for (_, _, wx, wy), texts in zip(tiles, placed)
+            for text, px, py, _ in texts]
+    assert len(tiles) == 2 and len(rows) == 3
+    assert all((x, y) == pytest.approx((-50.0, -400.0 - 8 * k)) for k, (_, x, y) in enumerate(rows))
+    outline = circle_polygon(0, 0, 60)
+    table_tile = next(t for t, texts in zip(tiles, placed) if texts)
+    assert not box(table_tile[2], table_tile[3], table_tile[2] + WINDOW_MM[0],
+                   table_tile[3] + WINDOW_MM[1]).intersects(outline)
+    # a row starting inside the first window but running out of it: printed only where it fits
+    # whole, unmoved (shifting it back into the first window would lay it over the outline)
+    d.texts.append(("y mm   z_ill mm   z_sh mm   (a long gauge row)", 125.0, 0.0, 4.0))
+    tiles = tile_windows(d, d.bounds())
+    spots = [(wx + px, wy + py) for (_, _, wx, wy), texts in zip(tiles, _texts_by_tile(d, tiles))
+             for text, px, py, _ in texts if text.startswith("y mm")]
+    assert spots == [pytest.approx((125.0, 0.0))]
 
 
 def test_pdf_check_fails_on_text_off_the_page_or_across_a_window(tmp_path):

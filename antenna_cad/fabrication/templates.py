@@ -215,20 +215,25 @@ def write_svg(drawing: Drawing, path: Path) -> tuple[float, float]:
 
 
 def tile_windows(drawing: Drawing, bounds: tuple[float, float, float, float]) -> list[tuple[int, int, float, float]]:
-    """Tile origins (row, col, x, y) covering the drawing (its ``bounds``); only tiles that hold
-    something."""
-    x0, y0, x1, y1 = bounds
+    """Tile origins (row, col, x, y) over the drawing's extents (``bounds`` grown by the text
+    boxes); only tiles that hold a cut path or a text other than the title block (repeated in
+    every header), so a table set beside or below the outline gets its own page instead of
+    being pushed onto the outline."""
+    x0, y0, x1, y1 = drawing.extents(bounds)
     win_w, win_h = WINDOW_MM
     step_w, step_h = win_w - OVERLAP_MM, win_h - OVERLAP_MM
     cols = max(1, math.ceil((x1 - x0 - OVERLAP_MM) / step_w))
     rows = max(1, math.ceil((y1 - y0 - OVERLAP_MM) / step_h))
     geometry = [Polygon(r) for r in drawing.cut if len(r) >= 3]
+    texts = [box(x, y, x + w, y + h) for i, (text, x, y, size) in enumerate(drawing.texts)
+             if i not in drawing.title_texts for w, h in [text_box(text, size)]]
     tiles = []
     for r in range(rows):
         for c in range(cols):
             wx, wy = x0 + c * step_w, y1 - win_h - r * step_h
             window = box(wx, wy, wx + win_w, wy + win_h)
-            if any(window.intersects(g.exterior) or g.contains(window) for g in geometry) or not geometry:
+            if (any(window.intersects(g.exterior) or g.contains(window) for g in geometry)
+                    or any(window.intersects(t) for t in texts) or not (geometry or texts)):
                 tiles.append((r, c, wx, wy))
     return tiles
 
@@ -255,23 +260,23 @@ def write_tiled_pdf(drawings: list[Drawing], path: Path, title: str) -> int:
 
 def _texts_by_tile(drawing: Drawing, tiles) -> list[list[tuple[str, float, float, float]]]:
     """Per tile, the drawing's non-title texts at window positions (mm from the window's lower
-    left): each on the tiles whose window holds its start point, else on the nearest tile,
-    shifted so its whole box lies inside the window."""
+    left): each on every tile whose window holds its whole box, at its true place; a text no
+    window holds whole goes on the one tile needing the least shift to hold it (ties: the first),
+    shifted inside — never on a tile where the shift would move it onto other lines."""
     win_w, win_h = WINDOW_MM
     placed: list[list[tuple[str, float, float, float]]] = [[] for _ in tiles]
     for i, (text, x, y, size) in enumerate(drawing.texts):
         if i in drawing.title_texts:
             continue
-        holders = [k for k, (_, _, wx, wy) in enumerate(tiles) if wx <= x <= wx + win_w and wy <= y <= wy + win_h]
-        if not holders:
-            holders = [min(range(len(tiles)), key=lambda k: math.hypot(tiles[k][2] + win_w / 2 - x,
-                                                                       tiles[k][3] + win_h / 2 - y))]
         w, h = text_box(text, size)
-        for k in holders:
-            wx, wy = tiles[k][2], tiles[k][3]
+        shifts = []
+        for _, _, wx, wy in tiles:
             px = min(max(x - wx, 0.5), win_w - w - 0.5)
             py = min(max(y - wy, 0.5), win_h - h - 0.5)
-            placed[k].append((text, px, py, size))
+            shifts.append((math.hypot(px - (x - wx), py - (y - wy)), px, py))
+        whole = [k for k, (shift, _, _) in enumerate(shifts) if shift == 0.0]
+        for k in whole or [min(range(len(tiles)), key=lambda k: shifts[k][0])]:
+            placed[k].append((text, shifts[k][1], shifts[k][2], size))
     return placed
 
 

@@ -86,7 +86,9 @@ def _build(spec) -> tuple[dict[str, float], dict]:
 
 
 def child_recipe(recipe: str, runs: int) -> dict:
+    import why
     import_s = _imports()
+    import_mb = why.rss_mb()
     from antenna_cad.spec import load_spec
     per_run: list[dict[str, float]] = []
     cpu = []
@@ -98,8 +100,19 @@ def child_recipe(recipe: str, runs: int) -> dict:
         per_run.append({"load": load_s} | seconds)
         cpu.append(_cpu_s() - cpu_start)
     stages = {k: statistics.median(run[k] for run in per_run) for k in per_run[0]}
-    return {"import_s": import_s, "stages": stages, "items": items, "peak_mb": _peak_mb(), "runs": runs,
-            "child_peak_mb": _peak_mb("children"), "cpu_s": statistics.median(cpu)}
+    result = {"import_s": import_s, "import_mb": import_mb, "stages": stages, "items": items,
+              "peak_mb": _peak_mb(), "runs": runs, "child_peak_mb": _peak_mb("children"),
+              "cpu_s": statistics.median(cpu)}
+    budgeted = _budgeted(stages)
+    if sum(budgeted.values()) > BUDGET["recipe_s"]:        # over budget: one profiled build says why
+        slowest = max(budgeted, key=budgeted.get)
+        result["slowest_why"] = why.stage_reason(why.stage_profiles(load_spec(recipe)), slowest)
+    return result
+
+
+def _budgeted(stages: dict[str, float]) -> dict[str, float]:
+    """The stages the recipe budget counts (the full-wave stage has its own)."""
+    return {k: v for k, v in stages.items() if not k.startswith(NOT_BUDGETED)}
 
 
 def _variant(recipe: str, changes: dict, outputs: dict):
@@ -266,13 +279,16 @@ def _machine() -> dict:
 def _budget_rows(results: dict) -> list[dict]:
     rows = []
     for name, r in results["recipes"].items():
-        budgeted = {k: v for k, v in r["stages"].items() if not k.startswith(NOT_BUDGETED)}
+        budgeted = _budgeted(r["stages"])
         total = sum(budgeted.values())
         slowest = max(budgeted, key=budgeted.get)
+        reason = f": {r['slowest_why']}" if r.get("slowest_why") else ""
         rows.append({"what": f"{name}: after imports", "value": total, "limit": BUDGET["recipe_s"], "unit": "s",
-                     "why": f"slowest stage {slowest} {budgeted[slowest]:.2f} s"})
-        rows.append({"what": f"{name}: peak RSS", "value": r["peak_mb"], "limit": BUDGET["peak_mb"], "unit": "MB",
-                     "why": ""})
+                     "why": f"slowest stage {slowest} {budgeted[slowest]:.2f} s{reason}"})
+        peak = max(r["peak_mb"], r.get("child_peak_mb", 0.0))
+        rows.append({"what": f"{name}: peak RSS (largest process)", "value": peak, "limit": BUDGET["peak_mb"],
+                     "unit": "MB", "why": f"main {r['peak_mb']:.0f} MB, of it {r.get('import_mb', float('nan')):.0f} MB "
+                                          f"right after imports; largest child {r.get('child_peak_mb', 0.0):.0f} MB"})
     for c in results["cli"]:
         rows.append({"what": f"make-lens {c['args']}", "value": c["seconds"], "limit": BUDGET["cli_s"], "unit": "s",
                      "why": f"CAD modules imported: {', '.join(c['cad_modules']) or 'none'}"})

@@ -238,7 +238,7 @@ class Construction:
             med.add_layer(m_i)
             ray, s, p = self._launch(self.Fp, Q, True, med)
             xs = np.linspace(p[0], ray.x_end, 400)
-            yv = np.array([ray.at(x)[0] for x in xs])
+            yv = ray.ys(xs)
             top = int(np.argmax(yv))
             below = np.flatnonzero(yv[top:] < y_e)
             if not below.size or yv[top] <= med.layers[-2].hi:

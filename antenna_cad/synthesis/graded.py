@@ -214,7 +214,7 @@ class Ray:
             w = y if i == 0 else abs(y)
             dw_up = up > 0 if i == 0 else outward
             kind, Y, psi0, sigma, su = _start(L, self.a, w - L.c, dw_up)
-            ahead = [q for b in ([-L.hi, L.hi] if i == 0 else [L.lo, L.hi]) if np.isfinite(b)
+            ahead = [q for b in ([-L.hi, L.hi] if i == 0 else [L.lo, L.hi]) if math.isfinite(b)
                      for q in _crossings(kind, Y, su, psi0, sigma, b - L.c)]
             rate = np.sqrt(abs(L.p)) / self.a
             limit = psi0 + sigma * (x_max - x) * rate
@@ -230,12 +230,20 @@ class Ray:
 
     def at(self, x: float):
         """(y, unit direction (dx, dy), optical path from the start) at x."""
+        y, dy, path = self.state(x)
+        return y, np.array([1.0, dy]) / np.hypot(1.0, dy), path
+
+    def state(self, x: float):
+        """(y, dy/dx, optical path) at x: floats, for the root finders."""
+        return self._segment(x).at(x)
+
+    def y_at(self, x: float) -> float:
+        return self._segment(x).at(x)[0]
+
+    def _segment(self, x: float) -> Segment:
         for k, seg in enumerate(self.segments):
             if x <= seg.x1 or (k == len(self.segments) - 1 and x <= seg.x1 + 1e-9):
-                with np.errstate(invalid="ignore"):
-                    y, dy, path = seg.at(x)
-                d = np.array([1.0, dy]) / np.hypot(1.0, dy)
-                return y, d, path
+                return seg
         raise ValueError("x beyond the traced range")
 
     def ys(self, xs: np.ndarray) -> np.ndarray:

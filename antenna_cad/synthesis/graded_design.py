@@ -24,7 +24,7 @@ from scipy.optimize import brentq, minimize_scalar
 from antenna_cad.raytrace.snell import refract
 from antenna_cad.synthesis.checks import Check, DesignError
 from antenna_cad.synthesis.graded import LeavesMedium, Medium, Ray
-from antenna_cad.synthesis.graded_lens import Construction, GradedParams, surface_spline
+from antenna_cad.synthesis.graded_lens import Construction, GradedParams, scalar_spline, surface_spline
 
 N_RAYS = 100
 SIDE_FOCUS_LIMIT = 1e-5     # σ at the side foci through the interpolated surfaces (construction exact)
@@ -72,7 +72,7 @@ def _on_circle(xc: float, r: float, vertex: np.ndarray, angle: float, side: floa
 def ray_paths(medium: Medium, x1, x2, half: float, source: np.ndarray, n_rays: int = N_RAYS):
     """Exit points Q_i and paths |S − P_i| + L_i (inside) for rays aimed at y_i on surface 1 (the
     first at the vertex); rays that leave the aperture on surface 2 are dropped."""
-    slope = x1.derivative()
+    slope, x2_at = x1.derivative(), scalar_spline(x2)
     ys = np.concatenate([[0.0], np.linspace(-half, half, n_rays) * (1 - 1e-9)])
     out_q, out_l, out_y = [], [], []
     for y in ys:
@@ -84,7 +84,7 @@ def ray_paths(medium: Medium, x1, x2, half: float, source: np.ndarray, n_rays: i
             continue
         try:
             ray = Ray(medium, p[0], y, n_in * v[0], np.sign(v[1]) or 1.0, p[0] + 3.0)
-            x = brentq(lambda t: t - float(x2(np.clip(ray.at(t)[0], -half, half))), p[0] + 1e-9, ray.x_end,
+            x = brentq(lambda t: t - x2_at(min(max(ray.y_at(t), -half), half)), p[0] + 1e-9, ray.x_end,
                        xtol=1e-14)
         except (ValueError, LeavesMedium):
             continue                   # leaves the synthesized layers or misses surface 2

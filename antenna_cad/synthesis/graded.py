@@ -78,7 +78,13 @@ class Medium:
         return out
 
     def n2_at(self, y: float) -> float:
-        return float(self.n(np.array([y]))[0]) ** 2
+        """n² at one y, on floats (:meth:`n` squared: the last layer holding |y| decides a boundary)."""
+        w, n2 = abs(float(y)), math.nan
+        for L in self.layers:
+            if L.lo <= w <= L.hi:
+                d = w - L.c
+                n2 = L.N + L.p * (d * d)
+        return math.sqrt(n2) ** 2 if n2 >= 0 else math.nan
 
 
 def _laws(m):

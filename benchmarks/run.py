@@ -335,9 +335,9 @@ def _markdown(results: dict) -> str:
         lines.append(f"| {name} | " + " | ".join(f"{st.get(s, 0):.2f}" for s in stages)
                      + f" | {sum(st.values()):.2f} | {r.get('cpu_s', float('nan')):.2f} | {r['import_s']:.2f} "
                      f"| {r['peak_mb']:.0f} | {r.get('child_peak_mb', 0):.0f} | {slowest} |")
-    lines += ["", "| command | seconds | exit | CAD modules imported |", "|---|---:|---:|---|"]
-    lines += [f"| make-lens {c['args']} | {c['seconds']:.2f} | {c['exit']} | {', '.join(c['cad_modules']) or 'none'} |"
-              for c in results["cli"]]
+    lines += ["", "| command | seconds | cpu | exit | CAD modules imported |", "|---|---:|---:|---:|---|"]
+    lines += [f"| make-lens {c['args']} | {c['seconds']:.2f} | {c.get('cpu_s', float('nan')):.2f} | {c['exit']} "
+              f"| {', '.join(c['cad_modules']) or 'none'} |" for c in results["cli"]]
     for name, s in results.get("series", {}).items():
         lines += ["", f"Scaling series `{name}` (cost per {s['item'][:-1]}); fitted exponent {s['exponent']:.2f}, "
                   f"last step {s['last_exponent']:.2f} (limit {EXPONENT_LIMIT})", "",
@@ -423,7 +423,7 @@ def main() -> int:
         load = os.getloadavg()[0]
         results["recipes"][Path(name).stem] = _run_child("recipe", str(ROOT / "recipes" / name),
                                                          str(args.runs)) | {"load": load}
-    probes = [["--help"]] + [["validate", f"recipes/{r}"] for r in dict.fromkeys([recipes[0], DEFAULT_RECIPE])]
+    probes = [["--help"]] + [["validate", f"recipes/{r}"] for r in dict.fromkeys([*recipes, DEFAULT_RECIPE])]
     for probe in probes:
         if before:
             results["before"]["cli"].append(_cli_timing(probe, before))

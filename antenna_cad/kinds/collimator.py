@@ -8,7 +8,6 @@ from functools import partial
 import numpy as np
 
 from antenna_cad.fabrication.layup import LayupPlan
-from antenna_cad.fullwave.scan import plan_scan_edge, scan_edge_study
 from antenna_cad.kinds.asbuilt import Lens, lens_variants, stock_study, verify_lens
 from antenna_cad.kinds.asbuilt_fullwave import revolved, scan_edge_go
 from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks, plan_layup_and_box, plan_sheets
@@ -106,6 +105,7 @@ def verify(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | No
     scan range: the transverse feed displacement where the ideal lens reaches the phase budget
     (seed-000 §5.5); the full-wave stage solves that feed too when its budget allows
     (:mod:`antenna_cad.fullwave.scan`)."""
+    from antenna_cad.fullwave.scan import plan_scan_edge, scan_edge_study   # scipy.integrate: kept out of validate
     f, D, gap = design.focal_length_mm, design.diameter_mm, _antenna_gap_mm(spec)
     _, edge = usable_half_range_mm(
         lambda y: single_surface_p2p_deg(f, D, design.eps_r, y, gap, design.wavelength_mm),

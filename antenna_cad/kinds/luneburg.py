@@ -11,7 +11,6 @@ import math
 
 import numpy as np
 
-from antenna_cad.kinds.luneburg_verify import verify_luneburg
 from antenna_cad.verification import Verification
 from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.rings import FabPlanRings, RingLayupPlan, fabricate_rings, plan_rings
@@ -196,4 +195,5 @@ def _registration_check(layup: RingLayupPlan) -> Check:
 def verify(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | None, fab) -> Verification:
     """As-built GO verification: ideal, stepped and as-built lenses, scanned feeds, tolerances
     (:mod:`antenna_cad.kinds.luneburg_verify`)."""
+    from antenna_cad.kinds.luneburg_verify import verify_luneburg   # the tracers and full-wave: a build's cost only
     return verify_luneburg(spec, design, layup, fab, layer_materials(spec, design))

@@ -66,7 +66,7 @@ def fabricate(spec: PolyfocalSpec, design: PolyfocalDesign, layup, panels):
     if design.case.startswith("2d"):
         return fab
     pitch = _gauge_pitch(spec)
-    gauges, _ = section_gauges(design, _gauge_grid(spec), pitch, spec.fabrication.gauge_depth_mm)
+    gauges, _ = _gauges(spec, design)
     drawings = tuple(gauges_drawing(gauges, s, pitch, spec.name) for s in ("entry", "exit"))
     rows = tuple(CutRow(f"gauges-{s}", "section-gauge", "gauge stock", "stock", 0, 0, False, 0, 0, 0, 0, 0, 0,
                         f"{sum(g.surface == s for g in gauges)} gauges, template gauges-{s}") for s in ("entry", "exit"))
@@ -75,6 +75,18 @@ def fabricate(spec: PolyfocalSpec, design: PolyfocalDesign, layup, panels):
 
 def _gauge_pitch(spec: PolyfocalSpec) -> float:
     return spec.fabrication.section_pitch_mm or spec.design.lines.pitch_mm
+
+
+_LAST_GAUGES: list = []       # [(design, pitch, depth, result)] of the latest section_gauges call
+
+
+def _gauges(spec: PolyfocalSpec, design: PolyfocalDesign):
+    """:func:`section_gauges` of the design, computed once for fabricate and fabrication_checks (the
+    same design object, pitch and depth: the same answer; the interpolant's gradients cost ~1 s)."""
+    key = (_gauge_pitch(spec), spec.fabrication.gauge_depth_mm)
+    if not (_LAST_GAUGES and _LAST_GAUGES[0][0] is design and _LAST_GAUGES[0][1] == key):
+        _LAST_GAUGES[:] = [(design, key, section_gauges(design, _gauge_grid(spec), *key))]
+    return _LAST_GAUGES[0][2]
 
 
 def _gauge_grid(spec: PolyfocalSpec) -> ConstrainedLens:
@@ -89,7 +101,7 @@ def fabrication_checks(spec: PolyfocalSpec, design: PolyfocalDesign, layup) -> l
     """2-D: the septa between neighbouring channels are at least the spec's wall thick; 3-D: the
     section gauges read back against exact surface points."""
     if design.case.startswith("3d"):
-        return [section_gauges(design, _gauge_grid(spec), _gauge_pitch(spec), spec.fabrication.gauge_depth_mm)[1]]
+        return [_gauges(spec, design)[1]]
     return [channel_clearance_check(design, spec.design.lines.wall_mm)]
 
 

@@ -74,16 +74,21 @@ class Rays:
 
 
 def _hit(p: np.ndarray, w: np.ndarray, surf: Surface, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Ray parameter where p + t·w meets z = g(ρ), Newton from ``t``; returns (t, converged)."""
+    """Ray parameter where p + t·w meets z = g(ρ), Newton from ``t``; returns (t, converged). A ray
+    leaves the iteration once its step is below 1e-14 (or not finite): the rays that miss the face
+    would otherwise keep every ray in all 60 iterations."""
+    t, step, act = np.array(t, float), np.full(len(t), np.inf), np.arange(len(t))
     for _ in range(60):
-        q = p + t[:, None] * w
+        pa, wa = p[act], w[act]
+        q = pa + t[act, None] * wa
         rho = np.hypot(q[:, 0], q[:, 1])
         safe = np.where(rho > 0, rho, 1.0)
         h = q[:, 2] - surf.z(rho)
-        dh = w[:, 2] - surf.slope(rho) * (q[:, 0] * w[:, 0] + q[:, 1] * w[:, 1]) / safe
-        step = h / dh
-        t = t - step
-        if np.all(~np.isfinite(step) | (np.abs(step) < 1e-14)):
+        dh = wa[:, 2] - surf.slope(rho) * (q[:, 0] * wa[:, 0] + q[:, 1] * wa[:, 1]) / safe
+        step[act] = h / dh
+        t[act] -= step[act]
+        act = act[np.isfinite(step[act]) & (np.abs(step[act]) >= 1e-14)]
+        if not act.size:
             break
     return t, np.isfinite(t) & (t > 0) & (np.abs(step) < 1e-10)
 

@@ -152,8 +152,8 @@ class _History:
 
     def __init__(self, h: float, size: int):
         self.h = h
-        self.f = np.zeros(size)
-        self.df = np.zeros(size)
+        self.f = [0.0] * size            # floats (the march's scalar arithmetic), arrays at the end
+        self.df = [0.0] * size
 
     def __call__(self, r: float) -> tuple[float, float]:
         h = self.h
@@ -217,8 +217,9 @@ def synthesize_profiles(n: float, f0: float, d0: float, gamma: float, step: floa
     hist = _History(h, count + 1)
     seed = int(math.ceil(SEED_RADIUS / h))
     s = np.arange(count + 1) * h
-    hist.f[: seed + 1] = co.front(s[: seed + 1])
-    hist.df[: seed + 1] = 2 * co.f2 * s[: seed + 1] + 4 * co.f4 * s[: seed + 1] ** 3
+    hist.f[: seed + 1] = co.front(s[: seed + 1]).tolist()
+    hist.df[: seed + 1] = (2 * co.f2 * s[: seed + 1] + 4 * co.f4 * s[: seed + 1] ** 3).tolist()
+    s, s_grid = s.tolist(), s
     r_prev = s[seed] * f0 / gamma
 
     def G(x, z):
@@ -248,11 +249,12 @@ def synthesize_profiles(n: float, f0: float, d0: float, gamma: float, step: floa
         rays.append(_ray(s[i], hist.f[i], hist, n, gamma, L0, r_prev)[1:])
         r_prev = rays[-1][0]
     r_a, alpha, Rb, Zb, dF, d, t = (np.array(c) for c in zip(*rays))
-    finite = all(np.all(np.isfinite(a)) for a in (hist.f, hist.df, Rb, Zb, dF, d, t))
+    f, df = np.array(hist.f), np.array(hist.df)
+    finite = all(np.all(np.isfinite(a)) for a in (f, df, Rb, Zb, dF, d, t))
     if not finite or np.any(np.diff(Rb) <= 0) or np.any(d <= 0) or np.any(t <= 0):
         raise DesignError("design.gamma", f"the mirror generatrix folds over (n {n:g}, f0 {f0:g}, d0 {d0:g}, "
                           f"γ {gamma:g}); change gamma or d0")
-    return Profiles(n, f0, d0, gamma, s, hist.f.copy(), hist.df.copy(), r_a, alpha, Rb, Zb, dF, d, t)
+    return Profiles(n, f0, d0, gamma, s_grid, f, df, r_a, alpha, Rb, Zb, dF, d, t)
 
 
 # ------------------------------------------------------------------ feed on the surface, seed-004 §2.4

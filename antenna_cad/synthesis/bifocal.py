@@ -43,6 +43,7 @@ into a ring of radius a — the design is then exact only for feeds in the merid
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Literal
 
@@ -52,7 +53,7 @@ from scipy.optimize import brentq, least_squares
 from antenna_cad.raytrace.snell import refract
 from antenna_cad.raytrace.trace2d import Interface
 from antenna_cad.synthesis.bifocal_solids import face_spline, lens_volume_mm3, max_radius_in
-from antenna_cad.synthesis.bifocal_steps import (_back, _fwd, _hermite, _mirror, _Optics,
+from antenna_cad.synthesis.bifocal_steps import (_back_plane1, _fwd_plane1, _hermite, _mirror, _Optics,
                                                  _symmetric_profile, _unit)
 from antenna_cad.synthesis.bifocal_trace import (C0_MM_PER_NS, DefocusStudy, _design_focus_eikonal,
                                                  aperture_phase, defocus_study, trace_bifocal)
@@ -219,25 +220,25 @@ def _nikulina_chain(rho1: float, o: _Optics, max_steps: int = 1500):
     normals, shadow points, normals) as the chain produced them (alternating signs of y). The links
     shrink with the foci's separation; a chain longer than ``max_steps`` (the recipes need ≤ 250) is
     refused rather than solved for minutes."""
-    C = np.array([[rho1, 0.0]])
-    NC = np.array([[-1.0, 0.0]])
-    ill_p, ill_n = [C[0]], [NC[0]]
+    mirror = lambda p: (p[0], -p[1])  # noqa: E731
+    finite = lambda p: math.isfinite(p[0]) and math.isfinite(p[1])  # noqa: E731
+    ill_p, ill_n = [(float(rho1), 0.0)], [(-1.0, 0.0)]
     sh_p, sh_n = [], []
-    G, NG = _fwd(C, NC, o)
-    if np.all(np.isfinite(G)):
-        sh_p.append(G[0])
-        sh_n.append(NG[0])
+    G, NG = _fwd_plane1(ill_p[0], ill_n[0], o)          # the steps on floats: one point at a time
+    if finite(G):
+        sh_p.append(G)
+        sh_n.append(NG)
         for _ in range(max_steps):
-            B, NB = _back(_mirror(G), _mirror(NG), o)
-            if not np.all(np.isfinite(B)) or abs(B[0, 1]) - abs(ill_p[-1][1]) <= 1e-13 * abs(B[0, 0]):
+            B, NB = _back_plane1(mirror(G), mirror(NG), o)
+            if not finite(B) or abs(B[1]) - abs(ill_p[-1][1]) <= 1e-13 * abs(B[0]):
                 break
-            ill_p.append(B[0])
-            ill_n.append(NB[0])
-            G, NG = _fwd(_mirror(B), _mirror(NB), o)
-            if not np.all(np.isfinite(G)) or abs(G[0, 1]) - abs(sh_p[-1][1]) <= 1e-13 * abs(G[0, 0]):
+            ill_p.append(B)
+            ill_n.append(NB)
+            G, NG = _fwd_plane1(mirror(B), mirror(NB), o)
+            if not finite(G) or abs(G[1]) - abs(sh_p[-1][1]) <= 1e-13 * abs(G[0]):
                 break
-            sh_p.append(G[0])
-            sh_n.append(NG[0])
+            sh_p.append(G)
+            sh_n.append(NG)
         else:
             raise DesignError("design.beam_tilt_deg", f"the Nikulina construction needs more than {max_steps} "
                               "face segments (the foci are too close for this aperture); increase "

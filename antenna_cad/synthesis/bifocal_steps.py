@@ -8,6 +8,7 @@ Kinber lens uses the same rows in the seed's normalised frame, :mod:`antenna_cad
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -125,3 +126,52 @@ def _symmetric_profile(pts: np.ndarray, nrm: np.ndarray, y_max: float | None = N
 
 def _hermite(y: np.ndarray, z: np.ndarray, sl: np.ndarray) -> CubicHermiteSpline:
     return CubicHermiteSpline(y, z, sl)
+
+
+# --- the same steps for one point on floats (the Nikulina chain's inner loop: a point at a time) ---
+
+def _unit1(x: float, y: float) -> tuple[float, float]:
+    r = math.sqrt(x * x + y * y)
+    return x / r, y / r
+
+
+def _refract1(d, nrm, eta: float):
+    """:func:`antenna_cad.raytrace.snell.refract` of one unit direction, floats (NaN on TIR)."""
+    d, nrm = _unit1(*d), _unit1(*nrm)
+    cos_i = -(d[0] * nrm[0] + d[1] * nrm[1])
+    if cos_i < 0.0:
+        nrm, cos_i = (-nrm[0], -nrm[1]), -cos_i
+    k = 1.0 - eta * eta * (1.0 - cos_i * cos_i)
+    a = eta * cos_i - (math.sqrt(k) if k >= 0.0 else math.nan)
+    return eta * d[0] + a * nrm[0], eta * d[1] + a * nrm[1]
+
+
+def _root1(A: float, B: float, C: float, budget: float, n: float) -> float:
+    """:func:`_smallest_positive_root` for one equation."""
+    disc = B * B - A * C
+    q = -(B + math.copysign(math.sqrt(disc), B)) if disc >= 0.0 else math.nan
+    roots = [q / A, C / q if q != 0.0 else math.nan]
+    good = [r for r in roots if math.isfinite(r) and r > 0.0 and budget - n * r > 0.0]
+    return min(good) if good else math.nan
+
+
+def _fwd_plane1(P, NP, o: _Optics):
+    """:func:`_fwd` for one point and a plane exit (k), floats."""
+    F, k, n = o.F, o.k, o.n
+    v = _refract1((P[0] - F[0], P[1] - F[1]), NP, 1.0 / n)
+    r1 = math.sqrt((P[0] - F[0]) * (P[0] - F[0]) + (P[1] - F[1]) * (P[1] - F[1]))
+    t = (o.L - r1 + (P[0] * k[0] + P[1] * k[1])) / (n - (v[0] * k[0] + v[1] * k[1]))
+    t = t if t > 0.0 else math.nan
+    return (P[0] + t * v[0], P[1] + t * v[1]), _unit1(n * v[0] - k[0], n * v[1] - k[1])
+
+
+def _back_plane1(Q, NQ, o: _Optics):
+    """:func:`_back` for one point and a plane exit (k), floats."""
+    F, k, n = o.F, o.k, o.n
+    vb = _refract1((-k[0], -k[1]), NQ, 1.0 / n)
+    K = o.L + (Q[0] * k[0] + Q[1] * k[1])
+    w = (Q[0] - F[0], Q[1] - F[1])
+    s = _root1(1.0 - n * n, w[0] * vb[0] + w[1] * vb[1] + n * K, w[0] * w[0] + w[1] * w[1] - K * K, K, n)
+    P = (Q[0] + s * vb[0], Q[1] + s * vb[1])
+    d = _unit1(P[0] - F[0], P[1] - F[1])
+    return P, _unit1(d[0] + n * vb[0], d[1] + n * vb[1])

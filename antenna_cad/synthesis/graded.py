@@ -12,6 +12,7 @@ path over dψ is a dx + √k Y² cos²ψ dψ — the digest's corrected layer in
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -77,12 +78,23 @@ class Medium:
         return out
 
     def n2_at(self, y: float) -> float:
-        return float(self.n(np.array([y]))[0]) ** 2
+        """n² at one y, on floats (:meth:`n` squared: the last layer holding |y| decides a boundary)."""
+        w, n2 = abs(float(y)), math.nan
+        for L in self.layers:
+            if L.lo <= w <= L.hi:
+                d = w - L.c
+                n2 = L.N + L.p * (d * d)
+        return math.sqrt(n2) ** 2 if n2 >= 0 else math.nan
 
 
-_G = {"sin": lambda q: q / 2 + np.sin(2 * q) / 4, "sinh": lambda q: q / 2 + np.sinh(2 * q) / 4,
-      "cosh": lambda q: np.sinh(2 * q) / 4 - q / 2}     # ∫ of the path integrand, increasing in ψ
-_U = {"sin": (np.sin, np.cos), "sinh": (np.sinh, np.cosh), "cosh": (np.cosh, np.sinh)}
+def _laws(m):
+    """f, f' and ∫ of the path integrand (increasing in ψ) of the three ray shapes, from ``m`` (math or numpy)."""
+    return {"sin": (m.sin, m.cos, lambda q: q / 2 + m.sin(2 * q) / 4),
+            "sinh": (m.sinh, m.cosh, lambda q: q / 2 + m.sinh(2 * q) / 4),
+            "cosh": (m.cosh, m.sinh, lambda q: m.sinh(2 * q) / 4 - q / 2)}
+
+
+_LAWS, _LAWS_NP = _laws(math), _laws(np)      # floats (fast); numpy where math overflows (inf/NaN as before)
 
 
 @dataclass
@@ -101,61 +113,86 @@ class Segment:
     sigma: float = 1.0
     su: float = 1.0
 
-    @property
-    def rate(self) -> float:
-        return np.sqrt(abs(self.L.p)) / self.a
-
-    @property
-    def x1(self) -> float:
-        return self.x0 + (self.psi1 - self.psi0) * self.sigma / self.rate
+    def __post_init__(self):
+        self.rate = float(np.sqrt(abs(self.L.p)) / self.a)
+        self.x1 = self.x0 + (self.psi1 - self.psi0) * self.sigma / self.rate
 
     def at(self, x: float):
-        """(y, dy/dx, path) at x."""
+        """(y, dy/dx, path) at x (a float: math on floats, this is the construction's inner loop)."""
+        try:
+            return self._at(x, _LAWS[self.kind], math.sqrt)
+        except (OverflowError, ValueError):
+            with np.errstate(all="ignore"):
+                return self._at(x, _LAWS_NP[self.kind], np.sqrt)
+
+    def _at(self, x, laws, sqrt):
+        f, df, g = laws
         psi = self.psi0 + self.sigma * (x - self.x0) * self.rate
-        f, df = _U[self.kind]
         w = self.L.c + self.su * self.Y * f(psi)
         dw = self.su * self.Y * df(psi) * self.rate * self.sigma
-        g = _G[self.kind]
-        path = self.path0 + self.a * (x - self.x0) + np.sqrt(abs(self.L.p)) * self.Y**2 * abs(g(psi) - g(self.psi0))
+        path = self.path0 + self.a * (x - self.x0) + sqrt(abs(self.L.p)) * self.Y**2 * abs(g(psi) - g(self.psi0))
         s = 1.0 if self.sign == 0 else self.sign
         return s * w, s * dw, path
+
+    def y(self, x: np.ndarray) -> np.ndarray:
+        """y at an array of x (the formula of :meth:`at`)."""
+        psi = self.psi0 + self.sigma * (x - self.x0) * self.rate
+        return (1.0 if self.sign == 0 else self.sign) * (self.L.c + self.su * self.Y * _LAWS_NP[self.kind][0](psi))
 
 
 def _start(L: Layer, a: float, u: float, du_up: bool):
     """(kind, Y, ψ0, σ, su) of the ray at u = w − c moving with du/dx sign ``du_up``."""
-    K = L.N - a * a                                   # n² − a² at u = 0
-    if L.p < 0:
-        Y = np.sqrt(max(K / -L.p, u * u))
-        s = np.clip(u / Y, -1.0, 1.0) if Y > 0 else 0.0
-        return "sin", Y, (np.arcsin(s) if du_up else np.pi - np.arcsin(s)), 1.0, 1.0
-    if K > 0:
-        Y = np.sqrt(K / L.p)
-        return "sinh", Y, np.arcsinh(u / Y), (1.0 if du_up else -1.0), 1.0
-    Y = np.sqrt(max(-K / L.p, 0.0))
-    Y = min(Y, abs(u)) if Y > 0 else abs(u)
-    q = np.arccosh(max(abs(u) / Y, 1.0)) if Y > 0 else 0.0
-    su = 1.0 if u >= 0 else -1.0
-    return "cosh", Y, (q if du_up == (su > 0) else -q), 1.0, su
+    return _floats_first(_start_in, L, a, u, du_up)
 
 
 def _crossings(kind, Y, su, psi0, sigma, v):
     """ψ values ahead of ψ0 (in the direction σ) where f(ψ) = v/(su·Y)."""
-    t = v / (su * Y) if Y > 0 else np.inf
+    return _floats_first(_crossings_in, kind, Y, su, psi0, sigma, v)
+
+
+def _floats_first(fn, *args):
+    """``fn(math, …)``: the tracer's scalar steps on floats; where math refuses (NaN, ±inf, overflow:
+    a ray grazing a boundary) the same steps in numpy, whose NaN means "no crossing"."""
+    try:
+        return fn(math, *args)
+    except (ValueError, OverflowError, ZeroDivisionError):
+        with np.errstate(all="ignore"):
+            return fn(np, *args)
+
+
+def _start_in(m, L: Layer, a: float, u: float, du_up: bool):
+    K = L.N - a * a                                   # n² − a² at u = 0
+    if L.p < 0:
+        Y = m.sqrt(max(K / -L.p, u * u))
+        s = min(max(u / Y, -1.0), 1.0) if Y > 0 else 0.0
+        return "sin", Y, (m.asin(s) if du_up else m.pi - m.asin(s)), 1.0, 1.0
+    if K > 0:
+        Y = m.sqrt(K / L.p)
+        return "sinh", Y, m.asinh(u / Y), (1.0 if du_up else -1.0), 1.0
+    Y = m.sqrt(max(-K / L.p, 0.0))
+    Y = min(Y, abs(u)) if Y > 0 else abs(u)
+    q = m.acosh(max(abs(u) / Y, 1.0)) if Y > 0 else 0.0
+    su = 1.0 if u >= 0 else -1.0
+    return "cosh", Y, (q if du_up == (su > 0) else -q), 1.0, su
+
+
+def _crossings_in(m, kind, Y, su, psi0, sigma, v):
+    t = v / (su * Y) if Y > 0 else m.inf
     if kind == "sin":
         if abs(t) > 1:
             return []
-        base = np.arcsin(t)
+        base = m.asin(t)
         out = []
-        for cand in (base, np.pi - base):
-            cand = cand + TWO_PI * np.ceil((psi0 + 1e-12 - cand) / TWO_PI)
+        for cand in (base, m.pi - base):
+            cand = cand + TWO_PI * m.ceil((psi0 + 1e-12 - cand) / TWO_PI)
             out.append(cand if cand > psi0 + 1e-12 else cand + TWO_PI)
         return out
     if kind == "sinh":
-        q = np.arcsinh(t)
+        q = m.asinh(t)
         return [q] if (q - psi0) * sigma > 1e-12 else []
     if t < 1:
         return []
-    q = np.arccosh(t)
+    q = m.acosh(t)
     return [c for c in (-q, q) if c > psi0 + 1e-12]
 
 
@@ -183,7 +220,7 @@ class Ray:
             w = y if i == 0 else abs(y)
             dw_up = up > 0 if i == 0 else outward
             kind, Y, psi0, sigma, su = _start(L, self.a, w - L.c, dw_up)
-            ahead = [q for b in ([-L.hi, L.hi] if i == 0 else [L.lo, L.hi]) if np.isfinite(b)
+            ahead = [q for b in ([-L.hi, L.hi] if i == 0 else [L.lo, L.hi]) if math.isfinite(b)
                      for q in _crossings(kind, Y, su, psi0, sigma, b - L.c)]
             rate = np.sqrt(abs(L.p)) / self.a
             limit = psi0 + sigma * (x_max - x) * rate
@@ -199,13 +236,32 @@ class Ray:
 
     def at(self, x: float):
         """(y, unit direction (dx, dy), optical path from the start) at x."""
+        y, dy, path = self.state(x)
+        return y, np.array([1.0, dy]) / np.hypot(1.0, dy), path
+
+    def state(self, x: float):
+        """(y, dy/dx, optical path) at x: floats, for the root finders."""
+        return self._segment(x).at(x)
+
+    def y_at(self, x: float) -> float:
+        return self._segment(x).at(x)[0]
+
+    def _segment(self, x: float) -> Segment:
         for k, seg in enumerate(self.segments):
             if x <= seg.x1 or (k == len(self.segments) - 1 and x <= seg.x1 + 1e-9):
-                with np.errstate(invalid="ignore"):
-                    y, dy, path = seg.at(x)
-                d = np.array([1.0, dy]) / np.hypot(1.0, dy)
-                return y, d, path
+                return seg
         raise ValueError("x beyond the traced range")
+
+    def ys(self, xs: np.ndarray) -> np.ndarray:
+        """y at an increasing array of x within the traced range (vectorized :meth:`at`)."""
+        out = np.empty(len(xs))
+        lo = 0
+        for k, seg in enumerate(self.segments):
+            hi = len(xs) if k == len(self.segments) - 1 else int(np.searchsorted(xs, seg.x1, side="right"))
+            with np.errstate(invalid="ignore"):
+                out[lo:hi] = seg.y(xs[lo:hi])
+            lo = hi
+        return out
 
     @property
     def x_end(self) -> float:

@@ -16,6 +16,7 @@ Conventions where the seed is silent (stated in the kind's notes and the README)
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -24,7 +25,7 @@ from scipy.optimize import brentq, minimize_scalar
 from antenna_cad.raytrace.snell import refract
 from antenna_cad.synthesis.checks import Check, DesignError
 from antenna_cad.synthesis.graded import LeavesMedium, Medium, Ray
-from antenna_cad.synthesis.graded_lens import Construction, GradedParams, surface_spline
+from antenna_cad.synthesis.graded_lens import Construction, GradedParams, scalar_spline, surface_spline
 
 N_RAYS = 100
 SIDE_FOCUS_LIMIT = 1e-5     # σ at the side foci through the interpolated surfaces (construction exact)
@@ -72,19 +73,20 @@ def _on_circle(xc: float, r: float, vertex: np.ndarray, angle: float, side: floa
 def ray_paths(medium: Medium, x1, x2, half: float, source: np.ndarray, n_rays: int = N_RAYS):
     """Exit points Q_i and paths |S − P_i| + L_i (inside) for rays aimed at y_i on surface 1 (the
     first at the vertex); rays that leave the aperture on surface 2 are dropped."""
-    slope = x1.derivative()
+    slope, x2_at = x1.derivative(), scalar_spline(x2)
     ys = np.concatenate([[0.0], np.linspace(-half, half, n_rays) * (1 - 1e-9)])
     out_q, out_l, out_y = [], [], []
-    for y in ys:
-        p = np.array([float(x1(y)), y])
-        nrm = np.array([1.0, -float(slope(y))])
-        n_in = float(medium.n(np.array([y]))[0])
-        v, ok = refract((p - source) / np.linalg.norm(p - source), nrm, 1.0, n_in)
+    P = np.stack([x1(ys), ys], -1)                       # entry points, normals, indices, refraction:
+    to_p = P - source                                    # all rays at once
+    dist = np.linalg.norm(to_p, axis=-1)
+    n_in = medium.n(ys)
+    V, OK = refract(to_p / dist[:, None], np.stack([np.ones_like(ys), -slope(ys)], -1), 1.0, n_in)
+    for y, p, v, ok, n, r in zip(ys.tolist(), P.tolist(), V.tolist(), OK, n_in.tolist(), dist.tolist()):
         if not ok:
             continue
         try:
-            ray = Ray(medium, p[0], y, n_in * v[0], np.sign(v[1]) or 1.0, p[0] + 3.0)
-            x = brentq(lambda t: t - float(x2(np.clip(ray.at(t)[0], -half, half))), p[0] + 1e-9, ray.x_end,
+            ray = Ray(medium, p[0], y, n * v[0], math.copysign(1.0, v[1]) if v[1] else 1.0, p[0] + 3.0)
+            x = brentq(lambda t: t - x2_at(min(max(ray.y_at(t), -half), half)), p[0] + 1e-9, ray.x_end,
                        xtol=1e-14)
         except (ValueError, LeavesMedium):
             continue                   # leaves the synthesized layers or misses surface 2
@@ -92,7 +94,7 @@ def ray_paths(medium: Medium, x1, x2, half: float, source: np.ndarray, n_rays: i
         if abs(yq) > half * (1 + 1e-9):
             continue
         out_q.append([x, yq])
-        out_l.append(np.linalg.norm(p - source) + path)
+        out_l.append(r + path)
         out_y.append(y)
     q, lengths = np.array(out_q), np.array(out_l)
     if len(q) < 3:

@@ -13,6 +13,7 @@ y = h1) and 2·b2 (surface 2, at B, y = h2).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from scipy.optimize import brentq, minimize, minimize_scalar
@@ -55,10 +56,22 @@ class KinberLens:
     fold_y: float                   # smallest |y| of a segment whose image folds back (inf: none)
 
     def x1(self, y):
-        return _hermite(self.surface1[:, 1], self.surface1[:, 0], self.slopes1)(np.asarray(y, float))
+        return self._splines[0](np.asarray(y, float))
 
     def x2(self, y):
-        return _hermite(self.surface2[:, 1], self.surface2[:, 0], self.slopes2)(np.asarray(y, float))
+        return self._splines[1](np.asarray(y, float))
+
+    @cached_property
+    def _splines(self):
+        """The two faces x(y) (Hermite through the points and slopes), built once per lens."""
+        return (_hermite(self.surface1[:, 1], self.surface1[:, 0], self.slopes1),
+                _hermite(self.surface2[:, 1], self.surface2[:, 0], self.slopes2))
+
+    @cached_property
+    def faces(self) -> tuple[Interface, Interface]:
+        """The faces as tracer interfaces (glass after surface 1, air after surface 2), built once per lens."""
+        return (Interface.from_points(self.surface1[:, 1], self.surface1[:, 0], self.n, self.slopes1),
+                Interface.from_points(self.surface2[:, 1], self.surface2[:, 0], 1.0, self.slopes2))
 
     def focus_angle_deg(self) -> float:
         """"Angular position of the foci" as the digest reads it: the direction of F1' seen from the
@@ -180,15 +193,14 @@ class _Rays:
 def _trace_source(lens: KinberLens, source: np.ndarray, n_rays: int = 100,
                   half_aperture: float | None = None) -> _Rays:
     h = lens.aperture / 2.0 if half_aperture is None else half_aperture
-    s1 = Interface.from_points(lens.surface1[:, 1], lens.surface1[:, 0], lens.n, lens.slopes1)
-    s2 = Interface.from_points(lens.surface2[:, 1], lens.surface2[:, 0], 1.0, lens.slopes2)
+    s1, s2 = lens.faces
     S = np.asarray(source, float)
-    yt = np.linspace(-h, h, n_rays)
+    yt = np.append(np.linspace(-h, h, n_rays), 0.0)          # the last: the central ray
     tgt = np.stack([lens.x1(yt), yt], -1)
-    tr = trace(np.tile(S, (n_rays, 1)), _unit(tgt - S), [s1, s2], 1.0)
+    tr = trace(np.tile(S, (n_rays + 1, 1)), _unit(tgt - S), [s1, s2], 1.0)
     ok = tr.ok & (np.abs(tr.points[1][:, 1]) <= h) & (np.abs(tr.points[2][:, 1]) <= h)
-    c = trace(S[None], _unit(np.array([[float(lens.x1(0.0)), 0.0]]) - S), [s1, s2], 1.0)
-    return _Rays(tr.opl[ok], tr.points[-1][ok], float(c.opl[0]), c.points[-1][0])
+    ok[-1] = False
+    return _Rays(tr.opl[ok], tr.points[-1][ok], float(tr.opl[-1]), tr.points[-1][-1])
 
 
 def kinber_rms(lens: KinberLens, source: np.ndarray, image: np.ndarray, n_rays: int = 100,
@@ -220,9 +232,27 @@ def focal_circle_source(lens: KinberLens, x_axis: float | None, phi_rad: float) 
 
 
 def _best_image(rays: _Rays, guess: np.ndarray) -> float:
-    fit = minimize(lambda p: rays.sigma(image=p), guess, method="Nelder-Mead",
-                   options={"xatol": 1e-9, "fatol": 1e-12, "maxiter": 400})
-    return float(min(fit.fun, rays.sigma(image=guess)))
+    """Least σ over point images: Gauss–Newton on the residuals L_i − L_0 (smooth in the image point
+    S'; Jacobian −u_i + u_0, u the unit vectors from S' to Q), each step halved until σ decreases."""
+    best = rays.sigma(image=guess)
+    if not np.isfinite(best):
+        return best
+    p = np.asarray(guess, float)
+    for _ in range(100):
+        dq, dq0 = rays.Q - p, rays.Q0 - p
+        e, e0 = np.hypot(dq[:, 0], dq[:, 1]), float(np.hypot(*dq0))
+        step = np.linalg.lstsq(dq0 / e0 - dq / e[:, None], -(rays.opl + e - rays.opl0 - e0), rcond=None)[0]
+        for _ in range(40):
+            trial = rays.sigma(image=p + step)
+            if trial <= best:
+                break
+            step = step / 2
+        else:
+            break
+        p, best = p + step, trial
+        if np.hypot(*step) <= 1e-13 * (1.0 + np.hypot(*p)):
+            break
+    return best
 
 
 def _best_direction(rays: _Rays, guess: float) -> float:

@@ -298,17 +298,7 @@ class FiveFocal:
         f1, f3, f5, a, b = self.f1, self.f3, self.f5, self.alpha, self.beta
         x1, y2 = np.broadcast_arrays(np.asarray(x1, float), np.asarray(y2, float))
         sa, sb = np.sin(a) * np.sin(self.phi), np.sin(b) * np.sin(self.xi)
-        den = f1**2 - f3**2
-        A1 = -2 * (f1 * sa - f3 * sb) / den
-        B1 = 2 * (f1 * np.cos(a) - f3 * np.cos(b)) / den
-        C1 = -(np.sin(a) ** 2 * np.cos(self.phi) ** 2 - np.sin(b) ** 2 * np.cos(self.xi) ** 2) / den
-        M1 = 2 * f1 * np.cos(a) + B1 * (y2**2 - f1**2)
-        N1 = (f1**2 + x1**2 - 2 * x1 * f1 * sa - y2**2 * np.sin(a) ** 2 * np.cos(self.phi) ** 2
-              + (y2**2 - f1**2) * (1 + A1 * x1 + C1 * y2**2))
-        disc = M1**2 - 4 * N1
-        z1 = -M1 / 2 + np.sqrt(np.where(disc >= 0, disc, np.nan)) / 2
-        rho2 = 1 + A1 * x1 + B1 * z1 + C1 * y2**2
-        rho = np.sqrt(np.where(rho2 >= 0, rho2, np.nan))
+        z1, rho = self._entry(x1, y2)
         y1 = rho * y2
         F5 = f5 * np.array([np.sin(self.psi), 0.0, -np.cos(self.psi)])
         R5 = np.sqrt((x1 - F5[0]) ** 2 + y1**2 + (z1 - F5[2]) ** 2)
@@ -320,25 +310,58 @@ class FiveFocal:
         r2 = np.stack([sol[..., 0], y2, sol[..., 1]], axis=-1)
         return r1, r2, sol[..., 2]
 
-    def y2_for(self, x1: float, y1: float) -> float:
-        """Invert y1(x1, y2) (monotone in y2) by bracketing; DesignError when y1 is not reached."""
-        if y1 == 0:
-            return 0.0
-        g = lambda v: float(self.solve(x1, v)[0][1]) - y1     # noqa: E731
-        hi = abs(y1)
-        for _ in range(60):
-            if np.isfinite(g(np.sign(y1) * hi)) and np.sign(g(np.sign(y1) * hi)) == np.sign(y1):
-                return brentq(g, 0.0, np.sign(y1) * hi, xtol=1e-15)
-            hi *= 1.25
-            if not np.isfinite(g(np.sign(y1) * hi)):
-                break
-        raise DesignError("design.aperture", f"the five-focal solution (2.47)–(2.49) has no real point "
-                                             f"at x1 = {x1:.4g}, y1 = {y1:.4g} (aperture too large for these foci)")
+    def _entry(self, x1: np.ndarray, y2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(z1, ρ) of the entry point for (x1, y2): (2.49), the root '+', then (2.47) corrected (y1 = ρ·y2)."""
+        f1, f3, a, b = self.f1, self.f3, self.alpha, self.beta
+        sa, sb = np.sin(a) * np.sin(self.phi), np.sin(b) * np.sin(self.xi)
+        den = f1**2 - f3**2
+        A1 = -2 * (f1 * sa - f3 * sb) / den
+        B1 = 2 * (f1 * np.cos(a) - f3 * np.cos(b)) / den
+        C1 = -(np.sin(a) ** 2 * np.cos(self.phi) ** 2 - np.sin(b) ** 2 * np.cos(self.xi) ** 2) / den
+        M1 = 2 * f1 * np.cos(a) + B1 * (y2**2 - f1**2)
+        N1 = (f1**2 + x1**2 - 2 * x1 * f1 * sa - y2**2 * np.sin(a) ** 2 * np.cos(self.phi) ** 2
+              + (y2**2 - f1**2) * (1 + A1 * x1 + C1 * y2**2))
+        disc = M1**2 - 4 * N1
+        z1 = -M1 / 2 + np.sqrt(np.where(disc >= 0, disc, np.nan)) / 2
+        rho2 = 1 + A1 * x1 + B1 * z1 + C1 * y2**2
+        return z1, np.sqrt(np.where(rho2 >= 0, rho2, np.nan))
+
+    def y2_for(self, x1: np.ndarray, y1: np.ndarray) -> np.ndarray:
+        """Invert y1(x1, y2) = ρ·y2 (monotone in y2) at every point: the bracket [0, ±h] grown by 1.25
+        from h = |y1| until y1 is passed, then bisection to the last bit; DesignError naming the first
+        point whose y1 is not reached."""
+        x1, y1 = np.asarray(x1, float), np.asarray(y1, float)
+        g = lambda v: self._entry(x1, v)[1] * v - y1       # noqa: E731
+        s = np.sign(y1)
+        hi = np.abs(y1)
+        found, lost = y1 == 0, np.zeros(y1.shape, bool)
+        with np.errstate(invalid="ignore"):
+            for _ in range(60):
+                gv = g(s * hi)
+                found |= np.isfinite(gv) & (np.sign(gv) == s)
+                if found.all():
+                    break
+                hi = np.where(found, hi, hi * 1.25)
+                lost = ~found & ~np.isfinite(g(s * hi))
+                if lost.any():
+                    break
+            if not found.all():
+                i = int(np.flatnonzero(lost if lost.any() else ~found)[0])
+                raise DesignError("design.aperture", f"the five-focal solution (2.47)–(2.49) has no real point "
+                                  f"at x1 = {x1[i]:.4g}, y1 = {y1[i]:.4g} (aperture too large for these foci)")
+            lo, hi = np.zeros_like(y1), s * hi           # g(lo) has the sign −s, g(hi) the sign s
+            for _ in range(1100):
+                mid = lo + (hi - lo) / 2
+                if np.all((mid == lo) | (mid == hi)):
+                    break
+                up = np.sign(g(mid)) == s
+                hi, lo = np.where(up, mid, hi), np.where(up, lo, mid)
+        return np.where(y1 == 0, 0.0, hi)
 
 
 def five_focal_3d(ff: FiveFocal, aperture: float, xy1: np.ndarray) -> ConstrainedLens:
     """Seed-001 §2.4 lens at entry points (x1, y1) (rows of ``xy1``)."""
-    y2 = np.array([ff.y2_for(float(x), float(y)) for x, y in xy1])
+    y2 = ff.y2_for(xy1[:, 0], xy1[:, 1])
     r1, r2, l = ff.solve(xy1[:, 0], y2)
     if not np.all(np.isfinite(l)):
         raise DesignError("design.aperture", "the five-focal solution is complex inside the aperture")

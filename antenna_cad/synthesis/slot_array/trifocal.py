@@ -131,6 +131,13 @@ class Segment:
         self.interp_error = float(np.max(np.abs(np.array([f(x) for x in mid]) - self(mid))))
 
     def __call__(self, u):
+        if np.ndim(u) == 0:                 # one parameter (the root finders): 1-D arithmetic
+            d = float(u) - self.u
+            hit = np.flatnonzero(d == 0)
+            if hit.size:
+                return self.values[hit[:1]]
+            c = self._w / d
+            return ((c @ self.values) / c.sum())[None]
         u = np.atleast_1d(np.asarray(u, float))
         d = u[:, None] - self.u[None, :]
         exact = d == 0
@@ -156,6 +163,9 @@ class Piecewise:
         self.interp_error = max(p.interp_error for p in self.pieces)
 
     def __call__(self, u):
+        if np.ndim(u) == 0:
+            return self.pieces[min(max(int(np.searchsorted(self.cuts, u, side="right")) - 1, 0),
+                                   len(self.pieces) - 1)](u)
         u = np.atleast_1d(np.asarray(u, float))
         k = np.clip(np.searchsorted(self.cuts, u, side="right") - 1, 0, len(self.pieces) - 1)
         out = np.empty((u.size, self.values.shape[1]))

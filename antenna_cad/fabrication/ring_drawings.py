@@ -1,15 +1,13 @@
-"""Templates of a Luneburg sheet layup: one assembly drawing per sheet and one 1:1 drawing per
-piece (whole rings in the sheet frame, sectors turned to their nesting orientation), with dowel
-hole marks and title blocks."""
+"""Templates of a Luneburg sheet layup: one assembly drawing per sheet, one 1:1 drawing per ring
+(its sectors' cut paths in place) and per stand foot, all in the sheet frame, with dowel hole
+marks and title blocks."""
 
 from __future__ import annotations
 
 import math
 
-from shapely import affinity
-
 from antenna_cad.fabrication.outline import CHORD_TOL_MM, Circle, arc_paths
-from antenna_cad.fabrication.ring_pieces import FootPiece, RingPiece, _arc, _rotated, _suffix
+from antenna_cad.fabrication.ring_pieces import FootPiece, RingPiece, _arc, _suffix
 from antenna_cad.fabrication.ring_plan import RingLayupPlan, RingSheet
 from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
 
@@ -27,8 +25,8 @@ def _sheet_drawing(plan: RingLayupPlan, sheet: RingSheet, pieces: list[RingPiece
         for a0 in ring.joint_angles_rad:                     # sector ids next to their first joint
             d.texts.append((_suffix(int(round((a0 - ring.sector_start_rad) / (2 * math.pi) * ring.sectors))),
                             rm * math.cos(a0 + 0.02), rm * math.sin(a0 + 0.02), 3.0))
-        _mark_holes(d, ring.holes, 0.0)
-    _mark_holes(d, sheet.foot_holes, 0.0)
+        _mark_holes(d, ring.holes)
+    _mark_holes(d, sheet.foot_holes)
     _frame_marks(d, max(sheet.radius_mm, 20.0))
     _title(d, [f"{title}  {sheet.label} of {plan.count}: z {sheet.z_min_mm:g} to {sheet.z_max_mm:g} mm, "
                f"thickness {sheet.thickness_mm:g} mm, {len(sheet.rings)} rings ({plan.sizing} sizing)",
@@ -38,47 +36,52 @@ def _sheet_drawing(plan: RingLayupPlan, sheet: RingSheet, pieces: list[RingPiece
     return d
 
 
-def _piece_drawing(plan: RingLayupPlan, sheet: RingSheet, piece, title: str) -> Drawing:
-    """Whole rings and feet in the sheet frame (centre cross, +X tick: the holes' reference);
-    sectors turned to their nesting orientation (bisector up) with the arc centre marked on the
-    bisector."""
+def _foot_drawing(plan: RingLayupPlan, sheet: RingSheet, piece: FootPiece, title: str) -> Drawing:
+    """A stand foot in the sheet frame, the lens centre at the cross."""
     d = Drawing(piece.label)
-    if isinstance(piece, FootPiece):
-        path = piece.cut_path(plan.kerf_mm)                   # the cradle follows the lens circle
-        d.add_polygon(path, arc_paths(path, [Circle(0.0, 0.0, plan.lens_radius_mm - plan.kerf_mm / 2,
-                                                    CHORD_TOL_MM, plan.lens_radius_mm)]))
-        _mark_holes(d, piece.holes, 0.0)
-        d.add_cross(0.0, 0.0, 10.0)
-        _title(d, [f"{title}  {piece.label}: stand foot of {sheet.label} (z {sheet.z_min_mm:g} to "
-                   f"{sheet.z_max_mm:g} mm), lens centre at the cross",
-                   f"grade {piece.material.name}, board thickness {sheet.thickness_mm:g} mm; "
-                   + (_holes_text(piece.holes) if piece.holes else "no dowel holes")
-                   + f"; CUT = tool path (kerf {plan.kerf_mm:g} mm)"])
-        return d
-    ring = piece.ring
-    path = piece.cut_path(plan.kerf_mm)
-    if piece.is_sector:
-        rot = piece.nest_rotation_deg
-        d.add_polygon(affinity.rotate(path, rot, origin=(0, 0)), _rotated(piece.cut_arcs(plan.kerf_mm), rot))
-        y_in = max(ring.r_inner_mm - 15.0, 0.0)
-        d.marks.append([(0.0, y_in), (0.0, ring.r_outer_mm + 15.0)])                # bisector
-        d.texts.append((f"{piece.label}", 3.0, 0.5 * (ring.r_inner_mm + ring.r_outer_mm), TEXT_HEIGHT_MM))
-        where = [f"sector {_suffix(int(round((piece.a0_rad - ring.sector_start_rad) / (2 * math.pi) * ring.sectors)))}"
-                 f" of {ring.sectors}: {math.degrees(piece.a0_rad) % 360:.2f}° to {math.degrees(piece.a1_rad) % 360:.2f}° "
-                 f"of the sheet frame; the MARK line is its bisector, the arc centre lies on it "
-                 f"{ring.r_outer_mm:.2f} mm below the outer arc"]
+    path = piece.cut_path(plan.kerf_mm)                       # the cradle follows the lens circle
+    d.add_polygon(path, arc_paths(path, [Circle(0.0, 0.0, plan.lens_radius_mm - plan.kerf_mm / 2,
+                                                CHORD_TOL_MM, plan.lens_radius_mm)]))
+    _mark_holes(d, piece.holes)
+    d.add_cross(0.0, 0.0, 10.0)
+    _title(d, [f"{title}  {piece.label}: stand foot of {sheet.label} (z {sheet.z_min_mm:g} to "
+               f"{sheet.z_max_mm:g} mm), lens centre at the cross",
+               f"grade {piece.material.name}, board thickness {sheet.thickness_mm:g} mm; "
+               + (_holes_text(piece.holes) if piece.holes else "no dowel holes")
+               + f"; CUT = tool path (kerf {plan.kerf_mm:g} mm)"])
+    return d
+
+
+def _ring_drawing(plan: RingLayupPlan, sheet: RingSheet, pieces: list[RingPiece], title: str) -> Drawing:
+    """One ring's template in the sheet frame (centre cross, +X tick: the holes' reference): the
+    whole ring, or every sector's own cut path where it lies in the ring, its letter inside it.
+    One drawing per ring, not per sector: a 3 m layup has 31,700 sectors (issue 16), and the
+    sectors of a ring differ only in their holes, all marked here."""
+    ring = pieces[0].ring
+    d = Drawing(ring.label)
+    for piece in pieces:
+        d.add_polygon(piece.cut_path(plan.kerf_mm), piece.cut_arcs(plan.kerf_mm))
+    rm = 0.5 * (ring.r_inner_mm + ring.r_outer_mm)
+    if ring.sectors > 1:
+        for piece in pieces:
+            mid = 0.5 * (piece.a0_rad + piece.a1_rad)
+            d.texts.append((piece.label.rsplit("-", 1)[1], rm * math.cos(mid) - 2.0, rm * math.sin(mid) - 2.0,
+                            TEXT_HEIGHT_MM))
+        where = (f"{ring.sectors} sectors {pieces[0].label} to {pieces[-1].label}, counter-clockwise from "
+                 f"{math.degrees(ring.sector_start_rad) % 360:.2f}° of the sheet frame, "
+                 f"{360 / ring.sectors:.4g}° each: each outline is one piece (its letter inside); "
+                 "cut them apart and butt-joint them radially")
     else:
-        d.add_polygon(path, piece.cut_arcs(plan.kerf_mm))
-        _frame_marks(d, max(ring.r_outer_mm, 20.0))
-        where = ["drawn in the sheet frame: align the +X tick with the sheet's +X mark"]
-    holes = _holes_text(piece.holes) if piece.holes else "no dowel holes"
-    _mark_holes(d, piece.holes, piece.nest_rotation_deg)
-    _title(d, [f"{title}  {piece.label}: sheet {sheet.label} (z {sheet.z_min_mm:g} to {sheet.z_max_mm:g} mm), "
-               f"ring of shell {ring.shell_index:02d}",
+        where = "one piece"
+    _frame_marks(d, max(ring.r_outer_mm, 20.0))
+    _mark_holes(d, ring.holes)
+    holes = _holes_text(ring.holes) if ring.holes else "no dowel holes"
+    _title(d, [f"{title}  {ring.label}: sheet {sheet.label} (z {sheet.z_min_mm:g} to {sheet.z_max_mm:g} mm), "
+               f"ring of shell {ring.shell_index:02d}; {where}",
                f"grade {ring.material.name}: εr {ring.material.eps_r:.4g}, {ring.material.density_kg_m3:.4g} kg/m³, "
                f"board thickness {sheet.thickness_mm:g} mm",
                f"R out {ring.r_outer_mm:.2f} mm, R in {ring.r_inner_mm:.2f} mm; {holes}; CUT = tool path "
-               f"(kerf {plan.kerf_mm:g} mm)", *where])
+               f"(kerf {plan.kerf_mm:g} mm); drawn in the sheet frame: align the +X tick with the sheet's +X mark"])
     return d
 
 
@@ -93,14 +96,13 @@ def _holes_text(holes) -> str:
                                       + words[face] for (dia, depth, face), n in sorted(groups.items()))
 
 
-def _mark_holes(drawing: Drawing, holes, rotate_deg: float) -> None:
+def _mark_holes(drawing: Drawing, holes) -> None:
     """Blind holes on MARK: a circle, a cross, and "T"/"B" for the face they are drilled from
     (through holes are CUT paths already)."""
-    c, s_ = math.cos(math.radians(rotate_deg)), math.sin(math.radians(rotate_deg))
     for h in holes:
         if h.face == "through":
             continue
-        x, y = c * h.x_mm - s_ * h.y_mm, s_ * h.x_mm + c * h.y_mm
+        x, y = h.x_mm, h.y_mm
         ring = _arc(h.diameter_mm / 2, 0.0, 2 * math.pi, 48, False) + (x, y)
         drawing.marks.append([tuple(p) for p in ring])
         drawing.add_cross(x, y, h.diameter_mm * 0.4)

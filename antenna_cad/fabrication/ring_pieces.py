@@ -142,12 +142,6 @@ def _polar(radius: float, angle: float, bulge: float) -> tuple[float, float, flo
     return radius * math.cos(angle), radius * math.sin(angle), bulge
 
 
-def _rotated(paths: list[BulgePath], degrees: float) -> list[BulgePath]:
-    """Paths turned about the origin (bulges are invariant under rotation)."""
-    c, s = math.cos(math.radians(degrees)), math.sin(math.radians(degrees))
-    return [[(c * x - s * y, s * x + c * y, b) for x, y, b in path] for path in paths]
-
-
 @dataclass(frozen=True)
 class FootPiece:
     """A stand foot (sheet frame): the cradle outline, cut with shapely's kerf offset."""

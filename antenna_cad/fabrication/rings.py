@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 from antenna_cad.fabrication.cutlist import CutRow, cutlist_csv
 from antenna_cad.fabrication.nesting import Placement, nest
 from antenna_cad.fabrication.outline import NEST_SPACING_MM, circle_polygon, foot_polygon
-from antenna_cad.fabrication.ring_drawings import _holes_text, _piece_drawing, _sheet_drawing
+from antenna_cad.fabrication.ring_drawings import _foot_drawing, _holes_text, _ring_drawing, _sheet_drawing
 from antenna_cad.fabrication.ring_pieces import FootPiece, RingPiece, ring_pieces
 from antenna_cad.fabrication.ring_plan import (Dowel, DowelHole, RingLayupPlan, RingPlan, RingSheet, ring_radii,
                                                plan_rings, sector_box, sector_count)
@@ -54,7 +54,7 @@ class FabPlanRings:
 
 def fabricate_rings(plan: RingLayupPlan, title: str, drawings: bool = True) -> FabPlanRings:
     """Pieces, nesting per grade (discs/rings inside ring holes first, then rectpack), cut list
-    (all grades and one file per grade), dowels, mass per grade, templates per sheet and piece."""
+    (all grades and one file per grade), dowels, mass per grade, templates per sheet, ring and foot."""
     kerf = plan.kerf_mm
     pieces: list = [p for s in plan.sheets for r in s.rings for p in ring_pieces(r, s.thickness_mm)]
     if plan.pedestal_height_mm is not None:
@@ -89,12 +89,17 @@ def fabricate_rings(plan: RingLayupPlan, title: str, drawings: bool = True) -> F
              for grade in sorted(by_grade) for g_rows in [[r for r in rows if r.material == grade]]}
     draws: tuple[Drawing, ...] = ()
     if drawings:
-        per_sheet: dict[int, list[RingPiece]] = {}
+        per_sheet: dict[int, list] = {}
+        per_ring: dict[str, list[RingPiece]] = {}
         for p in pieces:
             per_sheet.setdefault(p.sheet_index, []).append(p)
+            if isinstance(p, RingPiece):
+                per_ring.setdefault(p.ring.label, []).append(p)
         draws = tuple(d for s in plan.sheets for d in
-                      [_sheet_drawing(plan, s, per_sheet.get(s.index, []), title)] +
-                      [_piece_drawing(plan, s, p, title) for p in per_sheet.get(s.index, [])])
+                      [_sheet_drawing(plan, s, per_sheet.get(s.index, []), title)]
+                      + [_ring_drawing(plan, s, per_ring[r.label], title) for r in s.rings]
+                      + [_foot_drawing(plan, s, p, title)
+                         for p in per_sheet.get(s.index, []) if isinstance(p, FootPiece)])
     return FabPlanRings(tuple(pieces), placements, {}, draws, tuple(rows), totals,
                         {m: len(ids) for m, ids in sorted(boards.items())}, kerf, in_hole, saving, files)
 
@@ -125,7 +130,7 @@ def _row(p, pl: Placement, host: str | None, plan: RingLayupPlan) -> CutRow:
         notes.append(f"cut inside the hole of {host}")
     if p.is_sector:
         notes.append(f"sector {math.degrees(p.a0_rad) % 360:.2f}° to {math.degrees(p.a1_rad) % 360:.2f}° of the "
-                     f"sheet frame, nested turned {p.nest_rotation_deg:.2f}°; butt-joint radially")
+                     f"sheet frame (template {ring.label}), nested turned {p.nest_rotation_deg:.2f}°; butt-joint radially")
     if p.holes:
         notes.append(_holes_text(p.holes))
     if plan.sizing == "contain" and plan.shape == "sphere":

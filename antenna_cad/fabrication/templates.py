@@ -1,6 +1,6 @@
 """1:1 cutting templates: DXF (layers CUT / MARK / TEXT, mm), SVG (mm) and a tiled A4 PDF.
 
-A :class:`Drawing` is the one description of a template; the DXF is written from it with ezdxf,
+A :class:`Drawing` is the one description of a template; the DXF (into an empty document ezdxf writes once),
 the SVG and the PDF directly from it (ezdxf's SVG rendering and matplotlib's PDF pages cost
 80 ms per drawing and 90 ms per page; benchmarks/template_speed.py). The PDF holds each drawing
 once and tiles it onto A4 pages at exactly 1 mm = 1 mm, with overlap, registration crosses, page
@@ -14,17 +14,15 @@ import io
 import math
 import re
 from dataclasses import dataclass, field
+from functools import cache
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 import numpy as np
-from shapely.geometry import Polygon, box
+import shapely
+from shapely.geometry import Polygon
 
-from antenna_cad.fabrication.vector_pdf import (PT_PER_MM, VectorPdf, num, polyline_ops, text_ops, text_width,
+from antenna_cad.fabrication.vector_pdf import (PT_PER_MM, VectorPdf, num, nums, polyline_ops, text_ops, text_width,
                                                 wrap_text)
-
-if TYPE_CHECKING:
-    import ezdxf
 
 _EZDXF_MARKER = re.compile(r"(\d+\.\d+\.\d+) @ \d{4}-\d\d-\d\dT[\d:.]+\+00:00")
 A4_MM = (210.0, 297.0)
@@ -79,17 +77,18 @@ class Drawing:
         for k, ring in enumerate(rings):
             if arcs is not None:
                 self.arcs[len(self.cut)] = arcs[k]
-            self.cut.append([(round(x, 4), round(y, 4)) for x, y in ring.coords[:-1]])
+            self.cut.append(np.round(shapely.get_coordinates(ring)[:-1], 4))
 
     def add_cross(self, x: float, y: float, size: float) -> None:
         self.marks.append([(x - size, y), (x + size, y)])
         self.marks.append([(x, y - size), (x, y + size)])
 
     def bounds(self) -> tuple[float, float, float, float]:
-        pts = [p for ring in self.cut + self.marks for p in ring]
-        pts += [(x, y) for _, x, y, _ in self.texts]
-        xs, ys = [p[0] for p in pts], [p[1] for p in pts]
-        return min(xs), min(ys), max(xs), max(ys)
+        boxes = [_points_box(ring) for ring in self.cut + self.marks]
+        if self.texts:
+            boxes.append(_points_box([(x, y) for _, x, y, _ in self.texts]))
+        return (min(b[0] for b in boxes), min(b[1] for b in boxes), max(b[2] for b in boxes),
+                max(b[3] for b in boxes))
 
     def cut_bounds(self) -> tuple[float, float, float, float]:
         """Bounding box of the CUT paths: of their true arcs where the DXF has them (bulge arcs
@@ -118,7 +117,10 @@ class Drawing:
 
 
 def _points_box(points) -> tuple[float, float, float, float]:
-    xs, ys = [p[0] for p in points], [p[1] for p in points]
+    if isinstance(points, np.ndarray):
+        (x0, y0), (x1, y1) = points.min(axis=0).tolist(), points.max(axis=0).tolist()
+        return x0, y0, x1, y1
+    xs, ys = zip(*points)
     return min(xs), min(ys), max(xs), max(ys)
 
 
@@ -149,7 +151,51 @@ def text_box(text: str, cap_height: float) -> tuple[float, float]:
     return text_width(text, cap_height / CAP_HEIGHT_EM), cap_height
 
 
-def dxf_document(drawing: Drawing) -> ezdxf.document.Drawing:
+def write_dxf(drawing: Drawing, path: Path) -> None:
+    """The drawing as a DXF R2010 file (mm; layers CUT, MARK, TEXT)."""
+    path.write_bytes(dxf_text(drawing).encode("utf-8"))
+
+
+def dxf_text(drawing: Drawing) -> str:
+    """The DXF text of a drawing: ezdxf's empty document (:func:`_dxf_frame`) with the drawing's
+    entities written into its ENTITIES section, group code by group code as ezdxf writes them
+    (LWPOLYLINE: 10/20 per vertex, 42 for a non-zero bulge; TEXT at its insertion point), on
+    handles from the document's handle seed up. ezdxf itself took 12 ms a file, a minute for the
+    4,500 templates of a 3 m Luneburg layup (issue 16); tests read these files back with ezdxf."""
+    head, seed, middle, owner, tail = _dxf_frame()
+    out: list[str] = []
+    handle = seed
+
+    def entity(kind: str, layer: str, subclass: str) -> None:
+        nonlocal handle
+        out.append(f"  0\n{kind}\n  5\n{handle:X}\n330\n{owner}\n100\nAcDbEntity\n  8\n{layer}\n100\n{subclass}\n")
+        handle += 1
+
+    def lwpolyline(layer: str, points, closed: bool) -> None:
+        entity("LWPOLYLINE", layer, "AcDbPolyline")
+        out.append(f" 90\n{len(points)}\n 70\n{int(closed)}\n")
+        for x, y, *bulge in np.asarray(points, dtype=float).tolist():
+            out.append(f" 10\n{x}\n 20\n{y}\n" + (f" 42\n{bulge[0]}\n" if bulge and bulge[0] else ""))
+
+    for k, ring in enumerate(drawing.cut):
+        lwpolyline("CUT", drawing.arcs.get(k, ring), True)
+    for line in drawing.marks:
+        lwpolyline("MARK", line, False)
+    for text, x, y, h in drawing.texts:
+        x, y, h = float(x), float(y), float(h)
+        entity("TEXT", "TEXT", "AcDbText")
+        out.append(f" 10\n{x}\n 20\n{y}\n 30\n0.0\n 40\n{h}\n  1\n{text}\n 11\n{x}\n 21\n{y}\n 31\n0.0\n"
+                   "100\nAcDbText\n")
+    return f"{head}{handle:X}{middle}{''.join(out)}{tail}"
+
+
+@cache
+def _dxf_frame() -> tuple[str, int, str, str, str]:
+    """ezdxf's empty R2010 document (mm, layers CUT/MARK/TEXT), written once with fixed metadata
+    so the bytes are reproducible (header dates and GUIDs fixed, its "version @ time" marker
+    pinned, the CLASSES section sorted: its order depends on what ezdxf did first in the
+    process), cut as (text up to the $HANDSEED value, first free handle, text from there to the
+    ENTITIES section's content, the modelspace's owner handle, the rest)."""
     import ezdxf            # at use: validating a spec builds drawings but writes no DXF
     doc = ezdxf.new("R2010", setup=False)
     doc.units = ezdxf.units.MM
@@ -157,26 +203,9 @@ def dxf_document(drawing: Drawing) -> ezdxf.document.Drawing:
     doc.header["$MEASUREMENT"] = 1
     for name, color in LAYERS.items():
         doc.layers.add(name, color=color)
-    msp = doc.modelspace()
-    for k, ring in enumerate(drawing.cut):
-        if k in drawing.arcs:
-            msp.add_lwpolyline(drawing.arcs[k], format="xyb", close=True, dxfattribs={"layer": "CUT"})
-        else:
-            msp.add_lwpolyline(ring, close=True, dxfattribs={"layer": "CUT"})
-    for line in drawing.marks:
-        msp.add_lwpolyline(line, close=False, dxfattribs={"layer": "MARK"})
-    for text, x, y, h in drawing.texts:
-        msp.add_text(text, height=h, dxfattribs={"layer": "TEXT"}).set_placement((x, y))
-    return doc
-
-
-def write_dxf(doc: ezdxf.document.Drawing, path: Path) -> None:
-    """Save with fixed metadata so the bytes are reproducible: ezdxf's option fixes the header
-    dates and GUIDs; its "version @ time" marker in the metadata dictionary is pinned here, and the
-    CLASSES section (whose order depends on what ezdxf did first in the process) is sorted."""
+    owner = doc.modelspace().block_record_handle
     doc.classes.add_required_classes(doc.dxfversion)
     doc.classes.classes = dict(sorted(doc.classes.classes.items()))
-    import ezdxf
     previous = ezdxf.options.write_fixed_meta_data_for_testing
     ezdxf.options.write_fixed_meta_data_for_testing = True
     try:
@@ -187,7 +216,9 @@ def write_dxf(doc: ezdxf.document.Drawing, path: Path) -> None:
     text = stream.getvalue()
     tail = text.rfind("CREATED_BY_EZDXF")                  # the markers sit in the last dictionary
     text = text[:tail] + _EZDXF_MARKER.sub(r"\1 @ 2000-01-01T00:00:00+00:00", text[tail:])
-    path.write_bytes(text.encode(doc.output_encoding))
+    seed = re.search(r"\n\$HANDSEED\n  5\n([0-9A-F]+)\n", text)
+    entities = text.index("\n  2\nENTITIES\n") + len("\n  2\nENTITIES\n")
+    return text[:seed.start(1)], int(seed.group(1), 16), text[seed.end(1):entities], owner, text[entities:]
 
 
 def write_svg(drawing: Drawing, path: Path) -> tuple[float, float]:
@@ -204,7 +235,7 @@ def write_svg(drawing: Drawing, path: Path) -> tuple[float, float]:
     for layer, closed, lines in (("CUT", True, drawing.cut), ("MARK", False, drawing.marks)):
         tag = "polygon" if closed else "polyline"
         out.append(f'<g id="{layer}" stroke="{SVG_COLOURS[layer]}" stroke-width="{LINE_WIDTH_MM[layer]}">')
-        out += [f'<{tag} points="{" ".join(f"{num(x)},{num(y)}" for x, y in line)}"/>' for line in lines]
+        out += [f'<{tag} points="{nums(line, ",", " ")[:-1]}"/>' for line in lines]
         out.append("</g>")
     out.append('</g><g id="TEXT" fill="black" font-family="Helvetica, Arial, sans-serif">')
     out += [f'<text x="{num(x)}" y="{num(-y)}" font-size="{num(size / CAP_HEIGHT_EM)}">{html.escape(text)}</text>'
@@ -223,14 +254,17 @@ def tile_windows(drawing: Drawing, bounds: tuple[float, float, float, float]) ->
     cols = max(1, math.ceil((x1 - x0 - OVERLAP_MM) / step_w))
     rows = max(1, math.ceil((y1 - y0 - OVERLAP_MM) / step_h))
     geometry = [Polygon(r) for r in drawing.cut if len(r) >= 3]
-    tiles = []
-    for r in range(rows):
-        for c in range(cols):
-            wx, wy = x0 + c * step_w, y1 - win_h - r * step_h
-            window = box(wx, wy, wx + win_w, wy + win_h)
-            if any(window.intersects(g.exterior) or g.contains(window) for g in geometry) or not geometry:
-                tiles.append((r, c, wx, wy))
-    return tiles
+    origins = [(r, c, x0 + c * step_w, y1 - win_h - r * step_h) for r in range(rows) for c in range(cols)]
+    if not geometry:
+        return origins
+    windows = shapely.box(*np.array([(wx, wy, wx + win_w, wy + win_h) for _, _, wx, wy in origins]).T)
+    outlines = np.array([g.exterior for g in geometry], dtype=object)
+    polygons = np.array(geometry, dtype=object)
+    shapely.prepare(outlines)
+    shapely.prepare(polygons)
+    holds = (shapely.intersects(outlines[None, :], windows[:, None])
+             | shapely.contains(polygons[None, :], windows[:, None])).any(axis=1)
+    return [o for o, keep in zip(origins, holds) if keep]
 
 
 def write_tiled_pdf(drawings: list[Drawing], path: Path, title: str) -> int:

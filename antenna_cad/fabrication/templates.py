@@ -41,6 +41,7 @@ TITLE_LEADING = 1.5                              # title lines: baseline step / 
 
 
 BulgePath = list[tuple[float, float, float]]     # closed path: vertex x, y and the DXF bulge to the next
+HeaderRow = tuple[str, float, float]             # text, baseline depth below the top margin pt, size pt
 
 
 @dataclass
@@ -273,17 +274,27 @@ def write_tiled_pdf(drawings: list[Drawing], path: Path, title: str) -> int:
     strips, the same model points on neighbouring pages); a page clips it to its window and scales
     it by exactly 72/25.4 pt per mm. Texts are set in page space, never clipped: the header and
     the drawing's title block on every tile, each other text whole on the tile that holds its
-    start (or the nearest), moved inside the window where it would cross its edge."""
+    start (or the nearest), moved inside the window where it would cross its edge. What repeats
+    is written once and placed on every page: the window frame and the check bar (one form for
+    the file) and each drawing's title block (a form per drawing), so a page is a few hundred
+    bytes (a 3 m Luneburg layup has 10⁵ pages, issue 16)."""
     with VectorPdf(path, A4_MM, title) as pdf:
+        page = (0.0, 0.0, A4_MM[0] * PT_PER_MM, A4_MM[1] * PT_PER_MM)
+        furniture = pdf.add_form(_furniture(), page)
         for drawing in drawings:
             bounds = drawing.bounds()
             tiles = tile_windows(drawing, bounds)
             form = pdf.add_form(_form_content(drawing, bounds), _padded(drawing.extents(bounds), 10.0))
             placed = _texts_by_tile(drawing, tiles)
+            blocks: dict[tuple, int] = {}
             for k, (r, c, wx, wy) in enumerate(tiles, start=1):
                 header = (f"{title} · {drawing.label} · tile row {r + 1} col {c + 1} · page {k}/{len(tiles)}"
                           " · print at 100 % (actual size)")
-                pdf.add_page(_page_content(form, wx, wy, [header] + drawing.title, placed[k - 1]), (form,))
+                first, rows = header_lines([header] + drawing.title)
+                if rows not in blocks:
+                    blocks[rows] = pdf.add_form(_header_ops(rows), page)
+                pdf.add_page(_page_content(form, furniture, blocks[rows], wx, wy, first, placed[k - 1]),
+                             (form, furniture, blocks[rows]))
         return pdf.page_count
 
 
@@ -325,32 +336,45 @@ def _form_content(drawing: Drawing, bounds: tuple[float, float, float, float]) -
     return "".join(ops).encode()
 
 
-def _page_content(form: int, wx: float, wy: float, header: list[str], texts) -> bytes:
-    """Page-space operators in points: clipped window holding the form at 1:1, frame, header
-    lines (wrapped to the window width), the tile's texts, check bar."""
+def _page_content(form: int, furniture: int, block: int, wx: float, wy: float, first, texts) -> bytes:
+    """Page-space operators in points: clipped window holding the drawing's form at 1:1, the
+    frame and check bar (``furniture``), the title block (``block``), the page line ``first``
+    and the tile's texts."""
     k = PT_PER_MM
     left, bottom = PAGE_MARGIN_MM, PAGE_MARGIN_MM + FOOTER_MM
     window = f"{num(left * k)} {num(bottom * k)} {num(WINDOW_MM[0] * k)} {num(WINDOW_MM[1] * k)} re"
-    ops = [f"q {window} W n {k:.9f} 0 0 {k:.9f} {num((left - wx) * k)} {num((bottom - wy) * k)} cm "
-           f"/X{form} Do Q\n",
-           f"0.3 w 0.5 G {window} S\n0 G 0 g 0.6 w\n"]
+    content = (f"q {window} W n {k:.9f} 0 0 {k:.9f} {num((left - wx) * k)} {num((bottom - wy) * k)} cm "
+               f"/X{form} Do Q\n/X{furniture} Do /X{block} Do 0 g\n").encode() + _header_ops(first)
+    for text, x, y, size in texts:
+        content += text_ops(text, (left + x) * k, (bottom + y) * k, size / CAP_HEIGHT_EM * k)
+    return content
+
+
+def _furniture() -> bytes:
+    """What every page holds: the window frame, the 100 mm check bar and its label."""
+    k = PT_PER_MM
+    left, bottom = PAGE_MARGIN_MM, PAGE_MARGIN_MM + FOOTER_MM
+    window = f"{num(left * k)} {num(bottom * k)} {num(WINDOW_MM[0] * k)} {num(WINDOW_MM[1] * k)} re"
+    ops = [f"0.3 w 0.5 G {window} S\n0 G 0 g 0.6 w\n"]
     bar_y = (PAGE_MARGIN_MM + 8) * k
     x_bar = [left * k + 10 * t * k for t in range(11)]
     ops.append(f"{num(x_bar[0])} {num(bar_y)} m {num(x_bar[-1])} {num(bar_y)} l S\n")
     ops += [f"{num(x)} {num(bar_y)} m {num(x)} {num(bar_y + (4 if t % 5 == 0 else 2) * k)} l S\n"
             for t, x in enumerate(x_bar)]
-    content = "".join(ops).encode()
-    top = (A4_MM[1] - PAGE_MARGIN_MM) * k
-    for text, y, size in header_lines(header):
-        content += text_ops(text, left * k, top - y, size)
-    for text, x, y, size in texts:
-        content += text_ops(text, (left + x) * k, (bottom + y) * k, size / CAP_HEIGHT_EM * k)
-    return content + text_ops("100 mm check bar: measure it", (left + CHECK_BAR_MM + 4) * k, bar_y - 2, 6)
+    return "".join(ops).encode() + text_ops("100 mm check bar: measure it", (left + CHECK_BAR_MM + 4) * k,
+                                            bar_y - 2, 6)
 
 
-def header_lines(lines: list[str]) -> list[tuple[str, float, float]]:
-    """(text, baseline depth below the page's top margin pt, size pt) of the page line and the
-    title block, wrapped to the window width; the title shrinks (to 4 pt) to fit the header."""
+def _header_ops(rows) -> bytes:
+    """Header rows (:func:`header_lines`) set below the page's top margin."""
+    left, top = PAGE_MARGIN_MM * PT_PER_MM, (A4_MM[1] - PAGE_MARGIN_MM) * PT_PER_MM
+    return b"".join(text_ops(text, left, top - y, size) for text, y, size in rows)
+
+
+def header_lines(lines: list[str]) -> tuple[tuple[HeaderRow, ...], tuple[HeaderRow, ...]]:
+    """(text, baseline depth below the page's top margin pt, size pt) of the page line's rows and
+    of the title block's, wrapped to the window width; the title shrinks (to 4 pt) to fit the
+    header."""
     width = WINDOW_MM[0] * PT_PER_MM
     room = (HEADER_MM - 1.0) * PT_PER_MM - 1.25 * HEADER_PT[0]
     first = wrap_text(lines[0], width, HEADER_PT[0])
@@ -360,9 +384,9 @@ def header_lines(lines: list[str]) -> list[tuple[str, float, float]]:
         if len(rows) * 1.2 * size <= room - 1.25 * HEADER_PT[0] * (len(first) - 1) or size <= HEADER_PT[2]:
             break
         size -= 0.5
-    out = [(row, HEADER_PT[0] * (1 + 1.25 * i), HEADER_PT[0]) for i, row in enumerate(first)]
+    out = tuple((row, HEADER_PT[0] * (1 + 1.25 * i), HEADER_PT[0]) for i, row in enumerate(first))
     depth = out[-1][1] + 0.25 * HEADER_PT[0]
-    return out + [(row, depth + 1.2 * size * (i + 1), size) for i, row in enumerate(rows)]
+    return out, tuple((row, depth + 1.2 * size * (i + 1), size) for i, row in enumerate(rows))
 
 
 def _padded(box: tuple[float, float, float, float], pad: float) -> tuple[float, float, float, float]:

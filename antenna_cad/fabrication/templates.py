@@ -21,7 +21,7 @@ import numpy as np
 import shapely
 from shapely.geometry import Polygon
 
-from antenna_cad.fabrication.vector_pdf import (PT_PER_MM, VectorPdf, num, nums, polyline_ops, text_ops, text_width,
+from antenna_cad.fabrication.vector_pdf import (PT_PER_MM, VectorPdf, num, nums, polylines_ops, text_ops, text_width,
                                                 wrap_text)
 
 _EZDXF_MARKER = re.compile(r"(\d+\.\d+\.\d+) @ \d{4}-\d\d-\d\dT[\d:.]+\+00:00")
@@ -236,7 +236,13 @@ def write_svg(drawing: Drawing, path: Path) -> tuple[float, float]:
     for layer, closed, lines in (("CUT", True, drawing.cut), ("MARK", False, drawing.marks)):
         tag = "polygon" if closed else "polyline"
         out.append(f'<g id="{layer}" stroke="{SVG_COLOURS[layer]}" stroke-width="{LINE_WIDTH_MM[layer]}">')
-        out += [f'<{tag} points="{nums(line, ",", " ")[:-1]}"/>' for line in lines]
+        lines = [line for line in lines if len(line)]
+        if lines:                                    # all of a layer's points formatted in one pass
+            counts = np.array([len(line) for line in lines])
+            ends = np.full(int(counts.sum()), " ", dtype="<U32")
+            ends[np.cumsum(counts) - 1] = f'"/>\n<{tag} points="'
+            text = nums(np.concatenate([np.asarray(line, dtype=float)[:, :2] for line in lines]), ",", ends)
+            out.append(f'<{tag} points="{text[:-len(ends[-1])]}"/>')
         out.append("</g>")
     out.append('</g><g id="TEXT" fill="black" font-family="Helvetica, Arial, sans-serif">')
     out += [f'<text x="{num(x)}" y="{num(-y)}" font-size="{num(size / CAP_HEIGHT_EM)}">{html.escape(text)}</text>'
@@ -328,11 +334,11 @@ def _form_content(drawing: Drawing, bounds: tuple[float, float, float, float]) -
     ys = y1 - half - step_h * np.arange(-1, math.ceil((y1 - y0) / step_h) + 2)
     crosses = [seg for x in xs for y in ys for seg in ([(x - 4, y), (x + 4, y)], [(x, y - 4), (x, y + 4)])]
     ops = [f"1 J 1 j {num(LINE_WIDTH_MM['CUT'])} w 1 0 0 RG\n"]
-    ops += [polyline_ops(ring, closed=True) for ring in drawing.cut]
+    ops.append(polylines_ops(drawing.cut, closed=True))
     ops.append(f"{num(LINE_WIDTH_MM['MARK'])} w 0 0 1 RG\n")
-    ops += [polyline_ops(line, closed=False) for line in drawing.marks]
+    ops.append(polylines_ops(drawing.marks, closed=False))
     ops.append("0 0 0 RG\n")
-    ops += [polyline_ops(line, closed=False) for line in crosses]
+    ops.append(polylines_ops(crosses, closed=False))
     return "".join(ops).encode()
 
 

@@ -47,11 +47,12 @@ def num(value: float) -> str:
 _FORMATS = np.array(["%.0f", "%.1f", "%.2f", "%.3f"])
 
 
-def nums(points, sep: str, end: str) -> str:
-    """"x{sep}y{end}" for every (x, y) of ``points``, numbers as :func:`num` writes them (3
-    decimals, no trailing zeros, no "-0"; rounded half-way cases may differ by 0.001), formatted
-    in bulk: drawings of a large layup hold millions of vertices (issue 16)."""
-    if len(points) < 16:                     # short lines: the bulk set-up costs more than it saves
+def nums(points, sep: str, end) -> str:
+    """"x{sep}y{end}" for every (x, y) of ``points`` (``end``: one string, or one per point),
+    numbers as :func:`num` writes them (3 decimals, no trailing zeros, no "-0"; rounded half-way
+    cases may differ by 0.001), formatted in bulk: drawings of a large layup hold millions of
+    vertices (issue 16)."""
+    if isinstance(end, str) and len(points) < 16:     # short lines: the bulk set-up costs more than it saves
         return "".join(f"{num(x)}{sep}{num(y)}{end}" for x, y, *_ in points)
     v = np.rint(np.asarray(points, dtype=float).reshape(-1, 2) * 1000.0)
     f = _FORMATS[(v % 10 != 0).astype(int) + (v % 100 != 0) + (v % 1000 != 0)]
@@ -59,9 +60,18 @@ def nums(points, sep: str, end: str) -> str:
     return pattern % tuple((v / 1000.0 + 0.0).ravel().tolist())
 
 
-def polyline_ops(points, closed: bool) -> str:
-    """Path construction and stroke operators for one polyline."""
-    return nums(points, " ", " l\n").replace(" l\n", " m\n", 1) + ("s\n" if closed else "S\n")
+def polylines_ops(lines, closed: bool) -> str:
+    """Path construction and stroke operators ("x y m", "x y l", …, then "s" closed or "S" open)
+    for every line, formatted in one pass."""
+    lines = [np.asarray(line, dtype=float)[:, :2] for line in lines if len(line)]
+    if not lines:
+        return ""
+    counts = np.array([len(line) for line in lines])
+    last = np.cumsum(counts) - 1
+    ends = np.full(int(counts.sum()), " l\n", dtype="<U8")
+    ends[last - counts + 1] = " m\n"
+    ends[last] = np.char.add(ends[last], "s\n" if closed else "S\n")
+    return nums(np.concatenate(lines), " ", ends)
 
 
 @cache
@@ -207,6 +217,6 @@ class VectorPdf:
         self._file.write(f"{number} 0 obj\n".encode() + body + b"\nendobj\n")
 
     def _stream(self, number: int, dictionary: str, content: bytes) -> None:
-        data = zlib.compress(content, 6)
+        data = zlib.compress(content, 1)
         self._object(number, f"<< {dictionary} /Length {len(data)} /Filter /FlateDecode >>\nstream\n".encode()
                      + data + b"\nendstream")

@@ -103,8 +103,7 @@ def _mark_holes(drawing: Drawing, holes) -> None:
         if h.face == "through":
             continue
         x, y = h.x_mm, h.y_mm
-        ring = _arc(h.diameter_mm / 2, 0.0, 2 * math.pi, 48, False) + (x, y)
-        drawing.marks.append([tuple(p) for p in ring])
+        drawing.marks.append(_arc(h.diameter_mm / 2, 0.0, 2 * math.pi, 48, False) + (x, y))
         drawing.add_cross(x, y, h.diameter_mm * 0.4)
         drawing.texts.append(("T" if h.face == "top" else "B", x + h.diameter_mm * 0.7, y, 3.0))
 

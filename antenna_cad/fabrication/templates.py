@@ -41,6 +41,7 @@ TITLE_LEADING = 1.5                              # title lines: baseline step / 
 
 
 BulgePath = list[tuple[float, float, float]]     # closed path: vertex x, y and the DXF bulge to the next
+Points = list[tuple[float, float]] | np.ndarray      # a polyline's vertices
 HeaderRow = tuple[str, float, float]             # text, baseline depth below the top margin pt, size pt
 
 
@@ -50,11 +51,12 @@ class Drawing:
     template chord tolerance, drawn in SVG and PDF); ``arcs`` maps a ``cut`` index to the same
     path with true circular arcs (DXF bulges), written to the DXF instead when present;
     ``marks`` are open polylines; ``title`` the title block (also among ``texts``, wrapped; the
-    PDF repeats it in the header of every tile instead)."""
+    PDF repeats it in the header of every tile instead). A polyline is a list of (x, y) or an
+    (n, 2) array (large drawings: the writers format arrays in bulk)."""
     label: str
-    cut: list[list[tuple[float, float]]] = field(default_factory=list)
+    cut: list[Points] = field(default_factory=list)
     arcs: dict[int, BulgePath] = field(default_factory=dict)
-    marks: list[list[tuple[float, float]]] = field(default_factory=list)
+    marks: list[Points] = field(default_factory=list)
     texts: list[tuple[str, float, float, float]] = field(default_factory=list)   # text, x, y, cap height
     title: list[str] = field(default_factory=list)
     title_texts: set[int] = field(default_factory=set)                         # their indices in texts

@@ -1,8 +1,9 @@
 """1:1 cutting templates: DXF (layers CUT / MARK / TEXT, mm), SVG (mm) and a tiled A4 PDF.
 
-A :class:`Drawing` is the one description of a template; the DXF (into an empty document ezdxf writes once),
-the SVG and the PDF directly from it (ezdxf's SVG rendering and matplotlib's PDF pages cost
-80 ms per drawing and 90 ms per page; benchmarks/template_speed.py). The PDF holds each drawing
+A :class:`Drawing` is the one description of a template; the DXF (its entities in an empty
+document ezdxf writes once), the SVG and the PDF are written directly from it (ezdxf's SVG
+rendering and matplotlib's PDF pages cost 80 ms per drawing and 90 ms per page;
+benchmarks/template_speed.py). The PDF holds each drawing
 once and tiles it onto A4 pages at exactly 1 mm = 1 mm, with overlap, registration crosses, page
 ids and a 100 mm check bar on every page (DESIGN.md pitfalls).
 """

@@ -14,10 +14,15 @@ from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
 
 # ---------------------------------------------------------------- templates
 
-def _sheet_drawing(plan: RingLayupPlan, sheet: RingSheet, pieces: list[RingPiece], title: str) -> Drawing:
+def _sheet_drawing(plan: RingLayupPlan, sheet: RingSheet, parts: list[Drawing], title: str) -> Drawing:
+    """The sheet's assembly view: the cut paths of its ring and foot templates ``parts`` (the same
+    arrays, not drawn again), ring labels and grades, sector letters, dowel holes."""
     d = Drawing(sheet.label)
-    for p in pieces:
-        d.add_polygon(p.cut_path(plan.kerf_mm), p.cut_arcs(plan.kerf_mm) if isinstance(p, RingPiece) else None)
+    for part in parts:
+        for k, path in enumerate(part.cut):
+            if k in part.arcs:
+                d.arcs[len(d.cut)] = part.arcs[k]
+            d.cut.append(path)
     for ring in sheet.rings:
         a = math.radians(20 + 25 * (ring.shell_index % 7))
         rm = 0.5 * (ring.r_inner_mm + ring.r_outer_mm)

@@ -95,11 +95,11 @@ def fabricate_rings(plan: RingLayupPlan, title: str, drawings: bool = True) -> F
             per_sheet.setdefault(p.sheet_index, []).append(p)
             if isinstance(p, RingPiece):
                 per_ring.setdefault(p.ring.label, []).append(p)
-        draws = tuple(d for s in plan.sheets for d in
-                      [_sheet_drawing(plan, s, per_sheet.get(s.index, []), title)]
-                      + [_ring_drawing(plan, s, per_ring[r.label], title) for r in s.rings]
-                      + [_foot_drawing(plan, s, p, title)
-                         for p in per_sheet.get(s.index, []) if isinstance(p, FootPiece)])
+        for s in plan.sheets:
+            parts = ([_ring_drawing(plan, s, per_ring[r.label], title) for r in s.rings]
+                     + [_foot_drawing(plan, s, p, title) for p in per_sheet.get(s.index, [])
+                        if isinstance(p, FootPiece)])
+            draws += (_sheet_drawing(plan, s, parts, title), *parts)
     return FabPlanRings(tuple(pieces), placements, {}, draws, tuple(rows), totals,
                         {m: len(ids) for m, ids in sorted(boards.items())}, kerf, in_hole, saving, files)
 

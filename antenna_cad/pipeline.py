@@ -252,12 +252,12 @@ def _template_files(spec, fab, out: Path) -> list[Path]:
 def _write_templates(spec, fab, out: Path) -> list[dict]:
     """DXF + SVG per drawing and one tiled PDF; returns their manifest entries (files, the CUT
     outline's bounding box, the SVG's size) that ``make-lens check`` measures again."""
-    from antenna_cad.fabrication.templates import dxf_document, write_dxf, write_svg, write_tiled_pdf
+    from antenna_cad.fabrication.templates import write_dxf, write_svg, write_tiled_pdf
     folder = out / "templates"
     folder.mkdir(exist_ok=True)
     entries = []
     for drawing in fab.drawings:
-        write_dxf(dxf_document(drawing), folder / f"{drawing.label}.dxf")
+        write_dxf(drawing, folder / f"{drawing.label}.dxf")
         svg_mm = write_svg(drawing, folder / f"{drawing.label}.svg")
         entries.append({"label": drawing.label, "dxf": f"templates/{drawing.label}.dxf",
                         "svg": f"templates/{drawing.label}.svg", "cut_bbox_mm": list(drawing.cut_bounds()),

@@ -1,13 +1,14 @@
 """Build time of large Luneburg sheet layups: 20 layers, 10 mm sheets, D/λ = 25, 50, 100.
 
 Stages without CAD export: synthesis, plan (sheets, rings, sector splits, dowels), fabrication
-(pieces, nesting per grade, cut lists), templates (the drawings, not the files), verification
-(ray traces). Prints one row per size and a sheet-thickness sweep at D/λ = 100 (same rings,
-more or fewer sheets), with ms per ring and per piece: linear scaling shows as flat columns.
+(pieces, nesting per grade, cut lists), templates (the drawings; ``--write`` also writes their
+DXF, SVG and tiled PDF into a temporary folder), verification (ray traces). Prints one row per
+size and a sheet-thickness sweep at D/λ = 100 (same rings, more or fewer sheets), with ms per
+ring and per piece: linear scaling shows as flat columns.
 ``--full`` also runs the whole pipeline (STEP, STL; templates only with ``--templates``) for the
 D/λ = 100 case.
 
-    PYTHONPATH=. python benchmarks/luneburg_layup.py [--full [--templates]]
+    PYTHONPATH=. python benchmarks/luneburg_layup.py [--write] [--full [--templates]]
 """
 
 from __future__ import annotations
@@ -48,6 +49,16 @@ def run(d_over_lambda: float, sheet_mm: float) -> None:
     t_fab = lap()
     drawn = fabricate_rings(layup, spec.name, drawings=True)
     t_draw = lap() - t_fab
+    pages = write_s = 0.0
+    if "--write" in sys.argv:
+        from antenna_cad.fabrication.templates import write_dxf, write_svg, write_tiled_pdf
+        lap()
+        with tempfile.TemporaryDirectory() as out:
+            for d in drawn.drawings:
+                write_dxf(d, Path(out) / f"{d.label}.dxf")
+                write_svg(d, Path(out) / f"{d.label}.svg")
+            pages = write_tiled_pdf(list(drawn.drawings), Path(out) / "all.pdf", spec.name)
+        write_s = lap()
     kind.fabrication_checks(spec, design, layup)
     t_chk = lap()
     kind.verify(spec, design, layup, fab)
@@ -56,8 +67,8 @@ def run(d_over_lambda: float, sheet_mm: float) -> None:
     work = t_plan + t_fab
     print(f"{d_over_lambda:5.0f} {sheet_mm:5.0f} {layup.count:6d} {rings:6d} {pieces:7d} {len(drawn.drawings):7d} "
           f"{sum(fab.boards.values()):6d} | {t_syn:6.2f} {t_plan:6.2f} {t_fab:6.2f} {t_draw:7.2f} {t_chk:6.2f} "
-          f"{t_ver:6.2f} | {1e3 * work / rings:7.3f} {1e3 * work / pieces:7.3f} {1e3 * t_draw / pieces:7.3f}",
-          flush=True)
+          f"{t_ver:6.2f} | {1e3 * work / rings:7.3f} {1e3 * work / pieces:7.3f} {1e3 * t_draw / pieces:7.3f}"
+          + (f" | {write_s:6.1f} {pages:7.0f} {1e3 * write_s / pieces:7.3f}" if write_s else ""), flush=True)
 
 
 def full_build(templates: bool) -> None:
@@ -76,7 +87,7 @@ def full_build(templates: bool) -> None:
 
 if __name__ == "__main__":
     print("  D/λ  t_mm sheets  rings  pieces drawings boards |  synth   plan    fab drawings checks verify"
-          " | ms/ring ms/piece draw ms/piece")
+          " | ms/ring ms/piece draw ms/piece" + (" |  write   pages write ms/piece" if "--write" in sys.argv else ""))
     for dl in (25, 50, 100):
         run(dl, 10.0)
     for t in (20.0, 5.0):

@@ -13,7 +13,7 @@ import time
 from pathlib import Path
 
 from antenna_cad.fabrication.rings import fabricate_rings
-from antenna_cad.fabrication.templates import dxf_document, write_dxf, write_svg, write_tiled_pdf
+from antenna_cad.fabrication.templates import write_dxf, write_svg, write_tiled_pdf
 from antenna_cad.kinds import luneburg as kind
 
 sys.path.insert(0, str(Path(__file__).parent))
@@ -30,7 +30,7 @@ if __name__ == "__main__":
         out = Path(folder)
         t0 = time.perf_counter()
         for d in sample:
-            write_dxf(dxf_document(d), out / f"{d.label}.dxf")
+            write_dxf(d, out / f"{d.label}.dxf")
         t1 = time.perf_counter()
         for d in sample:
             write_svg(d, out / f"{d.label}.svg")

@@ -20,8 +20,8 @@ from antenna_cad.export.manifest import write_manifest
 from antenna_cad.export.mesh import write_stl
 from antenna_cad.export.report_pdf import A4_INCH, COURIER_ADVANCE_EM, MARGIN, text_layout
 from antenna_cad.fabrication.outline import Circle, arc_paths, circle_polygon
-from antenna_cad.fabrication.templates import (A4_MM, WINDOW_MM, Drawing, dxf_document, write_dxf,
-                                               _texts_by_tile, tile_windows, write_tiled_pdf)
+from antenna_cad.fabrication.templates import (A4_MM, WINDOW_MM, Drawing, _texts_by_tile, tile_windows,
+                                               write_dxf, write_tiled_pdf)
 from antenna_cad.fabrication.vector_pdf import PT_PER_MM, VectorPdf, text_ops
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -64,7 +64,7 @@ def test_arc_paths_true_circles_and_straight_joints(tmp_path):
     assert sum(1 for _, _, b in outer if b) >= 2 and len(outer) < 300
     d = Drawing("strip")
     d.add_polygon(path, [outer, hole])
-    write_dxf(dxf_document(d), tmp_path / "strip.dxf")
+    write_dxf(d, tmp_path / "strip.dxf")
     bbox, count = check.dxf_cut_bounds(check.dxf_entities(tmp_path / "strip.dxf"))
     y = math.sqrt(R**2 - 100**2)        # the nominal corner: the tool rounds it on a kerf/2 radius
     assert count == 2

@@ -309,7 +309,7 @@ def test_dxf_cut_paths_are_true_arcs_matching_the_polylines(tmp_path, shape, R):
     import shapely
     from shapely.geometry import LinearRing
 
-    from antenna_cad.fabrication.templates import dxf_document, write_dxf
+    from antenna_cad.fabrication.templates import write_dxf
     mats = [Material(f"g{k}", 2.0 - 0.2 * k, 1e-4, 100.0 - 10 * k) for k in range(2)]
     plan = plan_rings([0, 0.5 * R], [0.5 * R, R], mats, shape=shape,
                       height_mm=40.0 if shape == "cylinder" else None, sheet_thickness_mm=40.0 if shape == "cylinder"
@@ -318,7 +318,7 @@ def test_dxf_cut_paths_are_true_arcs_matching_the_polylines(tmp_path, shape, R):
     fab = fabricate_rings(plan, "t", drawings=True)
     kinds = set()
     for d in fab.drawings:
-        write_dxf(dxf_document(d), tmp_path / "d.dxf")
+        write_dxf(d, tmp_path / "d.dxf")
         cut = ezdxf.readfile(tmp_path / "d.dxf").modelspace().query("LWPOLYLINE[layer=='CUT']")
         assert len(cut) == len(d.cut) and len(d.arcs) == len(d.cut)
         for k, (entity, ring) in enumerate(zip(cut, d.cut)):

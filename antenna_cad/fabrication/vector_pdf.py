@@ -16,15 +16,20 @@ from functools import cache, lru_cache
 from pathlib import Path
 from typing import BinaryIO
 
+import numpy as np
+
 PT_PER_MM = 72.0 / 25.4
 _SPELLED = {"ε": "e", "λ": "lambda", "Δ": "d", "ρ": "rho", "↑": "^", "↓": "v", "→": "->", "≤": "<=", "≥": ">=",
             "≈": "~", "√": "sqrt", "∅": "O", "−": "-", "’": "'", "η": "eta", "σ": "sigma", "Σ": "S",
             "θ": "theta", "π": "pi", "φ": "phi"}
 
 
+_SPELLING = str.maketrans(_SPELLED)
+
+
 def spelled(text: str) -> str:
     """``text`` with the characters the standard fonts lack spelled out in ones they have."""
-    return "".join(_SPELLED.get(ch, ch) for ch in text)
+    return text.translate(_SPELLING)
 
 
 def pdf_string(text: str) -> bytes:
@@ -39,11 +44,34 @@ def num(value: float) -> str:
     return "0" if text in ("-0", "") else text
 
 
-def polyline_ops(points, closed: bool) -> str:
-    """Path construction and stroke operators for one polyline."""
-    (x, y), rest = points[0], points[1:]
-    ops = [f"{num(x)} {num(y)} m"] + [f"{num(px)} {num(py)} l" for px, py in rest]
-    return "\n".join(ops) + ("\ns\n" if closed else "\nS\n")
+_FORMATS = np.array(["%.0f", "%.1f", "%.2f", "%.3f"])
+
+
+def nums(points, sep: str, end) -> str:
+    """"x{sep}y{end}" for every (x, y) of ``points`` (``end``: one string, or one per point),
+    numbers as :func:`num` writes them (3 decimals, no trailing zeros, no "-0"; rounded half-way
+    cases may differ by 0.001), formatted in bulk: drawings of a large layup hold millions of
+    vertices (issue 16)."""
+    if isinstance(end, str) and len(points) < 16:     # short lines: the bulk set-up costs more than it saves
+        return "".join(f"{num(x)}{sep}{num(y)}{end}" for x, y, *_ in points)
+    v = np.rint(np.asarray(points, dtype=float).reshape(-1, 2) * 1000.0)
+    f = _FORMATS[(v % 10 != 0).astype(int) + (v % 100 != 0) + (v % 1000 != 0)]
+    pattern = "".join(np.char.add(np.char.add(np.char.add(f[:, 0], sep), f[:, 1]), end).tolist())
+    return pattern % tuple((v / 1000.0 + 0.0).ravel().tolist())
+
+
+def polylines_ops(lines, closed: bool) -> str:
+    """Path construction and stroke operators ("x y m", "x y l", …, then "s" closed or "S" open)
+    for every line, formatted in one pass."""
+    lines = [np.asarray(line, dtype=float)[:, :2] for line in lines if len(line)]
+    if not lines:
+        return ""
+    counts = np.array([len(line) for line in lines])
+    last = np.cumsum(counts) - 1
+    ends = np.full(int(counts.sum()), " l\n", dtype="<U8")
+    ends[last - counts + 1] = " m\n"
+    ends[last] = np.char.add(ends[last], "s\n" if closed else "S\n")
+    return nums(np.concatenate(lines), " ", ends)
 
 
 @cache
@@ -62,12 +90,23 @@ def _helvetica() -> dict[str, float]:
     return widths
 
 
-def text_width(text: str, size: float) -> float:
-    """Advance width of ``text`` as drawn (spelled out, in WinAnsiEncoding) in Helvetica at font size
-    ``size``; a glyph the font lacks counts a full em, never too short."""
+@cache
+def _glyph_units(ch: str) -> float:
+    """Advance of one character as drawn (spelled out, in WinAnsiEncoding), 1/1000 em; a glyph
+    the font lacks counts a full em, never too short. Helvetica's widths are whole units, so
+    sums of them are exact in any order."""
     widths = _helvetica()
-    drawn = spelled(text).encode("cp1252", errors="replace").decode("cp1252")
-    return sum(widths.get(ch, 1000.0) for ch in drawn) * size / 1000.0
+    drawn = spelled(ch).encode("cp1252", errors="replace").decode("cp1252")
+    return sum(widths.get(c, 1000.0) for c in drawn)
+
+
+def _units(text: str) -> float:
+    return sum(map(_glyph_units, text))
+
+
+def text_width(text: str, size: float) -> float:
+    """Advance width of ``text`` as drawn in Helvetica at font size ``size`` (no kerning)."""
+    return _units(text) * size / 1000.0
 
 
 def wrap_text(text: str, width: float, size: float) -> list[str]:
@@ -79,17 +118,26 @@ def wrap_text(text: str, width: float, size: float) -> list[str]:
 
 @lru_cache(maxsize=4096)
 def _wrapped(text: str, width: float, size: float) -> tuple[str, ...]:
+    """Greedy fill, linear in the text: a line's width is the sum of its words' and spaces'."""
+    fits = lambda units: units * size / 1000.0 <= width      # noqa: E731  (as text_width)
+    space = _glyph_units(" ")
     lines: list[str] = []
+    used = 0.0                                   # units of lines[-1]
     for word in text.split(" "):
-        trial = f"{lines[-1]} {word}" if lines else word
-        if lines and text_width(trial, size) <= width:
-            lines[-1] = trial
+        units = _units(word)
+        if lines and fits(used + space + units):
+            lines[-1] = f"{lines[-1]} {word}"
+            used += space + units
             continue
-        while text_width(word, size) > width and len(word) > 1:
-            cut = max(k for k in range(1, len(word) + 1) if k == 1 or text_width(word[:k], size) <= width)
+        while not fits(units) and len(word) > 1:
+            cut, run = 1, _glyph_units(word[0])
+            while cut < len(word) and fits(run + _glyph_units(word[cut])):
+                run += _glyph_units(word[cut])
+                cut += 1
             lines.append(word[:cut])
-            word = word[cut:]
+            word, units = word[cut:], units - run
         lines.append(word)
+        used = units
     return tuple(lines or [""])
 
 
@@ -169,6 +217,6 @@ class VectorPdf:
         self._file.write(f"{number} 0 obj\n".encode() + body + b"\nendobj\n")
 
     def _stream(self, number: int, dictionary: str, content: bytes) -> None:
-        data = zlib.compress(content, 6)
+        data = zlib.compress(content, 1)
         self._object(number, f"<< {dictionary} /Length {len(data)} /Filter /FlateDecode >>\nstream\n".encode()
                      + data + b"\nendstream")

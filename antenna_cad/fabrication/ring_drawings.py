@@ -1,0 +1,127 @@
+"""Templates of a Luneburg sheet layup: one assembly drawing per sheet, one 1:1 drawing per ring
+(its sectors' cut paths in place) and per stand foot, all in the sheet frame, with dowel hole
+marks and title blocks."""
+
+from __future__ import annotations
+
+import math
+
+from antenna_cad.fabrication.outline import CHORD_TOL_MM, Circle, arc_paths
+from antenna_cad.fabrication.ring_pieces import FootPiece, RingPiece, _arc, _suffix
+from antenna_cad.fabrication.ring_plan import RingLayupPlan, RingSheet
+from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
+
+
+# ---------------------------------------------------------------- templates
+
+def _sheet_drawing(plan: RingLayupPlan, sheet: RingSheet, parts: list[Drawing], title: str) -> Drawing:
+    """The sheet's assembly view: the cut paths of its ring and foot templates ``parts`` (the same
+    arrays, not drawn again), ring labels and grades, sector letters, dowel holes."""
+    d = Drawing(sheet.label)
+    for part in parts:
+        for k, path in enumerate(part.cut):
+            if k in part.arcs:
+                d.arcs[len(d.cut)] = part.arcs[k]
+            d.cut.append(path)
+    for ring in sheet.rings:
+        a = math.radians(20 + 25 * (ring.shell_index % 7))
+        rm = 0.5 * (ring.r_inner_mm + ring.r_outer_mm)
+        d.texts.append((f"{ring.label[-7:]} {ring.material.name}", rm * math.cos(a) - 10, rm * math.sin(a), 3.0))
+        for a0 in ring.joint_angles_rad:                     # sector ids next to their first joint
+            d.texts.append((_suffix(int(round((a0 - ring.sector_start_rad) / (2 * math.pi) * ring.sectors))),
+                            rm * math.cos(a0 + 0.02), rm * math.sin(a0 + 0.02), 3.0))
+        _mark_holes(d, ring.holes)
+    _mark_holes(d, sheet.foot_holes)
+    _frame_marks(d, max(sheet.radius_mm, 20.0))
+    _title(d, [f"{title}  {sheet.label} of {plan.count}: z {sheet.z_min_mm:g} to {sheet.z_max_mm:g} mm, "
+               f"thickness {sheet.thickness_mm:g} mm, {len(sheet.rings)} rings ({plan.sizing} sizing)",
+               "assembly view, seen from +Z: each ring is cut from its own grade (see the ring templates); "
+               "dowel holes (T: drilled into the top face, B: the bottom face; positions as seen from +Z) "
+               "take dowels of the ring's grade"])
+    return d
+
+
+def _foot_drawing(plan: RingLayupPlan, sheet: RingSheet, piece: FootPiece, title: str) -> Drawing:
+    """A stand foot in the sheet frame, the lens centre at the cross."""
+    d = Drawing(piece.label)
+    path = piece.cut_path(plan.kerf_mm)                       # the cradle follows the lens circle
+    d.add_polygon(path, arc_paths(path, [Circle(0.0, 0.0, plan.lens_radius_mm - plan.kerf_mm / 2,
+                                                CHORD_TOL_MM, plan.lens_radius_mm)]))
+    _mark_holes(d, piece.holes)
+    d.add_cross(0.0, 0.0, 10.0)
+    _title(d, [f"{title}  {piece.label}: stand foot of {sheet.label} (z {sheet.z_min_mm:g} to "
+               f"{sheet.z_max_mm:g} mm), lens centre at the cross",
+               f"grade {piece.material.name}, board thickness {sheet.thickness_mm:g} mm; "
+               + (_holes_text(piece.holes) if piece.holes else "no dowel holes")
+               + f"; CUT = tool path (kerf {plan.kerf_mm:g} mm)"])
+    return d
+
+
+def _ring_drawing(plan: RingLayupPlan, sheet: RingSheet, pieces: list[RingPiece], title: str) -> Drawing:
+    """One ring's template in the sheet frame (centre cross, +X tick: the holes' reference): the
+    whole ring, or every sector's own cut path where it lies in the ring, its letter inside it.
+    One drawing per ring, not per sector: a 3 m layup has 31,700 sectors (issue 16), and the
+    sectors of a ring differ only in their holes, all marked here."""
+    ring = pieces[0].ring
+    d = Drawing(ring.label)
+    for piece in pieces:
+        d.add_polygon(piece.cut_path(plan.kerf_mm), piece.cut_arcs(plan.kerf_mm))
+    rm = 0.5 * (ring.r_inner_mm + ring.r_outer_mm)
+    if ring.sectors > 1:
+        for piece in pieces:
+            mid = 0.5 * (piece.a0_rad + piece.a1_rad)
+            d.texts.append((piece.label.rsplit("-", 1)[1], rm * math.cos(mid) - 2.0, rm * math.sin(mid) - 2.0,
+                            TEXT_HEIGHT_MM))
+        where = (f"{ring.sectors} sectors {pieces[0].label} to {pieces[-1].label}, counter-clockwise from "
+                 f"{math.degrees(ring.sector_start_rad) % 360:.2f}° of the sheet frame, "
+                 f"{360 / ring.sectors:.4g}° each: each outline is one piece (its letter inside); "
+                 "cut them apart and butt-joint them radially")
+    else:
+        where = "one piece"
+    _frame_marks(d, max(ring.r_outer_mm, 20.0))
+    _mark_holes(d, ring.holes)
+    holes = _holes_text(ring.holes) if ring.holes else "no dowel holes"
+    _title(d, [f"{title}  {ring.label}: sheet {sheet.label} (z {sheet.z_min_mm:g} to {sheet.z_max_mm:g} mm), "
+               f"ring of shell {ring.shell_index:02d}; {where}",
+               f"grade {ring.material.name}: εr {ring.material.eps_r:.4g}, {ring.material.density_kg_m3:.4g} kg/m³, "
+               f"board thickness {sheet.thickness_mm:g} mm",
+               f"R out {ring.r_outer_mm:.2f} mm, R in {ring.r_inner_mm:.2f} mm; {holes}; CUT = tool path "
+               f"(kerf {plan.kerf_mm:g} mm); drawn in the sheet frame: align the +X tick with the sheet's +X mark"])
+    return d
+
+
+def _holes_text(holes) -> str:
+    """"3 × Ø6 ↑12 (top face), 3 × Ø6 ↓12 (bottom face)" for a cut-list note or a title."""
+    groups: dict[tuple, int] = {}
+    for h in holes:
+        key = (h.diameter_mm, h.depth_mm, h.face)
+        groups[key] = groups.get(key, 0) + 1
+    words = {"top": "blind from the top face", "bottom": "blind from the bottom face", "through": "through"}
+    return "dowel holes " + ", ".join(f"{n} × Ø{dia:g}" + (f" {depth:g} deep " if face != "through" else " ")
+                                      + words[face] for (dia, depth, face), n in sorted(groups.items()))
+
+
+def _mark_holes(drawing: Drawing, holes) -> None:
+    """Blind holes on MARK: a circle, a cross, and "T"/"B" for the face they are drilled from
+    (through holes are CUT paths already)."""
+    for h in holes:
+        if h.face == "through":
+            continue
+        x, y = h.x_mm, h.y_mm
+        drawing.marks.append(_arc(h.diameter_mm / 2, 0.0, 2 * math.pi, 48, False) + (x, y))
+        drawing.add_cross(x, y, h.diameter_mm * 0.4)
+        drawing.texts.append(("T" if h.face == "top" else "B", x + h.diameter_mm * 0.7, y, 3.0))
+
+
+def _frame_marks(drawing: Drawing, r: float) -> None:
+    """Centre cross and rim ticks on ±X, ±Y (the +X tick is long: the angular reference)."""
+    drawing.add_cross(0.0, 0.0, 10.0)
+    for x, y, extra in ((1, 0, 12.0), (-1, 0, 0.0), (0, 1, 0.0), (0, -1, 0.0)):
+        drawing.marks.append([(x * (r + 3), y * (r + 3)), (x * (r + 9 + extra), y * (r + 9 + extra))])
+    drawing.texts.append(("+X", r + 24.0, -2.0, 4.0))
+
+
+def _title(d: Drawing, lines: list[str]) -> None:
+    x0, y0, _, y1 = d.bounds()
+    d.add_title(lines, x0, y1 + 12)
+    d.add_check_bar(x0, y0 - 20)

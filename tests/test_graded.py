@@ -136,3 +136,14 @@ def test_recipe_builds(tmp_path):
         assert eps[label].endswith(f"εr {float(row['eps_r']):.4f}")
         assert (res.out_dir / "templates" / f"{label}.dxf").exists()
     assert any(k.startswith("sigma_at_") for k in manifest["figures"])
+
+
+def test_a_shorter_trace_is_the_same_ray():
+    """ray_paths traces a ray only to just past surface 2: a ray traced to a nearer x_max has the
+    same segments (the last one cut) and the same state, bit for bit, up to there."""
+    med = _medium()
+    a = 1.6 * np.cos(np.radians(35.0))
+    full, short = Ray(med, 0.0, 0.1, a, 1.0, 2.0), Ray(med, 0.0, 0.1, a, 1.0, 0.7)
+    assert short.x_end == pytest.approx(0.7, abs=1e-12) and len(short.segments) < len(full.segments)
+    for x in np.linspace(0.0, 0.7, 57):
+        assert short.state(float(x)) == full.state(float(x))

@@ -163,3 +163,20 @@ def test_two_parameter_search_leaves_the_published_point():
     opt = optimize_target(N, F0, D0, 0.94, free=("f0", "gamma"), bounds={"gamma": (0.88, 1.2), "f0": (0.3, 0.9)})
     assert (opt.f0, opt.gamma) == (pytest.approx(0.708, abs=2e-3), pytest.approx(0.959, abs=2e-3))
     assert opt.A < target_A(N, F0, D0, 0.93777) and opt.f0 + opt.d0 == pytest.approx(1.0)
+
+
+def test_rays_lost_at_an_earlier_face_are_not_iterated(on_surface):
+    """_hit iterates only the ``alive`` rays, with the same bits as iterating all; the others keep
+    their start and are not converged (feed on the surface: a fifth of the grid misses the mirror)."""
+    from antenna_cad.raytrace.mirror_lens import _hit, launch_grid
+    body = body_from_profiles(on_surface)
+    w = launch_grid(body)
+    p = np.tile([-0.05, 0.0, 0.0], (len(w), 1))
+    t0 = (float(body.mirror.z(np.array([0.0]))[0]) - p[:, 2]) / w[:, 2]
+    t_all, conv_all = _hit(p, w, body.mirror, t0)
+    b = p + t_all[:, None] * w
+    alive = conv_all & (np.hypot(b[:, 0], b[:, 1]) <= body.mirror.rho_max)
+    assert 0 < np.count_nonzero(~alive) < len(w)
+    t, conv = _hit(p, w, body.mirror, t0, alive)
+    assert np.array_equal(t[alive], t_all[alive]) and np.array_equal(conv[alive], conv_all[alive])
+    assert np.array_equal(t[~alive], t0[~alive]) and not conv[~alive].any()

@@ -73,11 +73,17 @@ class Rays:
     ok: np.ndarray
 
 
-def _hit(p: np.ndarray, w: np.ndarray, surf: Surface, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _hit(p: np.ndarray, w: np.ndarray, surf: Surface, t: np.ndarray,
+         alive: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Ray parameter where p + t·w meets z = g(ρ), Newton from ``t``; returns (t, converged). A ray
     leaves the iteration once its step is below 1e-14 (or not finite): the rays that miss the face
-    would otherwise keep every ray in all 60 iterations."""
-    t, step, act = np.array(t, float), np.full(len(t), np.inf), np.arange(len(t))
+    would otherwise keep every ray in all 60 iterations. Rays not ``alive`` (already lost at an
+    earlier face) are not iterated: they could only fail to converge, e.g. a ray reflected beyond
+    the mirror's rim looking for the front face (a fifth of the launch grid for a feed on the
+    surface, which kept the loop in all 60 iterations); each ray's iteration is its own, so the
+    others get the same bits."""
+    t, step = np.array(t, float), np.full(len(t), np.inf)
+    act = np.arange(len(t)) if alive is None else np.flatnonzero(alive)
     for _ in range(60):
         pa, wa = p[act], w[act]
         q = pa + t[act, None] * wa
@@ -116,13 +122,13 @@ def trace(body: Body, feed, launch: np.ndarray) -> Rays:
         ok &= good
         fres = _fresnel(launch, w, nrm, 1.0, n)
         opl, inside = t, np.zeros(N)
-    t, good = _hit(a, w, body.mirror, (z_mirror - a[:, 2]) / w[:, 2])
+    t, good = _hit(a, w, body.mirror, (z_mirror - a[:, 2]) / w[:, 2], ok)
     b = a + t[:, None] * w
     ok &= good & (np.hypot(b[:, 0], b[:, 1]) <= body.mirror.rho_max)
     opl, inside = opl + n * t, inside + t
     v = reflect(w, body.mirror.normal(b))
     z_front = body.front.z(np.minimum(np.hypot(b[:, 0], b[:, 1]), body.front.rho_max))
-    t, good = _hit(b, v, body.front, (z_front - b[:, 2]) / v[:, 2])
+    t, good = _hit(b, v, body.front, (z_front - b[:, 2]) / v[:, 2], ok)
     c = b + t[:, None] * v
     ok &= good & (np.hypot(c[:, 0], c[:, 1]) <= body.aperture)
     opl, inside = opl + n * t, inside + t

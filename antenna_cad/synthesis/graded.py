@@ -114,7 +114,7 @@ class Segment:
     su: float = 1.0
 
     def __post_init__(self):
-        self.rate = float(np.sqrt(abs(self.L.p)) / self.a)
+        self.rate = _rate(self.L.p, self.a)
         self.x1 = self.x0 + (self.psi1 - self.psi0) * self.sigma / self.rate
 
     def at(self, x: float):
@@ -138,6 +138,16 @@ class Segment:
         """y at an array of x (the formula of :meth:`at`)."""
         psi = self.psi0 + self.sigma * (x - self.x0) * self.rate
         return (1.0 if self.sign == 0 else self.sign) * (self.L.c + self.su * self.Y * _LAWS_NP[self.kind][0](psi))
+
+
+def _rate(p: float, a: float) -> float:
+    """dψ/dx = √|p| / a on floats (numpy's quotient, inf/NaN, for a = 0)."""
+    return math.sqrt(abs(p)) / a if a else float(np.sqrt(abs(p)) / np.float64(a))
+
+
+def _sign(v: float) -> float:
+    """np.sign on a float without the numpy scalar (the tracer's inner loop)."""
+    return 1.0 if v > 0 else -1.0 if v < 0 else float(np.sign(v))
 
 
 def _start(L: Layer, a: float, u: float, du_up: bool):
@@ -222,7 +232,7 @@ class Ray:
             kind, Y, psi0, sigma, su = _start(L, self.a, w - L.c, dw_up)
             ahead = [q for b in ([-L.hi, L.hi] if i == 0 else [L.lo, L.hi]) if math.isfinite(b)
                      for q in _crossings(kind, Y, su, psi0, sigma, b - L.c)]
-            rate = np.sqrt(abs(L.p)) / self.a
+            rate = _rate(L.p, self.a)
             limit = psi0 + sigma * (x_max - x) * rate
             psi1 = min(ahead + [limit], key=lambda q: (q - psi0) * sigma)
             seg = Segment(x, psi0, psi1, L, sign, Y, self.a, path, kind, sigma, su)
@@ -230,8 +240,8 @@ class Ray:
             if seg.x1 >= x_max * (1 - 1e-15) - 1e-12:
                 return
             y_end, dy, path = seg.at(seg.x1)
-            x, up = seg.x1, (np.sign(dy) if dy != 0 else up)
-            y = float(np.sign(y_end) * (L.hi if abs(abs(y_end) - L.hi) < 1e-9 else L.lo))   # snap onto the boundary
+            x, up = seg.x1, (_sign(dy) if dy != 0 else up)
+            y = _sign(y_end) * (L.hi if abs(abs(y_end) - L.hi) < 1e-9 else L.lo)   # snap onto the boundary
         raise RuntimeError("ray: too many layer crossings")
 
     def at(self, x: float):

@@ -72,8 +72,11 @@ def _on_circle(xc: float, r: float, vertex: np.ndarray, angle: float, side: floa
 
 def ray_paths(medium: Medium, x1, x2, half: float, source: np.ndarray, n_rays: int = N_RAYS):
     """Exit points Q_i and paths |S − P_i| + L_i (inside) for rays aimed at y_i on surface 1 (the
-    first at the vertex); rays that leave the aperture on surface 2 are dropped."""
+    first at the vertex); rays that leave the aperture on surface 2 are dropped. A ray is traced
+    to just beyond surface 2's farthest sampled x, not 3 lens units on (two thirds of its layer
+    crossings were past the lens); one that has not crossed it there is traced the full way."""
     slope, x2_at = x1.derivative(), scalar_spline(x2)
+    x_stop = float(np.max(x2(np.linspace(-half, half, 201)))) + 0.01 * half
     ys = np.concatenate([[0.0], np.linspace(-half, half, n_rays) * (1 - 1e-9)])
     out_q, out_l, out_y = [], [], []
     P = np.stack([x1(ys), ys], -1)                       # entry points, normals, indices, refraction:
@@ -84,8 +87,11 @@ def ray_paths(medium: Medium, x1, x2, half: float, source: np.ndarray, n_rays: i
     for y, p, v, ok, n, r in zip(ys.tolist(), P.tolist(), V.tolist(), OK, n_in.tolist(), dist.tolist()):
         if not ok:
             continue
+        args = (medium, p[0], y, n * v[0], math.copysign(1.0, v[1]) if v[1] else 1.0)
         try:
-            ray = Ray(medium, p[0], y, n * v[0], math.copysign(1.0, v[1]) if v[1] else 1.0, p[0] + 3.0)
+            ray = Ray(*args, min(x_stop, p[0] + 3.0))
+            if not ray.left and ray.x_end - x2_at(min(max(ray.y_at(ray.x_end), -half), half)) <= 0:
+                ray = Ray(*args, p[0] + 3.0)
             x = brentq(lambda t: t - x2_at(min(max(ray.y_at(t), -half), half)), p[0] + 1e-9, ray.x_end,
                        xtol=1e-14)
         except (ValueError, LeavesMedium):

@@ -51,8 +51,7 @@ main()
 
 def _imports() -> float:
     start = time.perf_counter()
-    import build123d  # noqa: F401  (import cost measured apart from the build)
-
+    import antenna_cad.geometry.kernel  # noqa: F401  (the CAD kernel's import measured apart from the build)
     import antenna_cad.pipeline  # noqa: F401
     for writer in WRITERS:        # imported by the pipeline at use (validate stays light): measured here
         try:
@@ -271,8 +270,9 @@ def _budget_rows(results: dict) -> list[dict]:
         slowest = max(budgeted, key=budgeted.get)
         rows.append({"what": f"{name}: after imports", "value": total, "limit": BUDGET["recipe_s"], "unit": "s",
                      "why": f"slowest stage {slowest} {budgeted[slowest]:.2f} s"})
-        rows.append({"what": f"{name}: peak RSS", "value": r["peak_mb"], "limit": BUDGET["peak_mb"], "unit": "MB",
-                     "why": ""})
+        peak = max(r["peak_mb"], r.get("child_peak_mb", 0.0))      # the build or its largest forked writer
+        rows.append({"what": f"{name}: peak RSS", "value": peak, "limit": BUDGET["peak_mb"], "unit": "MB",
+                     "why": "" if peak == r["peak_mb"] else "a forked writer (child MB)"})
     for c in results["cli"]:
         rows.append({"what": f"make-lens {c['args']}", "value": c["seconds"], "limit": BUDGET["cli_s"], "unit": "s",
                      "why": f"CAD modules imported: {', '.join(c['cad_modules']) or 'none'}"})

@@ -1,6 +1,6 @@
 """Meshing with an absolute chord tolerance and STL writing (DESIGN.md pitfalls).
 
-build123d's own tolerances are relative; here OCCT's BRepMesh runs with an absolute linear
+Here OCCT's BRepMesh runs with an absolute linear
 deflection in mm after the cached triangulation is cleaned. The Delabella triangulator is tried
 first: it meets the same deflection and is several times faster than the default (Watson) on our
 rings and shells (benchmarks/mesh_speed.py), but leaves some B-spline faces untriangulated (the
@@ -27,7 +27,6 @@ import math
 import manifold3d
 import numpy as np
 import trimesh
-from build123d import Compound, Shape
 from OCP.BRep import BRep_Tool
 from OCP.BRepMesh import BRepMesh_IncrementalMesh
 from OCP.BRepTools import BRepTools
@@ -39,6 +38,8 @@ from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS
 
+from antenna_cad.geometry import kernel
+from antenna_cad.geometry.kernel import Shape
 from antenna_cad.geometry.model import RingPrism, SlottedPrism
 
 ANGULAR_DEFLECTION_RAD = 0.3
@@ -54,7 +55,7 @@ def mesh_shape(shape: Shape, tolerance_mm: float, meshers: tuple[str, ...] = tup
             continue
         with tempfile.TemporaryDirectory(prefix="antenna_cad-mesh-") as scratch:
             path = str(Path(scratch) / "solid.stl")
-            bodies = [_solid_mesh(solid.wrapped, path) for solid in shape.solids()]
+            bodies = [_solid_mesh(solid, path) for solid in kernel.solids(shape)]
         if all(b.is_watertight for b in bodies) or name == meshers[-1]:
             mesh = trimesh.util.concatenate(bodies)
             mesh.metadata |= {"mesher": name, "bodies": len(bodies),
@@ -71,14 +72,14 @@ def picture_meshes(shapes: list[Shape], tolerance_mm: float,
     prisms = prisms or [None] * len(shapes)
     brep = [shape for shape, prism in zip(shapes, prisms) if prism is None]
     if brep:
-        compound = Compound(brep)                  # a plain wrapper: the parts are not re-parented
+        compound = kernel.compound(brep)
         for name in MESHERS:
             if _triangulate(compound, tolerance_mm, name):
                 break
     with tempfile.TemporaryDirectory(prefix="antenna_cad-mesh-") as scratch:
         path = str(Path(scratch) / "part.stl")
         return [mesh_prism(prism, tolerance_mm, picture=True) if prism is not None
-                else _stl_read_back(shape.wrapped, path) for shape, prism in zip(shapes, prisms)]
+                else _stl_read_back(shape, path) for shape, prism in zip(shapes, prisms)]
 
 
 def mesh_prism(prism: SlottedPrism | RingPrism, tolerance_mm: float, picture: bool = False) -> trimesh.Trimesh:
@@ -159,9 +160,9 @@ def _arc_chords(radius_mm: float, tolerance_mm: float, angle_rad: float = ANGULA
 
 def _triangulate(shape: Shape, tolerance_mm: float, mesher: str) -> bool:
     """(Re-)mesh ``shape`` in place; True when every face got a triangulation."""
-    BRepTools.Clean_s(shape.wrapped)
-    BRepMesh_IncrementalMesh(shape.wrapped, _parameters(tolerance_mm, MESHERS[mesher]))
-    return _fully_triangulated(shape.wrapped)
+    BRepTools.Clean_s(shape)
+    BRepMesh_IncrementalMesh(shape, _parameters(tolerance_mm, MESHERS[mesher]))
+    return _fully_triangulated(shape)
 
 
 def _fully_triangulated(shape) -> bool:

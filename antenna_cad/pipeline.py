@@ -224,12 +224,13 @@ def _remove_leftovers(out_root: Path, name: str) -> None:
 
 def _write_solids(spec, model, out: Path, stage) -> list[dict]:
     from antenna_cad.export.mesh import write_stl
+    from antenna_cad.geometry import kernel
     parts = []
     if spec.outputs.stl:
         (out / "stl").mkdir()
     for part in sorted(model.parts, key=lambda p: p.label):
         entry = {"label": part.label, "material": part.material.name, "role": part.role,
-                 "volume_mm3": part.volume_mm3, "solids": len(part.shape.solids()),
+                 "volume_mm3": part.volume_mm3, "solids": len(kernel.solids(part.shape)),
                  "valid": part.is_valid()}
         if spec.outputs.stl:
             mesh = write_stl(part.shape, out / "stl" / f"{part.label}.stl", spec.outputs.mesh_tolerance_mm,

@@ -27,11 +27,11 @@ def _timed(fn):
 def slotted_lids(design, broad_wall_mm: float, guides: int | None = None) -> tuple[float, float, int]:
     """Every guide's slotted lid: per-slot cuts vs one face with inner wires (first ``guides``;
     ``ours`` is also timed on every guide: ``(naive_s, ours_s, slots, ours_all_s, slots_all)``)."""
-    from build123d import Location, Solid
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
     from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
     from OCP.gp import gp_Vec
 
+    from antenna_cad.geometry import kernel
     from antenna_cad.geometry.slot_array import slot_wire, slotted_plate
     from antenna_cad.geometry.slot_layout import guide_extent
     s, t, h = design.slots, broad_wall_mm, design.guide_height_mm
@@ -52,11 +52,10 @@ def slotted_lids(design, broad_wall_mm: float, guides: int | None = None) -> tup
         lids = []
         for g in range(count):
             x0, y0, x1, y1 = span(g)
-            lid = Solid.make_box(x1 - x0, y1 - y0, t).moved(Location((x0, y0, t + h)))
+            lid = kernel.box((x0, y0, t + h), (x1 - x0, y1 - y0, t))
             for wire in wires(g):
-                tool = Solid(BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(wire, True).Face(),
-                                                   gp_Vec(0, 0, t)).Shape())
-                lid = lid.cut(tool)
+                tool = BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(wire, True).Face(), gp_Vec(0, 0, t)).Shape()
+                lid = kernel.cut(lid, [tool])
             lids.append(lid)
         return lids
 
@@ -69,13 +68,15 @@ def slotted_lids(design, broad_wall_mm: float, guides: int | None = None) -> tup
 
 def layup_sheets(plan, lens_solid) -> tuple[float, float, int]:
     """Every sheet of a collimator layup: lens ∩ slab per sheet vs outline extrusion."""
-    from build123d import Box, Pos
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Common
 
+    from antenna_cad.geometry import kernel
     from antenna_cad.geometry.layup import sheet_solid
 
     def naive():
         size = 4 * plan.lens_radius_mm
-        return [lens_solid.intersect(Pos(0, 0, (s.z_min_mm + s.z_max_mm) / 2) * Box(size, size, s.thickness_mm))
+        return [BRepAlgoAPI_Common(lens_solid, kernel.box((-size / 2, -size / 2, s.z_min_mm),
+                                                          (size, size, s.thickness_mm))).Shape()
                 for s in plan.sheets]
 
     t_ours, _ = _timed(lambda: [sheet_solid(plan, s) for s in plan.sheets])
@@ -98,9 +99,9 @@ def node_loop_mesh(shapes, tolerance_mm: float) -> tuple[float, float, int]:
     def naive():
         meshes = []
         for shape in shapes:
-            BRepTools.Clean_s(shape.wrapped)
-            BRepMesh_IncrementalMesh(shape.wrapped, tolerance_mm, False, 0.3, False)
-            explorer = TopExp_Explorer(shape.wrapped, TopAbs_FACE)
+            BRepTools.Clean_s(shape)
+            BRepMesh_IncrementalMesh(shape, tolerance_mm, False, 0.3, False)
+            explorer = TopExp_Explorer(shape, TopAbs_FACE)
             while explorer.More():
                 location = TopLoc_Location()
                 tri = BRep_Tool.Triangulation_s(TopoDS.Face(explorer.Current()), location)
@@ -119,7 +120,8 @@ def node_loop_mesh(shapes, tolerance_mm: float) -> tuple[float, float, int]:
 
 def _same_volume(ours, naive, what: str) -> None:
     """The baseline must build the same thing, or its time means nothing."""
-    a = sum(s.volume for s in ours)
-    b = sum(s.volume for s in naive)
+    from antenna_cad.geometry.kernel import volume
+    a = sum(volume(s) for s in ours)
+    b = sum(volume(s) for s in naive)
     if abs(a - b) > 1e-6 * max(a, b):
         raise AssertionError(f"naive {what} differ from ours: {b:.6g} vs {a:.6g} mm³")

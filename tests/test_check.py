@@ -10,7 +10,6 @@ from pathlib import Path
 import numpy as np
 import pypdfium2
 import pytest
-from build123d import Box, Pos
 from shapely.geometry import box
 from typer.testing import CliRunner
 
@@ -23,6 +22,7 @@ from antenna_cad.fabrication.outline import Circle, arc_paths, circle_polygon
 from antenna_cad.fabrication.templates import (A4_MM, WINDOW_MM, Drawing, _texts_by_tile, tile_windows,
                                                write_dxf, write_tiled_pdf)
 from antenna_cad.fabrication.vector_pdf import PT_PER_MM, VectorPdf, text_ops
+from antenna_cad.geometry import kernel
 
 ROOT = Path(__file__).resolve().parents[1]
 runner = CliRunner()
@@ -37,12 +37,12 @@ def test_manifest_is_strict_json_without_infinity(tmp_path):
 
 def test_stl_claim_is_what_a_reader_sees(tmp_path):
     """Two cubes sharing an edge: each body closed, the file not (an edge of four faces)."""
-    pair = Box(10, 10, 10) + Pos(10, 0, 10) * Box(10, 10, 10)
+    pair = kernel.fuse([kernel.box((-5, -5, -5), (10, 10, 10)), kernel.box((5, -5, 5), (10, 10, 10))])
     mesh = write_stl(pair, tmp_path / "pair.stl", 0.01)
     assert mesh.metadata["bodies"] == 2 and mesh.metadata["bodies_watertight"]
     assert mesh.metadata["watertight"] is False
     assert not check.stl_closed(check.read_stl(tmp_path / "pair.stl"))
-    one = write_stl(Box(10, 20, 30), tmp_path / "one.stl", 0.01)
+    one = write_stl(kernel.box((-5, -10, -15), (10, 20, 30)), tmp_path / "one.stl", 0.01)
     tri = check.read_stl(tmp_path / "one.stl")
     assert one.metadata["watertight"] and check.stl_closed(tri)
     volume = np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])).sum() / 6

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from build123d import Box, Pos
 
 from antenna_cad.export.mesh import mesh_shape
+from antenna_cad.geometry import kernel
 from antenna_cad.geometry.luneburg import annulus_solid, hemisphere_shell
 
 TOL = 0.05
@@ -46,8 +46,8 @@ def test_hemisphere_shell_mesh_is_closed_and_within_tolerance():
 
 
 def test_bodies_touching_along_an_edge_stay_separate_and_watertight():
-    pair = Box(10, 10, 10) + Pos(10, 0, 10) * Box(10, 10, 10)     # two cubes sharing one edge
-    assert len(pair.solids()) == 2
+    pair = kernel.fuse([kernel.box((-5, -5, -5), (10, 10, 10)), kernel.box((5, -5, 5), (10, 10, 10))])     # two cubes sharing one edge
+    assert len(kernel.solids(pair)) == 2
     mesh = mesh_shape(pair, TOL)
     bodies = mesh.split(only_watertight=False)
     assert len(bodies) == 2 and all(b.is_watertight for b in bodies)

@@ -145,22 +145,26 @@ def x_model():
 
 
 def test_horns_are_hollow_open_and_flanged(x_model):
-    from build123d import Vector
+    from OCP.BRepClass3d import BRepClass3d_SolidClassifier
+    from OCP.gp import gp_Pnt
+    from OCP.TopAbs import TopAbs_IN
 
+    from antenna_cad.geometry import kernel
     from antenna_cad.geometry.slot_layout import horn_outlines
     spec, design, model, kind = x_model
     t, h = spec.fabrication.broad_wall_mm, spec.beamformer.layer_height_mm
     f = design.feeds
     for k, horn in enumerate(horn_outlines(design, kind._sizes(spec)), start=1):
         solid = model.part(f"horn-{k}").shape
-        assert solid.is_valid and len(solid.solids()) == 1
+        assert kernel.is_valid(solid) and len(kernel.solids(solid)) == 1
         # metal = footprint over the full height less the channel over the layer height
         analytic = horn.footprint.area * (2 * t + h) - horn.channel.area * h
-        assert solid.volume == pytest.approx(analytic, rel=1e-6)
+        assert kernel.volume(solid) == pytest.approx(analytic, rel=1e-6)
         assert horn.channel.area > 0.5 * horn.footprint.area              # hollow, not an envelope
-        zc = solid.bounding_box().center().Z
+        zc = float(np.mean(kernel.bounding_box([solid]), axis=0)[2])
         c, aim = f.aperture_centres_mm[k - 1], f.aim[k - 1]
-        inside = lambda p, dz=0.0: solid.is_inside(Vector(float(p[0]), float(p[1]), zc + dz))
+        inside = lambda p, dz=0.0: BRepClass3d_SolidClassifier(                     # noqa: E731
+            solid, gp_Pnt(float(p[0]), float(p[1]), zc + dz), 1e-6).State() == TopAbs_IN
         assert not inside(c - 1.0 * aim) and not inside(c - f.length_mm / 2 * aim)   # channel is air
         back = c - (f.length_mm + spec.feeds.flange_thickness_mm / 2) * aim
         assert not inside(back)                                                      # throat port
@@ -186,6 +190,7 @@ def test_plates_are_notched_along_the_horn_apertures(x_model):
 
 
 def test_matched_loads_fill_the_guide_ends(x_model):
+    from antenna_cad.geometry.kernel import bounding_box, volume
     spec, design, model, _ = x_model
     a, h = spec.waveguide.width_mm, spec.waveguide.height_mm
     lam_g = float(__import__("antenna_cad.synthesis.slot_array", fromlist=["x"]).guide_wavelength_mm(
@@ -193,10 +198,10 @@ def test_matched_loads_fill_the_guide_ends(x_model):
     assert design.termination == "matched_load" and design.load_length_mm == pytest.approx(lam_g)
     for g in (0, 7):
         load, core = model.part(f"load-{g:02d}").shape, model.part(f"core-{g:02d}").shape
-        assert load.volume == pytest.approx(a * design.load_length_mm * h / 2, rel=1e-9)     # wedge
-        body = model.part(f"waveguide-{g:02d}").shape.bounding_box()
-        cavity_len = body.max.Y - spec.fabrication.broad_wall_mm - body.min.Y            # end wall closes it
-        assert core.volume + load.volume == pytest.approx(a * h * cavity_len, rel=1e-9)
+        assert volume(load) == pytest.approx(a * design.load_length_mm * h / 2, rel=1e-9)     # wedge
+        lo, hi = bounding_box([model.part(f"waveguide-{g:02d}").shape])
+        cavity_len = hi[1] - spec.fabrication.broad_wall_mm - lo[1]            # end wall closes it
+        assert volume(core) + volume(load) == pytest.approx(a * h * cavity_len, rel=1e-9)
 
 
 def test_short_circuit_ends_warn_and_have_no_load(tmp_path):

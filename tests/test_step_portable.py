@@ -8,15 +8,16 @@ from pathlib import Path
 import gmsh
 import numpy as np
 import pytest
-from build123d import Edge, export_step, Unit
-from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
-from OCP.Geom import Geom_Hyperbola
+from OCP.Geom import Geom_Hyperbola, Geom_TrimmedCurve
 from OCP.gp import gp_Ax2, gp_Dir, gp_Hypr, gp_Pnt
 
 from antenna_cad.export.step import write_step
 from antenna_cad.export.step_read import gmsh_solids
+from antenna_cad.geometry import kernel
+from antenna_cad.geometry.model import Model, ModelPart
 from antenna_cad.geometry.profiles import hyperbola_edge, polyline_edges, revolve_closed
 from antenna_cad.registry import adapter, synthesize
+from antenna_cad.materials import Material
 from antenna_cad.spec import load_spec
 from antenna_cad.synthesis.collimator import hyperbola_axes_mm, profile_z_mm
 
@@ -28,10 +29,11 @@ def test_old_readers_still_drop_a_revolved_hyperbola(tmp_path):
     HYPERBOLA is not translated by OCCT 7.x. Warns when gmsh starts reading it (workaround removable)."""
     zc, a, b = hyperbola_axes_mm(300.0, 1.44)
     conic = Geom_Hyperbola(gp_Hypr(gp_Ax2(gp_Pnt(0, 0, zc), gp_Dir(0, 1, 0), gp_Dir(0, 0, 1)), a, b))
-    arc = Edge(BRepBuilderAPI_MakeEdge(conic, 0.0, math.asinh(60.0 / b)).Edge())
-    z = arc.end_point().Z
+    arc = kernel.curve_edge(Geom_TrimmedCurve(conic, 0.0, math.asinh(60.0 / b)))
+    z = kernel.edge_points(arc, 2)[0][-1, 2]
     solid = revolve_closed([arc] + polyline_edges([(60.0, z), (60.0, z + 5), (0.0, z + 5), (0.0, 0.0)]))
-    export_step(solid, str(tmp_path / "conic.step"), unit=Unit.MM)
+    write_step(Model((ModelPart("conic", Material("ptfe", 2.1, 0.0, 2200.0, ""), "fabricated", solid),), ()),
+               "conic", tmp_path / "conic.step")
     if gmsh_solids(tmp_path / "conic.step"):
         warnings.warn("gmsh now reads revolved HYPERBOLA surfaces: hyperbola_edge's B-spline form "
                       "is no longer needed for portability")
@@ -40,7 +42,7 @@ def test_old_readers_still_drop_a_revolved_hyperbola(tmp_path):
 @pytest.mark.parametrize("f, n, r0, r1", [(300.0, 1.44, 0.0, 60.0), (500.0, 1.0232, 97.0, 250.0)])
 def test_hyperbola_edge_lies_on_the_synthesized_profile(f, n, r0, r1):
     edge = hyperbola_edge(f, n, r0, r1)
-    pts = np.array([tuple(edge.position_at(t)) for t in np.linspace(0, 1, 401)])
+    pts, _ = kernel.edge_points(edge, 401)
     assert np.abs(pts[:, 1]).max() < 1e-12
     assert np.abs(pts[:, 2] - profile_z_mm(pts[:, 0], f, n)).max() < 1e-6       # ≪ 1 µm
     assert pts[0, 0] == pytest.approx(r0, abs=1e-9) and pts[-1, 0] == pytest.approx(r1, abs=1e-9)
@@ -82,7 +84,7 @@ def test_collimator_step_reads_in_gmsh(recipe, tmp_path):
     read = gmsh_solids(path)
     expected = {p.label: p.volume_mm3 for p in model.parts}
     assert sorted(read) == sorted(expected)
-    assert [len(read[p.label]) for p in model.parts] == [len(p.shape.solids()) for p in model.parts]
+    assert [len(read[p.label]) for p in model.parts] == [len(kernel.solids(p.shape)) for p in model.parts]
     for label, volume in expected.items():
         assert sum(read[label]) == pytest.approx(volume, rel=1e-6), label
     pts = _surface_points(path, "lens")

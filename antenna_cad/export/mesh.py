@@ -1,6 +1,6 @@
 """Meshing with an absolute chord tolerance and STL writing (DESIGN.md pitfalls).
 
-build123d's own tolerances are relative; here OCCT's BRepMesh runs with an absolute linear
+Here OCCT's BRepMesh runs with an absolute linear
 deflection in mm after the cached triangulation is cleaned. The Delabella triangulator is tried
 first: it meets the same deflection and is several times faster than the default (Watson) on our
 rings and shells (benchmarks/mesh_speed.py), but leaves some B-spline faces untriangulated (the
@@ -19,6 +19,7 @@ BRepMesh on the B-rep (issue 16).
 
 from __future__ import annotations
 
+import ctypes
 import tempfile
 from pathlib import Path
 
@@ -27,7 +28,6 @@ import math
 import manifold3d
 import numpy as np
 import trimesh
-from build123d import Compound, Shape
 from OCP.BRep import BRep_Tool
 from OCP.BRepMesh import BRepMesh_IncrementalMesh
 from OCP.BRepTools import BRepTools
@@ -39,6 +39,8 @@ from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS
 
+from antenna_cad.geometry import kernel
+from antenna_cad.geometry.kernel import Shape
 from antenna_cad.geometry.model import RingPrism, SlottedPrism
 
 ANGULAR_DEFLECTION_RAD = 0.3
@@ -50,11 +52,13 @@ def mesh_shape(shape: Shape, tolerance_mm: float, meshers: tuple[str, ...] = tup
     turn until every face is triangulated and every body closed; each solid is merged on its own
     (bodies that touch along an edge stay separate, so every body is watertight)."""
     for name in meshers:
-        if not _triangulate(shape, tolerance_mm, name) and name != meshers[-1]:
+        if not _triangulate(shape, tolerance_mm, name, parallel=False) and name != meshers[-1]:
             continue
         with tempfile.TemporaryDirectory(prefix="antenna_cad-mesh-") as scratch:
-            path = str(Path(scratch) / "solid.stl")
-            bodies = [_solid_mesh(solid.wrapped, path) for solid in shape.solids()]
+            paths = [_write_triangulation(solid, str(Path(scratch) / f"{i}.stl"))
+                     for i, solid in enumerate(kernel.solids(shape))]
+            _release(shape)                         # the triangulation is in the files: free it first
+            bodies = [_solid_mesh(path) for path in paths]
         if all(b.is_watertight for b in bodies) or name == meshers[-1]:
             mesh = trimesh.util.concatenate(bodies)
             mesh.metadata |= {"mesher": name, "bodies": len(bodies),
@@ -71,14 +75,17 @@ def picture_meshes(shapes: list[Shape], tolerance_mm: float,
     prisms = prisms or [None] * len(shapes)
     brep = [shape for shape, prism in zip(shapes, prisms) if prism is None]
     if brep:
-        compound = Compound(brep)                  # a plain wrapper: the parts are not re-parented
+        compound = kernel.compound(brep)
         for name in MESHERS:
             if _triangulate(compound, tolerance_mm, name):
                 break
     with tempfile.TemporaryDirectory(prefix="antenna_cad-mesh-") as scratch:
         path = str(Path(scratch) / "part.stl")
-        return [mesh_prism(prism, tolerance_mm, picture=True) if prism is not None
-                else _stl_read_back(shape.wrapped, path) for shape, prism in zip(shapes, prisms)]
+        meshes = [mesh_prism(prism, tolerance_mm, picture=True) if prism is not None
+                  else _stl_read_back(shape, path) for shape, prism in zip(shapes, prisms)]
+    if brep:
+        _release(compound)
+    return meshes
 
 
 def mesh_prism(prism: SlottedPrism | RingPrism, tolerance_mm: float, picture: bool = False) -> trimesh.Trimesh:
@@ -157,11 +164,23 @@ def _arc_chords(radius_mm: float, tolerance_mm: float, angle_rad: float = ANGULA
     return max(2, math.ceil(math.pi / angle_rad - 1e-9), math.ceil(math.pi / (2 * half) - 1e-9))
 
 
-def _triangulate(shape: Shape, tolerance_mm: float, mesher: str) -> bool:
-    """(Re-)mesh ``shape`` in place; True when every face got a triangulation."""
-    BRepTools.Clean_s(shape.wrapped)
-    BRepMesh_IncrementalMesh(shape.wrapped, _parameters(tolerance_mm, MESHERS[mesher]))
-    return _fully_triangulated(shape.wrapped)
+def _triangulate(shape: Shape, tolerance_mm: float, mesher: str, parallel: bool = True) -> bool:
+    """(Re-)mesh ``shape`` in place; True when every face got a triangulation. Not ``parallel``: one
+    face at a time — a part's STL (the 9 m lens: 130k triangles) then peaks 60 MB lower for the
+    same CPU time, ~0.4 s more wall time (issue 16: ≤ 500 MB)."""
+    BRepTools.Clean_s(shape)
+    BRepMesh_IncrementalMesh(shape, _parameters(tolerance_mm, MESHERS[mesher], parallel))
+    return _fully_triangulated(shape)
+
+
+def _release(shape: Shape) -> None:
+    """Drop the shape's triangulation once read (tens of MB for a spline lens, kept on the shape
+    otherwise) and give the freed heap back to the system, so meshing part after part does not
+    raise the build's peak memory (issue 16: ≤ 500 MB)."""
+    BRepTools.Clean_s(shape)
+    trim = getattr(ctypes.CDLL(None), "malloc_trim", None)       # glibc; elsewhere nothing to do
+    if trim is not None:
+        trim(0)
 
 
 def _fully_triangulated(shape) -> bool:
@@ -173,19 +192,19 @@ def _fully_triangulated(shape) -> bool:
     return True
 
 
-def _parameters(tolerance_mm: float, algorithm) -> IMeshTools_Parameters:
+def _parameters(tolerance_mm: float, algorithm, parallel: bool) -> IMeshTools_Parameters:
     params = IMeshTools_Parameters()
     params.Deflection = tolerance_mm
     params.Angle = ANGULAR_DEFLECTION_RAD
     params.Relative = False
-    params.InParallel = True
+    params.InParallel = parallel
     params.MeshAlgo = algorithm
     return params
 
 
-def _solid_mesh(solid, path: str) -> trimesh.Trimesh:
-    """One solid's triangulation, merged and cleaned by trimesh."""
-    mesh = _stl_read_back(solid, path)
+def _solid_mesh(path: str) -> trimesh.Trimesh:
+    """One solid's triangulation (an STL file), merged and cleaned by trimesh."""
+    mesh = trimesh.load(path, file_type="stl", process=False)
     mesh.merge_vertices()
     mesh.update_faces(mesh.nondegenerate_faces())
     mesh.remove_unreferenced_vertices()
@@ -194,11 +213,16 @@ def _solid_mesh(solid, path: str) -> trimesh.Trimesh:
 
 def _stl_read_back(shape, path: str) -> trimesh.Trimesh:
     """The triangulation of ``shape`` via OCCT's binary STL writer, read by trimesh as it is."""
+    return trimesh.load(_write_triangulation(shape, path), file_type="stl", process=False)
+
+
+def _write_triangulation(shape, path: str) -> str:
+    """``shape``'s triangulation as binary STL at ``path`` (OCCT's writer); returns ``path``."""
     writer = StlAPI_Writer()
     writer.ASCIIMode = False
     if not writer.Write(shape, path):
         raise RuntimeError(f"OCCT could not write the triangulation to {path}")
-    return trimesh.load(path, file_type="stl", process=False)
+    return path
 
 
 SNAP_MM = 1e-9       # coordinates below this are written as 0 (run-to-run noise of OCCT booleans)

@@ -11,6 +11,7 @@ import html
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
 import yaml
 from matplotlib import colormaps
 from matplotlib.colors import to_hex
@@ -21,6 +22,7 @@ from antenna_cad.export.mesh import picture_meshes
 from antenna_cad.export.page_parts import page as html_page, table as _table
 from antenna_cad.export.plots import assembly_png, plot_svg
 from antenna_cad.fabrication.cutlist import FIELDS as CUT_FIELDS
+from antenna_cad.geometry.kernel import bounding_box
 from antenna_cad.verification import Table, Verification
 
 PALETTE = ("#9ecae1", "#fdae6b", "#a1d99b", "#bcbddc", "#fdd0a2", "#c7e9c0", "#dadaeb", "#c6dbef",
@@ -142,10 +144,8 @@ def _pictures(model) -> tuple[bytes, dict[str, str], int]:
               (to_hex(GRADE_MAP(0.15 + 0.7 * dielectrics.index(name) / (len(dielectrics) - 1))) if graded
                else PALETTE[dielectrics.index(name) % len(PALETTE)])
               for name, m in materials}
-    bb = parts[0].shape.bounding_box()
-    for p in parts[1:]:
-        bb.add(p.shape.bounding_box())
-    tol = max(bb.diagonal / PICTURE_FACETS, 0.05)
+    lo, hi = bounding_box([p.shape for p in parts])
+    tol = max(float(np.linalg.norm(hi - lo)) / PICTURE_FACETS, 0.05)
     meshes = list(zip(picture_meshes([p.shape for p in parts], tol, [p.prism for p in parts]), [colour[p.material.name] for p in parts]))
     return assembly_png(meshes), colour, len(parts)
 

@@ -1,1 +1,1 @@
-"""Solids (build123d/OCP): the only package that imports CAD libraries."""
+"""Solids (OCCT through OCP, :mod:`antenna_cad.geometry.kernel`): the only package that builds CAD shapes."""

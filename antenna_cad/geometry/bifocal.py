@@ -18,10 +18,10 @@ import math
 
 import numpy as np
 from shapely.geometry import Polygon
-from build123d import Align, Axis, Compound, Cylinder, Edge, Face, Pos, Solid, Wire, extrude, revolve
 
 from antenna_cad.fabrication.box import Panel
 from antenna_cad.fabrication.layup import LayupPlan
+from antenna_cad.geometry import kernel
 from antenna_cad.geometry.layup import panel_solid, pedestal_solid, sheet_solid
 from antenna_cad.geometry.model import Model, ModelPart, relative_volume_check
 from antenna_cad.geometry.profiles import yz_prism
@@ -35,7 +35,7 @@ VOLUME_REL_LIMIT = {"nikulina": 1e-6,    # measured 1e-7 (revolved 9 m lens), 1e
 ALLOWANCE_REL_LIMIT = 1e-5       # measured 2.4e-6: the lens's own 1e-7 error over a 6× smaller volume
 
 
-def _face_edge(design: BifocalDesign, surface: str, y0: float, y1: float, plane: str) -> Edge:
+def _face_edge(design: BifocalDesign, surface: str, y0: float, y1: float, plane: str):
     spl = face_spline(design, surface)
     der = spl.derivative()
     u = np.linspace(0.0, 1.0, SPLINE_POINTS)
@@ -48,10 +48,10 @@ def _face_edge(design: BifocalDesign, surface: str, y0: float, y1: float, plane:
     else:                  # cylindrical: section in YZ
         pts = [(0.0, float(a), float(b)) for a, b in zip(y, z)]
         tan = [(0.0, sgn, sgn * float(s)) for s in dz]
-    return Edge.make_spline(pts, tangents=tan, scale=True)
+    return kernel.spline(pts, tan)
 
 
-def _rim(design: BifocalDesign, y: float, plane: str) -> list[Edge]:
+def _rim(design: BifocalDesign, y: float, plane: str) -> list:
     """The cylindrical rim from the illuminated to the shadow face at ±Y_B: none for a zero-thickness
     rim (nikulina), a line for Kinber's finite edge thickness (seed-001 §3.1)."""
     z0 = float(face_spline(design, "illuminated")(abs(y)))
@@ -59,46 +59,45 @@ def _rim(design: BifocalDesign, y: float, plane: str) -> list[Edge]:
     if z1 - z0 <= 1e-9 * design.edge_y_mm:
         return []
     a, b = ((y, 0.0, z0), (y, 0.0, z1)) if plane == "xz" else ((0.0, y, z0), (0.0, y, z1))
-    return [Edge.make_line(a, b) if y > 0 else Edge.make_line(b, a)]
+    return [kernel.line(a, b) if y > 0 else kernel.line(b, a)]
 
 
-def lens_solid(design: BifocalDesign, height_mm: float | None = None) -> Solid:
+def lens_solid(design: BifocalDesign, height_mm: float | None = None) -> kernel.Shape:
     yb, r1, r2 = design.edge_y_mm, design.rho1_mm, design.rho2_mm
     if design.shape == "cylindrical":
         edges = [_face_edge(design, "illuminated", -yb, 0.0, "yz"), _face_edge(design, "illuminated", 0.0, yb, "yz"),
                  *_rim(design, yb, "yz"), _face_edge(design, "shadow", yb, 0.0, "yz"),
                  _face_edge(design, "shadow", 0.0, -yb, "yz"), *_rim(design, -yb, "yz")]
-        face = Face(Wire(edges))
-        solid = Pos(-height_mm / 2, 0, 0) * extrude(face, height_mm, dir=(1, 0, 0))
+        section = kernel.face(kernel.wire(edges))
+        solid = kernel.translate(kernel.extrude(section, (height_mm, 0, 0)), (-height_mm / 2, 0, 0))
     else:
         edges = [_face_edge(design, "illuminated", 0.0, yb, "xz"), *_rim(design, yb, "xz"),
-                 _face_edge(design, "shadow", yb, 0.0, "xz"), Edge.make_line((0, 0, r2), (0, 0, r1))]
-        solid = revolve(Face(Wire(edges)), Axis.Z)
-    if not solid.is_valid:
+                 _face_edge(design, "shadow", yb, 0.0, "xz"), kernel.line((0, 0, r2), (0, 0, r1))]
+        solid = kernel.revolve_z(kernel.face(kernel.wire(edges)))
+    if not kernel.is_valid(solid):
         raise RuntimeError("bifocal lens solid is not valid")
     return solid
 
 
-def solid_volume_mm3(lens: Solid, design: BifocalDesign, height_mm: float | None) -> float:
+def solid_volume_mm3(lens: kernel.Shape, design: BifocalDesign, height_mm: float | None) -> float:
     """Volume read back from the solid. A cylindrical lens is an exact prism: its cap face's area ×
     height — OCC's volume integration of the thin extruded spline solid strays by up to 2e-5
     (measured on seed-001 lens 2 at 3.4 mm high, also with a tighter integration tolerance) while its
     cap area agrees with the profiles' integral to 1e-6. A revolved lens: OCC's volume."""
     if design.shape != "cylindrical":
-        return float(lens.volume)
-    caps = [f.area for f in lens.faces() if abs(abs(f.normal_at().X) - 1.0) < 1e-12]
+        return kernel.volume(lens)
+    normals = [(f, kernel.plane_normal(f)) for f in kernel.faces(lens)]
+    caps = [kernel.area(f) for f, n in normals if n is not None and abs(abs(n[0]) - 1.0) < 1e-12]
     return float(max(caps)) * float(height_mm)
 
 
-def sanding_allowance(plan: LayupPlan, lens: Solid) -> Compound:
+def sanding_allowance(plan: LayupPlan, lens: kernel.Shape) -> kernel.Shape:
     """Stack minus lens, one boolean per sheet (the sheet's lens disc over its slab minus the lens):
     the material sanded off on both faces, including the overhang beyond the shadow vertex."""
     rings = []
     for s in plan.sheets:
-        disc = Pos(0, 0, s.z_min_mm) * Cylinder(s.radius_mm, s.thickness_mm,
-                                                 align=(Align.CENTER, Align.CENTER, Align.MIN))
-        rings.append(disc - lens)
-    return Compound(rings)
+        rings.append(kernel.cut(kernel.cylinder(s.radius_mm, s.thickness_mm, (0, 0, s.z_min_mm)), [lens]))
+    return kernel.compound(rings)
 
 
 def plate_parts(outline: Polygon, walls: list[Polygon], height_mm: float, plate_mm: float,
@@ -114,9 +113,9 @@ def plate_parts(outline: Polygon, walls: list[Polygon], height_mm: float, plate_
     checks = [relative_volume_check("plate_volume", parts[0].volume_mm3, outline.area * plate_mm,
                                     "plate solid vs outline area × thickness")]
     if walls:
-        horn = Compound([yz_prism(yz(w), -h / 2, h) for w in walls])
+        horn = kernel.compound([yz_prism(yz(w), -h / 2, h) for w in walls])
         parts.append(ModelPart("horn", metal, "fabricated", horn))
-        checks.append(relative_volume_check("horn_volume", horn.volume, sum(w.area for w in walls) * h,
+        checks.append(relative_volume_check("horn_volume", kernel.volume(horn), sum(w.area for w in walls) * h,
                                             "horn side walls vs their area × plate spacing"))
     return parts, checks
 
@@ -139,7 +138,7 @@ def build_model(design: BifocalDesign, height_mm: float | None, plan: LayupPlan 
     parts.append(ModelPart("pedestal", lens_material, "reference", pedestal_solid(plan)))
     allowance = sanding_allowance(plan, lens)
     stack = sum(math.pi * s.radius_mm**2 * s.thickness_mm for s in plan.sheets)
-    checks.append(relative_volume_check("sanding_allowance_volume", allowance.volume,
+    checks.append(relative_volume_check("sanding_allowance_volume", kernel.volume(allowance),
                                         stack - lens_volume_mm3(design),
                                         "sanding allowance (stack − lens) vs analytic volume", ALLOWANCE_REL_LIMIT))
     parts.append(ModelPart("sanding-allowance", lens_material, "reference", allowance))

@@ -7,6 +7,7 @@ import math
 
 from antenna_cad.fabrication.layup import LayupPlan
 from antenna_cad.fabrication.box import Panel
+from antenna_cad.geometry import kernel
 from antenna_cad.geometry.layup import panel_solid, pedestal_solid, sheet_solid
 from antenna_cad.geometry.model import Model, ModelPart, relative_volume_check
 from antenna_cad.geometry.profiles import hyperbola_edge, polyline_edges, revolve_closed
@@ -53,7 +54,7 @@ def build_model(design: CollimatorDesign, plan: LayupPlan | None, lens_material:
     lens = lens_solid(design, slab)
     R = design.diameter_mm / 2
     lens_analytic = lens_volume_mm3(design.focal_length_mm, design.n, design.thickness_mm) + math.pi * R**2 * slab
-    checks = [relative_volume_check("lens_solid_volume", lens.volume, lens_analytic,
+    checks = [relative_volume_check("lens_solid_volume", kernel.volume(lens), lens_analytic,
                                     "lens solid vs analytic volume (seed-000 §7.3)")]
     role_lens = "reference" if plan else "fabricated"
     parts = [ModelPart("lens", lens_material, role_lens, lens)]
@@ -63,7 +64,7 @@ def build_model(design: CollimatorDesign, plan: LayupPlan | None, lens_material:
     parts.append(ModelPart("pedestal", lens_material, "reference", pedestal_solid(plan)))
     allowance = sanding_allowance(design, plan)
     checks.append(relative_volume_check("sanding_allowance_volume",
-                                        sum(ring.volume for ring in allowance.values()),
+                                        sum(kernel.volume(ring) for ring in allowance.values()),
                                         allowance_volume_mm3(design, plan),
                                         "sanding allowance (stack − lens) vs analytic volume"))
     parts += [ModelPart(label, lens_material, "reference", ring) for label, ring in allowance.items()]

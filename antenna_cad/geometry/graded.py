@@ -7,10 +7,11 @@ Frame: X the lens axis, Y transverse (the synthesis frame in mm), Z the extrusio
 
 from __future__ import annotations
 
-from build123d import Axis, Polyline, Pos, extrude, make_face
+import numpy as np
 from shapely.geometry import MultiPoint
 
 from antenna_cad.fabrication.graded import section_polygon, slab_material, slab_pieces
+from antenna_cad.geometry import kernel
 from antenna_cad.geometry.model import Model, ModelPart, relative_volume_check
 from antenna_cad.materials import Material
 from antenna_cad.synthesis.checks import Check
@@ -21,8 +22,8 @@ OUTLINE_TOL_MM = 1e-6        # a sheet solid's face vertices vs its slab's secti
 
 
 def _solid(poly, z0: float, height: float):
-    face = make_face(Polyline(*[(float(x), float(y), 0.0) for x, y in poly.exterior.coords[:-1]], close=True))
-    return Pos(0, 0, z0) * extrude(face, height)
+    face = kernel.face(kernel.polygon([(float(x), float(y), 0.0) for x, y in poly.exterior.coords[:-1]]))
+    return kernel.translate(kernel.extrude(face, (0, 0, height)), (0, 0, z0))
 
 
 def build_model(design: GradedDesign, base: Material, height_mm: float, layup=None) -> Model:
@@ -47,8 +48,8 @@ def _readback(design: GradedDesign, layup, parts: list[ModelPart], height_mm: fl
     volumes, outline = {}, 0.0
     for s, part in zip(layup.sheets, parts):
         volumes[s.piece] = volumes.get(s.piece, 0.0) + part.volume_mm3
-        face = part.shape.faces().sort_by(Axis.Z)[0]
-        pts = MultiPoint([(v.X, v.Y) for v in face.vertices()])
+        xyz = kernel.vertices(part.shape)
+        pts = MultiPoint(xyz[np.isclose(xyz[:, 2], xyz[:, 2].min(), rtol=0, atol=1e-9), :2])   # bottom face
         outline = max(outline, pts.hausdorff_distance(MultiPoint(s.outline.exterior.coords[:-1])))
     worst = max(abs(volumes[label] / (poly.area * height_mm) - 1.0) for label, _, poly in slab_pieces(design))
     return (Check.upper("sheet_slab_volume", worst, READBACK_REL, "", "sheets of each slab read back vs the slab's "

@@ -8,56 +8,54 @@ aperture cylinder; screws join box panels only — none enters the foam).
 
 from __future__ import annotations
 
-from build123d import Box, Circle, Cylinder, Pos, Rectangle, Rot, Shape, Sketch, extrude
-
 from antenna_cad.fabrication.box import Panel
 from antenna_cad.fabrication.layup import Hole, LayupPlan, SheetPlan
+from antenna_cad.geometry import kernel
 
 
-def _holes(holes: tuple[Hole, ...]) -> Sketch | None:
-    shapes = [Pos(h.x_mm, h.y_mm) * Circle(h.diameter_mm / 2) for h in holes]
-    if not shapes:
-        return None
-    sk = shapes[0]
-    for s in shapes[1:]:
-        sk = sk + s
-    return sk
+def _holes(holes: tuple[Hole, ...]) -> list[kernel.Shape]:
+    return [kernel.disc(h.x_mm, h.y_mm, h.diameter_mm / 2) for h in holes]
 
 
-def foot_sketch(plan: LayupPlan) -> Sketch:
-    """Pedestal share of one sheet: w × (y_corner − y_bottom) minus the aperture disc (a cradle)."""
+def foot_sketch(plan: LayupPlan) -> kernel.Shape:
+    """Pedestal share of one sheet: w × (y_corner − y_bottom) minus the aperture disc (a cradle),
+    a planar face at z = 0."""
     yb, yc = plan.foot_bottom_y_mm, plan.foot_corner_y_mm
-    rect = Pos(0, (yb + yc) / 2) * Rectangle(plan.pedestal_width_mm, yc - yb)
-    return rect - Circle(plan.lens_radius_mm)
+    rect = kernel.rectangle(0, (yb + yc) / 2, plan.pedestal_width_mm, yc - yb)
+    return kernel.cut(rect, [kernel.disc(0, 0, plan.lens_radius_mm)])
 
 
-def sheet_sketch(plan: LayupPlan, sheet: SheetPlan) -> Sketch:
+def sheet_sketch(plan: LayupPlan, sheet: SheetPlan) -> kernel.Shape:
     """The whole sheet in its own plane: lens disc, foot, optional neck, minus dowel holes."""
-    sk = Circle(sheet.radius_mm) + foot_sketch(plan)
+    pieces = [kernel.disc(0, 0, sheet.radius_mm), foot_sketch(plan)]
     if sheet.has_neck:
         R = plan.lens_radius_mm
-        sk = sk + Pos(0, -R / 2) * Rectangle(plan.neck_width_mm, R)
-    holes = _holes(sheet.lens_dowels + sheet.foot_dowels)
-    return sk - holes if holes is not None else sk
+        pieces.append(kernel.rectangle(0, -R / 2, plan.neck_width_mm, R))
+    return kernel.cut(kernel.fuse(pieces), _holes(sheet.lens_dowels + sheet.foot_dowels))
 
 
-def sheet_solid(plan: LayupPlan, sheet: SheetPlan) -> Shape:
-    return Pos(0, 0, sheet.z_min_mm) * extrude(sheet_sketch(plan, sheet), sheet.thickness_mm)
+def sheet_solid(plan: LayupPlan, sheet: SheetPlan) -> kernel.Shape:
+    return kernel.translate(kernel.extrude(sheet_sketch(plan, sheet), (0, 0, sheet.thickness_mm)),
+                            (0, 0, sheet.z_min_mm))
 
 
-def pedestal_solid(plan: LayupPlan) -> Shape:
+def pedestal_solid(plan: LayupPlan) -> kernel.Shape:
     """All feet together: the prism the box clamps (reference body; the sheets carry it)."""
-    return Pos(0, 0, plan.z_origin_mm) * extrude(foot_sketch(plan), plan.stack_thickness_mm)
+    return kernel.translate(kernel.extrude(foot_sketch(plan), (0, 0, plan.stack_thickness_mm)),
+                            (0, 0, plan.z_origin_mm))
 
 
-def panel_solid(panel: Panel) -> Shape:
+def panel_solid(panel: Panel) -> kernel.Shape:
     """A box panel with all its screw holes cut in one batched boolean."""
-    solid = Pos(*panel.center_mm) * Box(*panel.size_mm)
-    tools = [Pos(h.x_mm, h.y_mm, h.z_mm) * (Rot(90, 0, 0) if h.axis == "y" else Rot(0, 0, 0))
-             * Cylinder(h.diameter_mm / 2, h.depth_mm) for h in panel.holes]
-    if not tools:
-        return solid
-    tool = tools[0]
-    for t in tools[1:]:
-        tool = tool + t
-    return solid - tool
+    size = panel.size_mm
+    solid = kernel.box([c - s / 2 for c, s in zip(panel.center_mm, size)], size)
+    tools = [kernel.cylinder(h.diameter_mm / 2, h.depth_mm, _hole_base(h), (0, -1, 0) if h.axis == "y" else (0, 0, 1))
+             for h in panel.holes]
+    return kernel.cut(solid, tools)
+
+
+def _hole_base(h) -> tuple[float, float, float]:
+    """The base centre of a screw hole's cylinder, which is centred on the hole's point."""
+    if h.axis == "y":
+        return h.x_mm, h.y_mm + h.depth_mm / 2, h.z_mm
+    return h.x_mm, h.y_mm, h.z_mm - h.depth_mm / 2

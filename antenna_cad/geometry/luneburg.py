@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import math
 
-from build123d import Axis, Edge, Plane, Pos, Solid, extrude
 
+from antenna_cad.geometry import kernel
 from antenna_cad.geometry.layup import foot_sketch
 from antenna_cad.geometry.model import Model, ModelPart, RingPrism, relative_volume_check
 from antenna_cad.geometry.profiles import polyline_edges, revolve_closed
@@ -21,22 +21,23 @@ from antenna_cad.synthesis.checks import Check
 PIN_START_DEG = 30.0      # away from the revolve seam at +X
 
 
-def _arc(r: float, sign: float) -> Edge:
-    """Quarter arc of radius r in the XZ plane from (r, 0) to (0, ±r)."""
+def _arc(r: float, sign: float, reverse: bool = False):
+    """Quarter arc of radius r in the XZ plane from (r, 0) to (0, ±r) (or back, ``reverse``)."""
     c = math.sqrt(0.5)
-    return Edge.make_three_point_arc((r, 0, 0), (r * c, 0, sign * r * c), (0, 0, sign * r))
+    a, b = (r, 0, 0), (0, 0, sign * r)
+    return kernel.arc(*((b, (r * c, 0, sign * r * c), a) if reverse else (a, (r * c, 0, sign * r * c), b)))
 
 
-def hemisphere_shell(r_in: float, r_out: float, sign: float) -> Solid:
+def hemisphere_shell(r_in: float, r_out: float, sign: float) -> kernel.Shape:
     """One closed (r, z) profile (annular quarter disc) revolved once; sign +1 front, −1 back."""
     edges = [*polyline_edges([(r_in, 0.0), (r_out, 0.0)]), _arc(r_out, sign),
              *polyline_edges([(0.0, sign * r_out), (0.0, sign * r_in)])]
     if r_in > 0:
-        edges.append(_arc(r_in, sign).reversed())
+        edges.append(_arc(r_in, sign, reverse=True))
     return revolve_closed(edges)
 
 
-def annulus_solid(r_in: float, r_out: float, z_lo: float, z_hi: float) -> Solid:
+def annulus_solid(r_in: float, r_out: float, z_lo: float, z_hi: float) -> kernel.Shape:
     """Flat ring (or disc) about Z, revolved from its closed rectangle profile."""
     pts = [(r_in, z_lo), (r_out, z_lo), (r_out, z_hi), (r_in, z_hi), (r_in, z_lo)]
     return revolve_closed(polyline_edges(pts))
@@ -64,7 +65,7 @@ def build_model(design, grades: list[Material], fab, base: Material) -> Model:
     if design.shape == "cylinder":
         h = design.height_mm
         for L, m in zip(design.layers, grades):
-            solid = annulus_solid(L.r_inner_mm, L.r_outer_mm, -h / 2, h / 2).rotate(Axis.X, -90)
+            solid = kernel.rotate(annulus_solid(L.r_inner_mm, L.r_outer_mm, -h / 2, h / 2), (1, 0, 0), -90)
             parts.append(ModelPart(f"shell-{L.index:02d}", m, "fabricated", solid))
         total = sum(p.volume_mm3 for p in parts)
         checks.append(relative_volume_check("shell_volume_sum", total, math.pi * R * R * h,
@@ -79,20 +80,19 @@ def build_model(design, grades: list[Material], fab, base: Material) -> Model:
             for k in range(fab.pins_per_shell):
                 a = math.radians(PIN_START_DEG + 360.0 * k / fab.pins_per_shell)
                 x, y = rp * math.cos(a), rp * math.sin(a)
-                pin = Pos(x, y, -depth) * Solid.make_cylinder(d / 2, 2 * depth)
+                pin = kernel.cylinder(d / 2, 2 * depth, (x, y, -depth))
                 pin_solids.append(pin)
         for side, sign in (("front", 1.0), ("back", -1.0)):
             shell = hemisphere_shell(L.r_inner_mm, L.r_outer_mm, sign)
             if pin_solids:
-                shell = shell.cut(*pin_solids)
-                shell = shell.solids()[0] if len(shell.solids()) == 1 else shell
-                if not shell.is_valid:
+                shell = kernel.cut(shell, pin_solids)
+                if not kernel.is_valid(shell):
                     raise RuntimeError(f"shell-{L.index:02d}-{side}: pin holes gave an invalid solid")
             parts.append(ModelPart(f"shell-{L.index:02d}-{side}", m, "fabricated", shell))
-            total += shell.volume
+            total += kernel.volume(shell)
         for k, pin in enumerate(pin_solids):
             parts.append(ModelPart(f"shell-{L.index:02d}-pin-{k + 1}", m, "fabricated", pin))
-            total += pin.volume
+            total += kernel.volume(pin)
     checks.append(relative_volume_check("shell_volume_sum", total, 4.0 / 3.0 * math.pi * R**3,
                                         "hemispheres + pins vs the sphere"))
     if fab.feed_boss is not None:
@@ -101,10 +101,8 @@ def build_model(design, grades: list[Material], fab, base: Material) -> Model:
             raise RuntimeError("feed boss diameter must be smaller than the lens")
         y_top = -math.sqrt(R * R - rb * rb)
         tall = length + (R + y_top)
-        cyl = Solid.make_cylinder(rb, tall, Plane(origin=(0, y_top, 0), z_dir=(0, -1, 0)))
-        boss = cyl.cut(Solid.make_sphere(R))
-        boss = boss.solids()[0] if len(boss.solids()) == 1 else boss
-        if not boss.is_valid or boss.volume <= 0:
+        boss = kernel.cut(kernel.cylinder(rb, tall, (0, y_top, 0), (0, -1, 0)), [kernel.sphere(R)])
+        if not kernel.is_valid(boss) or kernel.volume(boss) <= 0:
             raise RuntimeError("feed boss: invalid solid")
         parts.append(ModelPart("feed-boss", grades[-1], "fabricated", boss))
         checks.append(Check("feed_arm_outside_aperture", "pass", -R - length, -R, "mm",
@@ -123,10 +121,10 @@ def build_layup_model(plan, base: Material) -> Model:
         for r in s.rings:
             solid = annulus_solid(r.r_inner_mm, r.r_outer_mm, s.z_min_mm, s.z_max_mm)
             if plan.shape == "cylinder":
-                solid = solid.rotate(Axis.X, -90)
+                solid = kernel.rotate(solid, (1, 0, 0), -90)
             ring = RingPrism(r.r_inner_mm, r.r_outer_mm, s.z_min_mm, s.z_max_mm, plan.shape == "cylinder")
             parts.append(ModelPart(r.label, r.material, "fabricated", solid, ring))
         if foot is not None:
             parts.append(ModelPart(f"{s.label}-foot", plan.stand_material, "fabricated",
-                                   Pos(0, 0, s.z_min_mm) * extrude(foot, s.thickness_mm)))
+                                   kernel.translate(kernel.extrude(foot, (0, 0, s.thickness_mm)), (0, 0, s.z_min_mm))))
     return Model(tuple(parts), ())

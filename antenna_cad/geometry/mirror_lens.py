@@ -13,11 +13,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from build123d import Axis, Compound, Cylinder, Edge, Pos, Solid
 
 from antenna_cad.fabrication.box import Panel
 from antenna_cad.fabrication.layup import LayupPlan
 from antenna_cad.fabrication.mirror_lens import flange_geometry
+from antenna_cad.geometry import kernel
 from antenna_cad.geometry.bifocal import sanding_allowance
 from antenna_cad.geometry.layup import panel_solid, pedestal_solid, sheet_solid
 from antenna_cad.geometry.model import Model, ModelPart, relative_volume_check
@@ -37,13 +37,13 @@ def face_points_mm(design: MirrorLensDesign, face: str) -> tuple[np.ndarray, np.
     return design.face_samples_mm(face, SPLINE_POINTS)
 
 
-def _spline(r, z, dz, reverse: bool = False) -> Edge:
+def _spline(r, z, dz, reverse: bool = False):
     if reverse:
         r, z, dz = r[::-1], z[::-1], dz[::-1]
     sgn = -1.0 if reverse else 1.0
     pts = [(float(a), 0.0, float(b)) for a, b in zip(r, z)]
     tan = [(sgn, 0.0, sgn * float(s)) for s in dz]
-    return Edge.make_spline(pts, tangents=tan, scale=True)
+    return kernel.spline(pts, tan)
 
 
 def face_deviation_mm(design: MirrorLensDesign) -> float:
@@ -52,12 +52,12 @@ def face_deviation_mm(design: MirrorLensDesign) -> float:
     worst = 0.0
     for face, exact in (("front", p.front_spline()), ("mirror", p.mirror_spline())):
         edge = _spline(*face_points_mm(design, face))
-        pts = np.array([tuple(edge.position_at(u)) for u in np.linspace(0.0, 1.0, FACE_PROBES)])
+        pts, _ = kernel.edge_points(edge, FACE_PROBES)
         worst = max(worst, float(np.max(np.abs(pts[:, 2] - exact(pts[:, 0] / D) * D))))
     return worst
 
 
-def body_solid(design: MirrorLensDesign) -> Solid:
+def body_solid(design: MirrorLensDesign) -> kernel.Shape:
     """Revolve once: front face (axis → rim), side wall (a cone to the mirror rim), mirror (rim → axis), axis."""
     rf, zf, df = face_points_mm(design, "front")
     rm, zm, dm = face_points_mm(design, "mirror")
@@ -66,7 +66,7 @@ def body_solid(design: MirrorLensDesign) -> Solid:
     return revolve_closed(edges)
 
 
-def mirror_solid(design: MirrorLensDesign, thickness_mm: float) -> Solid:
+def mirror_solid(design: MirrorLensDesign, thickness_mm: float) -> kernel.Shape:
     """The reflecting layer: the back face offset outward along its normal by the coating thickness."""
     rm, zm, dm = face_points_mm(design, "mirror")
     norm = np.hypot(dm, 1.0)
@@ -77,24 +77,24 @@ def mirror_solid(design: MirrorLensDesign, thickness_mm: float) -> Solid:
     return revolve_closed(edges)
 
 
-def feed_solid(design: MirrorLensDesign, aperture_mm: float, length_mm: float) -> Solid:
+def feed_solid(design: MirrorLensDesign, aperture_mm: float, length_mm: float) -> kernel.Shape:
     """Placeholder horn: a solid frustum, aperture centred on the focus (z = 0), body toward −Z."""
     a, t = aperture_mm / 2, FEED_THROAT * aperture_mm / 2
     return revolve_closed(polyline_edges([(0.0, 0.0), (a, 0.0), (t, -length_mm), (0.0, -length_mm), (0.0, 0.0)]))
 
 
 def flange_solid(design: MirrorLensDesign, width_mm: float, thickness_mm: float, bolts: int,
-                 bolt_diameter_mm: float) -> Solid:
+                 bolt_diameter_mm: float) -> kernel.Shape:
     (ri0, ri1), ro, z0, z1 = flange_geometry(design, width_mm, thickness_mm)
     ring = revolve_closed(polyline_edges([(ri0, z0), (ro, z0), (ro, z1), (ri1, z1), (ri0, z0)]))
     if bolts == 0:
         return ring
     rb = (max(ri0, ri1) + ro) / 2
-    holes = [Pos(rb * math.cos(2 * math.pi * k / bolts), rb * math.sin(2 * math.pi * k / bolts), z0 - 1)
-             * Cylinder(bolt_diameter_mm / 2, z1 - z0 + 2, align=None) for k in range(bolts)]
-    cut = ring - Compound(holes)
-    solid = cut.solids()[0] if hasattr(cut, "solids") else cut
-    if not solid.is_valid:
+    holes = [kernel.cylinder(bolt_diameter_mm / 2, z1 - z0 + 2, (rb * math.cos(2 * math.pi * k / bolts),
+                                                                rb * math.sin(2 * math.pi * k / bolts), z0 - 1))
+             for k in range(bolts)]
+    solid = kernel.cut(ring, holes)
+    if not kernel.is_valid(solid):
         raise RuntimeError("flange solid is not valid")
     return solid
 
@@ -105,7 +105,7 @@ def build_model(design: MirrorLensDesign, spec_design, plan: LayupPlan | None, l
     the sanded sheets reproduce; the mirror, feed and flange are their own parts (no flange on a
     layup: the pedestal and box hold it)."""
     body = body_solid(design)
-    checks = [relative_volume_check("body_solid_volume", body.volume, design.volume_mm3(),
+    checks = [relative_volume_check("body_solid_volume", kernel.volume(body), design.volume_mm3(),
                                     "body solid vs Pappus integral of the exact section", VOLUME_REL_LIMIT),
               Check.upper("face_spline_deviation", face_deviation_mm(design), FACE_LIMIT_MM, "mm",
                           "CAD faces vs the exact profiles (axial, both faces)")]
@@ -123,7 +123,8 @@ def build_model(design: MirrorLensDesign, spec_design, plan: LayupPlan | None, l
     parts.append(ModelPart("pedestal", lens_material, "reference", pedestal_solid(plan)))
     allowance = sanding_allowance(plan, body)
     stack = sum(math.pi * s.radius_mm**2 * s.thickness_mm for s in plan.sheets)
-    checks.append(relative_volume_check("sanding_allowance_volume", allowance.volume, stack - design.volume_mm3(),
+    checks.append(relative_volume_check("sanding_allowance_volume", kernel.volume(allowance),
+                                        stack - design.volume_mm3(),
                                         "sanding allowance (stack − body) vs analytic volume", 1e-4))
     parts.append(ModelPart("sanding-allowance", lens_material, "reference", allowance))
     parts += [ModelPart(p.label, box_material, "fabricated", panel_solid(p)) for p in panels]

@@ -8,8 +8,8 @@ from typing import Literal
 
 import numpy as np
 import shapely
-from build123d import Shape
 
+from antenna_cad.geometry import kernel
 from antenna_cad.materials import Material
 from antenna_cad.synthesis.checks import Check
 
@@ -21,19 +21,19 @@ class ModelPart:
     label: str            # "lens", "sheet-07", "box-floor", ...
     material: Material
     role: Role            # fabricated: a part to make; reference: ideal body, allowance, envelope
-    shape: Shape
+    shape: kernel.Shape
     prism: SlottedPrism | RingPrism | None = None   # the shape's exact description, when it is one
 
     @property
     def volume_mm3(self) -> float:
         """The solid's volume; a prism's exactly from its profile (OCCT's integration over the
         Ka lids' 3,200 slot faces took longer than meshing them)."""
-        return self.prism.volume_mm3() if self.prism is not None else float(self.shape.volume)
+        return self.prism.volume_mm3() if self.prism is not None else kernel.volume(self.shape)
 
     def is_valid(self) -> bool:
         """BRepCheck of the solid; for a prism the exact test of its profile instead
         (:meth:`SlottedPrism.is_valid`: linear in the slots, where BRepCheck took 2 ms a slot)."""
-        return self.prism.is_valid() if self.prism is not None else bool(self.shape.is_valid)
+        return self.prism.is_valid() if self.prism is not None else kernel.is_valid(self.shape)
 
 
 @dataclass(frozen=True)

@@ -16,9 +16,9 @@ section; 2-D lenses are the YZ section extruded along X by the plate spacing, ce
 from __future__ import annotations
 
 import numpy as np
-from build123d import Align, Box, Face, Plane, Solid, Vector
 
 from antenna_cad.fabrication.polyfocal import channel_quads, outline_polygon
+from antenna_cad.geometry import kernel
 from antenna_cad.geometry.model import Model, ModelPart
 from antenna_cad.geometry.profiles import yz_prism
 from antenna_cad.materials import Material
@@ -29,11 +29,13 @@ PORT_PLATE_MM = 1.0         # 3-D port plates (B-spline surfaces thickened)
 READBACK_LIMIT = 1e-6       # relative error of a channel's electrical length read back from its solid
 
 
-def _channel_3d(p: np.ndarray, q: np.ndarray, w: float, h: float) -> Solid:
-    axis = Vector(*(q - p))
-    x_dir = Vector(1, 0, 0) if abs(axis.normalized().X) < 0.9 else Vector(0, 1, 0)
-    plane = Plane(origin=tuple(p), x_dir=x_dir - axis.normalized() * x_dir.dot(axis.normalized()), z_dir=axis)
-    return plane.location * Box(w, h, axis.length, align=(Align.CENTER, Align.CENTER, Align.MIN))
+def _channel_3d(p: np.ndarray, q: np.ndarray, w: float, h: float) -> kernel.Shape:
+    """Rectangular guide w × h from p to q, the broad wall w along x (or y for a guide along x)."""
+    length = float(np.linalg.norm(q - p))
+    axis = (q - p) / length
+    x_dir = np.array([1.0, 0, 0]) if abs(axis[0]) < 0.9 else np.array([0, 1.0, 0])
+    guide = kernel.box((-w / 2, -h / 2, 0.0), (w, h, length))
+    return kernel.place(guide, p, axis, x_dir - axis * float(x_dir @ axis))
 
 
 def _fill(base: Material, eps: float) -> Material:
@@ -49,8 +51,7 @@ def build_model(design: PolyfocalDesign, fill: Material, metal: Material, plate_
             channels.append(yz_prism(quad, -h / 2, h))
         outline = outline_polygon(design)
         body = yz_prism(list(outline.exterior.coords)[:-1], -h / 2, h)
-        for c in channels:
-            body = body - c
+        body = kernel.cut(body, channels)
         parts.append(ModelPart("septa", metal, "fabricated", body))
         plate = list(outline.buffer(margin_mm, join_style=2).exterior.coords)[:-1]
         parts.append(ModelPart("plate-bottom", metal, "fabricated", yz_prism(plate, -h / 2 - plate_mm, plate_mm)))
@@ -58,14 +59,14 @@ def build_model(design: PolyfocalDesign, fill: Material, metal: Material, plate_
     else:
         for name, grid in zip(("entry", "exit"), design.surfaces):
             pts = (grid * design.unit_mm).tolist()
-            face = Face.make_surface_from_array_of_points([[tuple(p) for p in row] for row in pts], tol=1e-3)
+            face = kernel.surface(pts, tolerance_mm=1e-3)
             side = -PORT_PLATE_MM if name == "entry" else PORT_PLATE_MM
-            parts.append(ModelPart(f"{name}-surface", metal, "fabricated", Solid.thicken(face, side)))
+            parts.append(ModelPart(f"{name}-surface", metal, "fabricated", kernel.thicken(face, side)))
         for p, q, w in zip(design.r1_mm, design.r2_mm, design.width_mm):
             channels.append(_channel_3d(p, q, float(w), h))
     for i, (c, eps) in enumerate(zip(channels, design.fill_eps_r)):
         parts.append(ModelPart(f"channel-{i + 1:03d}", _fill(fill, eps), "fabricated", c))
-    read = np.array([c.volume for c in channels]) / (design.width_mm * h) * design.index
+    read = np.array([kernel.volume(c) for c in channels]) / (design.width_mm * h) * design.index
     error = float(np.max(np.abs(read / design.electrical_mm - 1.0)))
     checks = [Check.upper("channel_electrical_length", error, READBACK_LIMIT, "",
                           "channel solid volume / cross-section × phase index vs the synthesized electrical "

@@ -9,16 +9,12 @@ from __future__ import annotations
 
 import math
 
-from build123d import Axis, Edge, Face, Polyline, Solid, Wire, extrude, make_face, revolve
-from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
-from OCP.Geom import Geom_Hyperbola, Geom_TrimmedCurve
-from OCP.GeomConvert import GeomConvert
-from OCP.gp import gp_Ax2, gp_Dir, gp_Hypr, gp_Pnt
 
+from antenna_cad.geometry import kernel
 from antenna_cad.synthesis.collimator import hyperbola_axes_mm
 
 
-def hyperbola_edge(focal_length_mm: float, n: float, r_from_mm: float, r_to_mm: float) -> Edge:
+def hyperbola_edge(focal_length_mm: float, n: float, r_from_mm: float, r_to_mm: float):
     """Exact arc of the collimator profile (seed-000 (1.9) corrected) between two radii.
 
     The conic (z − z_c)²/A² − r²/B² = 1 is parametrized as z = z_c + A·cosh u, r = B·sinh u, and
@@ -28,27 +24,25 @@ def hyperbola_edge(focal_length_mm: float, n: float, r_from_mm: float, r_to_mm: 
     a B_SPLINE_CURVE generatrix reads everywhere. Pinned by tests/test_step_portable.py.
     """
     zc, a, b = hyperbola_axes_mm(focal_length_mm, n)
-    conic = Geom_Hyperbola(gp_Hypr(gp_Ax2(gp_Pnt(0, 0, zc), gp_Dir(0, 1, 0), gp_Dir(0, 0, 1)), a, b))
-    arc = Geom_TrimmedCurve(conic, math.asinh(r_from_mm / b), math.asinh(r_to_mm / b))
-    return Edge(BRepBuilderAPI_MakeEdge(GeomConvert.CurveToBSplineCurve_s(arc)).Edge())
+    return kernel.hyperbola_arc(zc, a, b, math.asinh(r_from_mm / b), math.asinh(r_to_mm / b))
 
 
-def polyline_edges(points_rz: list[tuple[float, float]]) -> list[Edge]:
+def polyline_edges(points_rz: list[tuple[float, float]]) -> list:
     """Straight edges through (r, z) points, skipping zero-length ones."""
     pts = [(r, 0.0, z) for r, z in points_rz]
-    return [Edge.make_line(a, b) for a, b in zip(pts, pts[1:])
+    return [kernel.line(a, b) for a, b in zip(pts, pts[1:])
             if math.dist(a, b) > 1e-9]
 
 
-def revolve_closed(edges: list[Edge]) -> Solid:
+def revolve_closed(edges: list) -> kernel.Shape:
     """Revolve one closed (r, z) wire about the Z axis; asserts a valid solid."""
-    solid = revolve(Face(Wire(edges)), Axis.Z)
-    if not solid.is_valid:
+    solid = kernel.revolve_z(kernel.face(kernel.wire(edges)))
+    if not kernel.is_valid(solid):
         raise RuntimeError("revolved profile is not a valid solid")
     return solid
 
 
-def yz_prism(points_yz, x0: float, height: float) -> Solid:
+def yz_prism(points_yz, x0: float, height: float) -> kernel.Shape:
     """The closed polygon of (y, z) points in the plane x = x0, extruded by ``height`` along +X."""
-    face = make_face(Polyline(*[(x0, float(y), float(z)) for y, z in points_yz], close=True))
-    return extrude(face, height, dir=(1, 0, 0))
+    face = kernel.face(kernel.polygon([(x0, float(y), float(z)) for y, z in points_yz]))
+    return kernel.extrude(face, (height, 0, 0))

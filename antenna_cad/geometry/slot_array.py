@@ -13,15 +13,9 @@ plates (the plates are notched along the horn apertures: :mod:`antenna_cad.geome
 from __future__ import annotations
 
 import numpy as np
-from build123d import Compound, Edge, Face, Location, Solid, Vector, Wire, extrude
-from OCP.BRepAdaptor import BRepAdaptor_Curve
-from OCP.BRepBuilderAPI import (BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon,
-                                BRepBuilderAPI_MakeWire)
-from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
-from OCP.GC import GC_MakeArcOfCircle
-from OCP.gp import gp_Pnt, gp_Vec
 from shapely.geometry import Polygon
 
+from antenna_cad.geometry import kernel
 from antenna_cad.geometry.model import Model, ModelPart, SlottedPrism
 from antenna_cad.geometry.slot_layout import (GuideExtent, PartSizes, Stack, clip_curve, core_and_load_rings,
                                               coupling_edge, end_overlap_mm, guide_extent, horn_checks,
@@ -33,73 +27,63 @@ from antenna_cad.synthesis.slot_array import Curve, SlotArrayDesign, offset_curv
 SPLINE_POINTS = 61        # C¹ spline knots through the synthesised points (with their tangents)
 
 
-def _spline(curve: Curve, z: float, reverse: bool = False) -> Edge:
+def _knots(curve: Curve, z: float, reverse: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """The spline's knots (m, 3) and tangents (m, 3) in the plane z, end to start if ``reverse``."""
     n = len(curve.points_mm)
     idx = np.unique(np.linspace(0, n - 1, min(n, SPLINE_POINTS)).round().astype(int))
-    pts = [Vector(float(x), float(y), z) for x, y in curve.points_mm[idx]]
-    tan = [Vector(float(tx), float(ty), 0.0) for tx, ty in curve.tangents[idx]]
-    if reverse:
-        pts, tan = pts[::-1], [-v for v in tan[::-1]]
-    return Edge.make_spline(pts, tangents=tan, scale=True)
+    pts = np.column_stack([curve.points_mm[idx], np.full(len(idx), z)])
+    tan = np.column_stack([curve.tangents[idx], np.zeros(len(idx))])
+    return (pts[::-1], -tan[::-1]) if reverse else (pts, tan)
+
+
+def _spline(curve: Curve, z: float, reverse: bool = False):
+    return kernel.spline(*_knots(curve, z, reverse))
 
 
 def modelled_curve(curve: Curve, n_samples: int = 4001) -> Curve:
     """The C¹ spline the model extrudes for ``curve`` (:func:`_spline`), sampled densely: the
     surface as built, for the as-built ray trace of the verification."""
-    adaptor = BRepAdaptor_Curve(_spline(curve, 0.0).wrapped)
-    p, v = gp_Pnt(), gp_Vec()
-    rows = []
-    for u in np.linspace(adaptor.FirstParameter(), adaptor.LastParameter(), n_samples):
-        adaptor.D1(float(u), p, v)
-        rows.append((p.X(), p.Y(), v.X(), v.Y()))
-    a = np.array(rows)
-    tangents = a[:, 2:] / np.linalg.norm(a[:, 2:], axis=1, keepdims=True)
-    return Curve(curve.name, curve.layer, a[:, :2], tangents)
+    pts, ders = kernel.edge_points(_spline(curve, 0.0), n_samples)
+    tangents = ders[:, :2] / np.linalg.norm(ders[:, :2], axis=1, keepdims=True)
+    return Curve(curve.name, curve.layer, pts[:, :2], tangents)
 
 
-def band_face(a: Curve, b: Curve, z: float = 0.0) -> Face:
-    """Face between two curves over the same x span (ends joined by lines)."""
-    ea, eb = _spline(a, z), _spline(b, z, reverse=True)
-    return Face(Wire([ea, Edge.make_line(ea @ 1, eb @ 0), eb, Edge.make_line(eb @ 1, ea @ 0)]))
+def band_wire(a: Curve, b: Curve, z: float = 0.0):
+    """Closed wire between two curves over the same x span (ends joined by lines)."""
+    (pa, ta), (pb, tb) = _knots(a, z), _knots(b, z, reverse=True)
+    return kernel.wire([kernel.spline(pa, ta), kernel.line(pa[-1], pb[0]), kernel.spline(pb, tb),
+                        kernel.line(pb[-1], pa[0])])
 
 
-def band_wire(a: Curve, b: Curve, z: float = 0.0) -> Wire:
-    return band_face(a, b, z).outer_wire()
+def band_face(a: Curve, b: Curve, z: float = 0.0):
+    """Face between two curves over the same x span (:func:`band_wire`)."""
+    return kernel.face(band_wire(a, b, z))
 
 
 def slot_wire(x: float, y: float, length: float, width: float, angle: float, z: float):
-    """Rounded-end rectangle as a clockwise OCP wire (an inner wire of a +z face), built with
-    OCP directly: build123d's per-edge Python overhead was 2 ms per slot."""
+    """Rounded-end rectangle as a clockwise wire (an inner wire of a +z face)."""
     u = np.array([np.sin(angle), np.cos(angle)])
     n = np.array([-u[1], u[0]])
     r, s = width / 2, max(length / 2 - width / 2, 1e-4)
     c = np.array([x, y])
-    P = lambda v: gp_Pnt(float(v[0]), float(v[1]), z)
+    P = lambda v: (float(v[0]), float(v[1]), z)         # noqa: E731
     p1, p2, p3, p4 = c - u * s + n * r, c + u * s + n * r, c + u * s - n * r, c - u * s - n * r
-    mw = BRepBuilderAPI_MakeWire()
-    mw.Add(BRepBuilderAPI_MakeEdge(P(p1), P(p2)).Edge())
-    mw.Add(BRepBuilderAPI_MakeEdge(GC_MakeArcOfCircle(P(p2), P(c + u * (s + r)), P(p3)).Value()).Edge())
-    mw.Add(BRepBuilderAPI_MakeEdge(P(p3), P(p4)).Edge())
-    mw.Add(BRepBuilderAPI_MakeEdge(GC_MakeArcOfCircle(P(p4), P(c - u * (s + r)), P(p1)).Value()).Edge())
-    return mw.Wire()
+    return kernel.wire([kernel.line(P(p1), P(p2)), kernel.arc(P(p2), P(c + u * (s + r)), P(p3)),
+                        kernel.line(P(p3), P(p4)), kernel.arc(P(p4), P(c - u * (s + r)), P(p1))])
 
 
 def slotted_plate(x0: float, y0: float, x1: float, y1: float, z: float, thickness: float,
-                  slots: list) -> Solid:
+                  slots: list) -> kernel.Shape:
     """Rectangle with inner slot wires at height z, extruded +z: one face, one prism."""
-    poly = BRepBuilderAPI_MakePolygon(gp_Pnt(x0, y0, z), gp_Pnt(x1, y0, z), gp_Pnt(x1, y1, z),
-                                      gp_Pnt(x0, y1, z), True)
-    mf = BRepBuilderAPI_MakeFace(poly.Wire(), True)
-    for wire in slots:
-        mf.Add(wire)
-    return Solid(BRepPrimAPI_MakePrism(mf.Face(), gp_Vec(0, 0, thickness)).Shape())
+    outer = kernel.polygon([(x0, y0, z), (x1, y0, z), (x1, y1, z), (x0, y1, z)])
+    return kernel.plate(outer, slots, (0, 0, thickness))
 
 
-def _prism(poly: Polygon, z0: float, z1: float, holes: tuple[Wire, ...] = ()) -> Solid:
+def _prism(poly: Polygon, z0: float, z1: float, holes: tuple = ()) -> kernel.Shape:
     """A planar polygon (shapely, with its interiors) at z0 extruded to z1, plus extra inner wires."""
-    wire = lambda ring: Wire.make_polygon([Vector(float(x), float(y), z0) for x, y in ring.coords[:-1]], close=True)
-    face = Face(wire(poly.exterior), [wire(r) for r in poly.interiors] + list(holes))
-    return extrude(face, z1 - z0, dir=(0, 0, 1))
+    wire = lambda ring: kernel.polygon([(float(x), float(y), z0) for x, y in ring.coords[:-1]])   # noqa: E731
+    face = kernel.face(wire(poly.exterior), [wire(r) for r in poly.interiors] + list(holes))
+    return kernel.extrude(face, (0, 0, z1 - z0))
 
 
 def _guide_parts(design: SlotArrayDesign, g: int, idx: np.ndarray, ext: GuideExtent, t: float,
@@ -120,9 +104,9 @@ def _guide_parts(design: SlotArrayDesign, g: int, idx: np.ndarray, ext: GuideExt
                                                    s.angle_rad[idx]]).astype(float), t + h, 2 * t + h)
     eps = 0.01 * t
     cw = a / 2 if half > a / 2 else half + eps             # no side walls: the cavity spans the width
-    box = Solid.make_box(2 * half, ye - y0, t + h).moved(Location((gx - half, y0, 0.0)))
-    cavity = Solid.make_box(2 * cw, yl - y0 + eps, h + eps).moved(Location((gx - cw, y0 - eps, t)))
-    parts = [ModelPart(f"waveguide-{g:02d}", metal, "fabricated", box.cut(cavity)),
+    box = kernel.box((gx - half, y0, 0.0), (2 * half, ye - y0, t + h))
+    cavity = kernel.box((gx - cw, y0 - eps, t), (2 * cw, yl - y0 + eps, h + eps))
+    parts = [ModelPart(f"waveguide-{g:02d}", metal, "fabricated", kernel.cut(box, [cavity])),
              ModelPart(f"top-{g:02d}", metal, "fabricated", lid, prism)]
     core, load = core_and_load_rings(a, y0, y1, yl)
     shift = lambda ring: Polygon([(gx + x, y) for x, y in ring])
@@ -162,16 +146,16 @@ def build_model(design: SlotArrayDesign, dielectric: Material, metal: Material, 
         solids = []
         for k in layer_indices(m):
             za, zb = st.layer(k)
-            solids.append(extrude(band_face(m, back, za), zb - za, dir=(0, 0, 1)))
-        parts.append(ModelPart(f"mirror-{j}", metal, "fabricated", Compound(solids)))
+            solids.append(kernel.extrude(band_face(m, back, za), (0, 0, zb - za)))
+        parts.append(ModelPart(f"mirror-{j}", metal, "fabricated", kernel.compound(solids)))
     for j, lens in enumerate(bf.lenses, start=1):
         za, zb = st.layer(layer_indices(lens)[0])
         face = band_face(bf.mirrors[0], clip_curve(lens, *bf.mirrors[0].x_range_mm), za)
         parts.append(ModelPart(f"lens-{j}" if len(bf.lenses) > 1 else "lens", dielectric, "fabricated",
-                               extrude(face, zb - za, dir=(0, 0, 1))))
+                               kernel.extrude(face, (0, 0, zb - za))))
     za, zb = st.layer(1)
     for k, horn in enumerate(horns, start=1):
-        body = _prism(horn.footprint, za - t, zb + t).cut(_prism(horn.channel_cut, za, zb))
+        body = kernel.cut(_prism(horn.footprint, za - t, zb + t), [_prism(horn.channel_cut, za, zb)])
         parts.append(ModelPart(f"horn-{k}", metal, "fabricated", body))
     overlap = end_overlap_mm(design, design.wall_mm)
     checks = (Check.upper("model_slot_count", abs(holes_total - s.count), 0, "",

@@ -1,5 +1,5 @@
 """Speed-ups of issue 16 that must not change results: the σ(FOV) reference-curve cache, the
-prism meshes of slotted plates and rings against BRepMesh on their B-reps, the profile validity
+prism meshes of slotted plates, parallel plates and rings against BRepMesh on their B-reps, the profile validity
 test against BRepCheck, the STEP file written by a forked child."""
 
 from __future__ import annotations
@@ -113,6 +113,26 @@ def test_ring_mesh_matches_its_brep(r_in, axis_y):
     assert 0 < solid.volume - mesh.volume <= mesh.area * TOL       # inscribed polygons, within the chord
     box = _box(solid)
     assert np.all(mesh.bounds[0] >= box[0] - 1e-6) and np.all(mesh.bounds[1] <= box[1] + 1e-6)
+
+
+def test_parallel_plate_prism_matches_its_brep():
+    """A bifocal lens's parallel plates (geometry.bifocal.plate_parts): the (y, z) polygon prism
+    along x, meshed from its description, equals the OCCT solid (volume, bounding box), closed."""
+    from shapely.geometry import Point
+
+    from antenna_cad.export.mesh import mesh_prism
+    from antenna_cad.geometry.bifocal import plate_parts
+    from antenna_cad.materials import Material
+    outline = Point(40.0, 5.0).buffer(30.0, quad_segs=200).union(Point(80.0, 0.0).buffer(12.0))   # (z, y)
+    parts, checks = plate_parts(outline.convex_hull, [], 3.4, 2.0, Material("al", 1.0, 0.0, 2700.0, ""))
+    assert all(c.status == "pass" for c in checks)
+    for part, x0 in zip(parts, (-3.7, 1.7)):
+        mesh = mesh_prism(part.prism, TOL)
+        assert mesh.is_watertight and mesh.is_winding_consistent and mesh.volume > 0
+        assert abs(part.volume_mm3 / part.shape.volume - 1) < 1e-9
+        assert abs(mesh.volume / part.shape.volume - 1) < 1e-9        # straight edges: exact
+        np.testing.assert_allclose(mesh.bounds, _box(part.shape), atol=1e-9)
+        assert mesh.bounds[0][0] == pytest.approx(x0) and part.is_valid() and part.shape.is_valid
 
 
 def _box_model():

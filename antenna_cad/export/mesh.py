@@ -9,7 +9,8 @@ is recorded in the mesh's metadata. Each solid's triangulation is written by OCC
 writer and read back by trimesh (numpy, no per-node Python loop), vertices merged and degenerate
 faces dropped, so the STL is watertight for trimesh/manifold.
 
-A slotted plate (:class:`~antenna_cad.geometry.model.SlottedPrism`, the Ka lids: 3,200 slots) or
+A slotted plate (:class:`~antenna_cad.geometry.model.SlottedPrism`, the Ka lids: 3,200 slots; the
+parallel plates of a bifocal lens: one polygon of 3,300 edges) or
 a flat ring (:class:`~antenna_cad.geometry.model.RingPrism`, the Luneburg layups: thousands) is
 meshed from its exact description instead (:func:`mesh_prism`): arcs divided by the same chord and
 angle criteria as BRepMesh, vertices on the exact curves, faces triangulated in numpy (rings) or
@@ -148,6 +149,8 @@ def _plate_mesh(prism: SlottedPrism, tolerance_mm: float, angle_rad: float) -> t
     a = np.concatenate([f + np.arange(len(ring)) for f, ring in zip(first, rings)])
     b = np.concatenate([f + (np.arange(len(ring)) + 1) % len(ring) for f, ring in zip(first, rings)])
     faces = np.vstack([tri + m, tri[:, ::-1], np.column_stack([a, b, b + m]), np.column_stack([a, b + m, a + m])])
+    if prism.axis_x:                                 # profile in (y, z), extruded along x: (u, v, w) → (w, u, v)
+        vertices = vertices[:, [2, 0, 1]]
     return vertices, faces
 
 

@@ -135,6 +135,30 @@ def test_parallel_plate_prism_matches_its_brep():
         assert mesh.bounds[0][0] == pytest.approx(x0) and part.is_valid() and part.shape.is_valid
 
 
+def test_solid_swept_along_x_is_meshed_as_its_prism():
+    """A spline section extruded along x (as a cylindrical lens): meshed from its cap's boundary,
+    divided within the chord tolerance, vertices on the exact edges; anything else is left to BRepMesh."""
+    from build123d import Box, Cylinder, Edge, Face, Pos, Vector, Wire, extrude
+
+    from antenna_cad.export.mesh import mesh_shape, x_prism
+    edges = [Edge.make_spline([(0, -20, 0), (0, 0, 8), (0, 20, 0)]), Edge.make_line((0, 20, 0), (0, 20, -3)),
+             Edge.make_spline([(0, 20, -3), (0, 0, -9), (0, -20, -3)]), Edge.make_line((0, -20, -3), (0, -20, 0))]
+    solid = Pos(-1.7, 0, 0) * extrude(Face(Wire(edges)), 3.4, dir=(1, 0, 0))
+    prism = x_prism(solid, TOL)
+    mesh = mesh_shape(solid, TOL)
+    assert mesh.metadata["mesher"] == "prism" and mesh.is_watertight and mesh.is_winding_consistent
+    assert 0 < solid.volume - mesh.volume <= mesh.area * TOL          # a convex section: inscribed
+    np.testing.assert_allclose(mesh.bounds, _box(solid), atol=TOL)
+    wire = Wire(edges)
+    ring = np.column_stack([np.zeros(len(prism.outer_mm)), prism.outer_mm])
+    mids = (ring + np.roll(ring, -1, axis=0)) / 2
+    assert max(wire.distance_to(Vector(*p)) for p in ring) < 1e-7                    # on the edges
+    assert 0.5 * TOL < max(wire.distance_to(Vector(*p)) for p in mids) <= TOL + 1e-9   # sagitta
+    assert x_prism(Cylinder(5, 10), TOL) is None and x_prism(Box(1, 1, 1) + Pos(3, 0, 0) * Box(1, 1, 1), TOL) is None
+    box = x_prism(Box(2, 4, 6), TOL)
+    assert len(box.outer_mm) == 4 and abs(box.volume_mm3() - 48.0) < 1e-12
+
+
 def _box_model():
     from build123d import Box, Cylinder
 

@@ -120,7 +120,7 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
     :func:`prepare`, when the caller has it already). The writers (CAD, DXF, PDF, plots) are imported
     here, not with the module, so ``validate`` stays free of them."""
     from antenna_cad.export.forked import Job
-    from antenna_cad.export.report import assembly_pictures, write_report
+    from antenna_cad.export.report import write_report
     from antenna_cad.export.step import write_step
     from antenna_cad.fabrication.cutlist import cutlist_csv
     report = progress or (lambda stage, fraction: None)
@@ -158,8 +158,6 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
                 jobs["step"] = Job(write_step, (model, spec.name, step_file), [step_file])
             if spec.outputs.templates and p.fab.drawings:
                 jobs["templates"] = Job(_write_templates, (spec, p.fab, tmp), _template_files(spec, p.fab, tmp))
-            if spec.outputs.report:    # the report's pictures need only the model
-                jobs["pictures"] = Job(assembly_pictures, (model,))
             with solving(_design_field(spec), "as-built verification"):
                 verification = kind.verify(spec, p.design, p.layup, p.fab)
             checks += list(verification.checks)
@@ -173,7 +171,7 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
                 (tmp / file_name).parent.mkdir(parents=True, exist_ok=True)
                 (tmp / file_name).write_text(text, encoding="utf-8")
             if spec.outputs.report:
-                write_report(tmp, spec, figures, checks, verification, jobs.pop("pictures").finish(), p.fab, parts)
+                write_report(tmp, spec, figures, checks, verification, model, p.fab, parts)
             stage("report")
             values = {}
             for name in list(jobs):                   # the waits: what each child adds to the build

@@ -179,15 +179,6 @@ def test_step_from_the_child_is_byte_identical(tmp_path):
     assert (tmp_path / "child.step").read_bytes() == (tmp_path / "here.step").read_bytes()
 
 
-def test_pictures_from_the_child_are_byte_identical():
-    from antenna_cad.export.forked import Job
-    from antenna_cad.export.report import assembly_pictures
-    model = _box_model()
-    png, legend, count = Job(assembly_pictures, (model,)).finish()
-    assert png[:8] == b"\x89PNG\r\n\x1a\n" and count == 1 and list(legend) == ["foam"]
-    assert (png, legend, count) == assembly_pictures(model)
-
-
 def test_child_values_and_errors_reach_the_parent(tmp_path):
     from antenna_cad.export.forked import Job
 

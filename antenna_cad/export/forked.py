@@ -6,8 +6,7 @@ off and collects them before the manifest: two cores work at once, the bytes are
 written in line (the child runs the same function on a copy of the same memory). The files a child
 will write are created empty first, so the report lists them. A child dies with its parent (Linux
 PR_SET_PDEATHSIG) and on Ctrl-C; its error comes back as the parent's OSError (the same
-errno) or RuntimeError. The report's assembly pictures are drawn the same way beside the
-verification, and report.pdf beside report.html.
+errno) or RuntimeError. The report draws report.pdf the same way beside report.html.
 
 A job runs in line (same bytes, one core) when ``ANTENNA_CAD_SERIAL=1``, on a one-core machine, without
 ``os.fork``, or off the main thread: a build in a worker thread (a sweep's dask worker, whose workers

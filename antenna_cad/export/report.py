@@ -51,13 +51,13 @@ class ReportContent:
     spec_yaml: str
 
 
-def report_content(out: Path, spec, figures, checks, verification, pictures, fab, parts) -> ReportContent:
+def report_content(out: Path, spec, figures, checks, verification, model, fab, parts) -> ReportContent:
     """Collect the report of the build in folder ``out`` (the files written so far, plus the
-    report's own files and the manifest); ``pictures``: what :func:`assembly_pictures` returned."""
+    report's own files and the manifest)."""
     written = [p.relative_to(out).as_posix() for p in out.rglob("*") if p.is_file()]
     volumes = {p.get("file"): p["volume_mm3"] for p in parts}
     files = sorted(set(written) | {REPORT_HTML, REPORT_PDF, "manifest.json"})
-    png, legend, count = pictures
+    png, legend, count = _pictures(model)
     return ReportContent(
         spec.name, spec.kind, spec.frequency_ghz, _overall(checks), dict(figures), tuple(checks), verification,
         png, legend, count, tuple(tuple(getattr(r, f) for f in CUT_FIELDS) for r in fab.rows),
@@ -65,13 +65,11 @@ def report_content(out: Path, spec, figures, checks, verification, pictures, fab
         yaml.safe_dump(spec.model_dump(mode="json"), sort_keys=False))
 
 
-def write_report(out: Path, spec, figures, checks, verification, pictures, fab, parts) -> None:
+def write_report(out: Path, spec, figures, checks, verification, model, fab, parts) -> None:
     """Write report.html and report.pdf of one build into folder ``out``: the PDF in a child process
-    beside the page (:mod:`antenna_cad.export.forked`; same bytes as one after the other).
-    ``pictures``: :func:`assembly_pictures` of the model (the build draws them in a child beside
-    the verification)."""
+    beside the page (:mod:`antenna_cad.export.forked`; same bytes as one after the other)."""
     from antenna_cad.export.report_pdf import write_report_pdf
-    content = report_content(out, spec, figures, checks, verification, pictures, fab, parts)
+    content = report_content(out, spec, figures, checks, verification, model, fab, parts)
     pdf = Job(write_report_pdf, (out / REPORT_PDF, content))
     try:
         write_report_html(out / REPORT_HTML, content)
@@ -130,7 +128,7 @@ def _named_table(t: Table) -> str:
             f'<div class="scroll">{_table(t.columns, t.rows)}</div>{caption}</figure>')
 
 
-def assembly_pictures(model) -> tuple[bytes, dict[str, str], int]:
+def _pictures(model) -> tuple[bytes, dict[str, str], int]:
     """Orthographic and isometric views of the parts to make (all parts when none is marked so),
     less the model's cutaway (a sphere's front hemispheres, so its shells show as rings): the
     PNG, the material colours and the part count. Graded materials (three or more dielectrics)

@@ -13,6 +13,7 @@ would). :func:`build` keeps these promises (DESIGN.md "Outputs", issue 11):
 
 from __future__ import annotations
 
+import contextlib
 import ctypes
 import errno
 import fcntl
@@ -142,11 +143,7 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
         model = kind.model(spec, p.design, p.layup, p.panels)
     checks = p.checks + list(model.checks)
     stage("model")
-    with solving(_design_field(spec), "as-built verification"):
-        verification = kind.verify(spec, p.design, p.layup, p.fab)
-    checks += list(verification.checks)
-    stage("verify")
-    figures = kind.summary(spec, p.design, p.layup)
+    made_root = not out_root.exists()
     out_root.mkdir(exist_ok=True)
     with _locked(out_root, report):
         _remove_leftovers(out_root, spec.name)
@@ -156,11 +153,16 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
         jobs: dict[str, Job] = {}
         try:
             tmp.mkdir()
-            if spec.outputs.step:      # STEP and templates: child processes beside STL, cut list, report
-                step_file = tmp / f"{spec.name}.step"
+            if spec.outputs.step:      # STEP and templates: child processes beside verification, STL,
+                step_file = tmp / f"{spec.name}.step"            # cut list and report
                 jobs["step"] = Job(write_step, (model, spec.name, step_file), [step_file])
             if spec.outputs.templates and p.fab.drawings:
                 jobs["templates"] = Job(_write_templates, (spec, p.fab, tmp), _template_files(spec, p.fab, tmp))
+            with solving(_design_field(spec), "as-built verification"):
+                verification = kind.verify(spec, p.design, p.layup, p.fab)
+            checks += list(verification.checks)
+            figures = kind.summary(spec, p.design, p.layup)
+            stage("verify")
             stage("step")
             parts = _write_solids(spec, model, tmp, stage)
             stage("templates")
@@ -188,6 +190,9 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
                 job.finish(wait=False)
             shutil.rmtree(tmp, ignore_errors=True)
             IN_PROGRESS.discard(tmp)
+            if made_root and not final.exists():      # verification failed: nothing written
+                with contextlib.suppress(OSError):
+                    out_root.rmdir()
     files = sorted(q.relative_to(final).as_posix() for q in final.rglob("*") if q.is_file())
     return BuildResult(spec.name, spec.kind, final, figures, checks, dict(p.fab.totals_kg), dict(p.fab.boards),
                        files, seconds, dict(verification.figures))

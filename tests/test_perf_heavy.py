@@ -1,5 +1,5 @@
 """Speed-ups of issue 16 that must not change results: the σ(FOV) reference-curve cache, the
-prism meshes of slotted plates and rings against BRepMesh on their B-reps, the profile validity
+prism meshes of slotted plates, parallel plates and rings against BRepMesh on their B-reps, the profile validity
 test against BRepCheck, the STEP file written by a forked child."""
 
 from __future__ import annotations
@@ -114,6 +114,61 @@ def test_ring_mesh_matches_its_brep(r_in, axis_y):
     assert 0 < volume(solid) - mesh.volume <= mesh.area * TOL       # inscribed polygons, within the chord
     box = _box(solid)
     assert np.all(mesh.bounds[0] >= box[0] - 1e-6) and np.all(mesh.bounds[1] <= box[1] + 1e-6)
+
+
+def test_parallel_plate_prism_matches_its_brep():
+    """A bifocal lens's parallel plates (geometry.bifocal.plate_parts): the (y, z) polygon prism
+    along x, meshed from its description, equals the OCCT solid (volume, bounding box), closed."""
+    from shapely.geometry import Point
+
+    from antenna_cad.export.mesh import mesh_prism
+    from antenna_cad.geometry import kernel
+    from antenna_cad.geometry.bifocal import plate_parts
+    from antenna_cad.materials import Material
+    outline = Point(40.0, 5.0).buffer(30.0, quad_segs=200).union(Point(80.0, 0.0).buffer(12.0))   # (z, y)
+    parts, checks = plate_parts(outline.convex_hull, [], 3.4, 2.0, Material("al", 1.0, 0.0, 2700.0, ""))
+    assert all(c.status == "pass" for c in checks)
+    for part, x0 in zip(parts, (-3.7, 1.7)):
+        mesh = mesh_prism(part.prism, TOL)
+        assert mesh.is_watertight and mesh.is_winding_consistent and mesh.volume > 0
+        assert abs(part.volume_mm3 / kernel.volume(part.shape) - 1) < 1e-9
+        assert abs(mesh.volume / kernel.volume(part.shape) - 1) < 1e-9        # straight edges: exact
+        np.testing.assert_allclose(mesh.bounds, _box(part.shape), atol=1e-9)
+        assert mesh.bounds[0][0] == pytest.approx(x0) and part.is_valid() and kernel.is_valid(part.shape)
+
+
+def test_solid_swept_along_x_is_meshed_as_its_prism():
+    """A spline section extruded along x (as a cylindrical lens): meshed from its cap's boundary,
+    divided within the chord tolerance, vertices on the exact edges; anything else is left to BRepMesh."""
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex
+    from OCP.BRepExtrema import BRepExtrema_DistShapeShape
+    from OCP.gp import gp_Pnt
+
+    from antenna_cad.export.mesh import mesh_shape, x_prism
+    from antenna_cad.geometry import kernel
+    edges = [kernel.spline([(0, -20, 0), (0, 0, 8), (0, 20, 0)], [(0, 1, 0.8), (0, 1, 0), (0, 1, -0.8)]),
+             kernel.line((0, 20, 0), (0, 20, -3)),
+             kernel.spline([(0, 20, -3), (0, 0, -9), (0, -20, -3)], [(0, -1, -0.6), (0, -1, 0), (0, -1, 0.6)]),
+             kernel.line((0, -20, -3), (0, -20, 0))]
+    wire = kernel.wire(edges)
+    solid = kernel.translate(kernel.extrude(kernel.face(wire), (3.4, 0, 0)), (-1.7, 0, 0))
+    prism = x_prism(solid, TOL)
+    mesh = mesh_shape(solid, TOL)
+    volume = kernel.volume(solid)
+    assert mesh.metadata["mesher"] == "prism" and mesh.is_watertight and mesh.is_winding_consistent
+    assert 0 < volume - mesh.volume <= mesh.area * TOL          # a convex section: inscribed
+    np.testing.assert_allclose(mesh.bounds, _box(solid), atol=TOL)
+
+    def distance(p) -> float:
+        return BRepExtrema_DistShapeShape(BRepBuilderAPI_MakeVertex(gp_Pnt(*map(float, p))).Vertex(), wire).Value()
+    ring = np.column_stack([np.zeros(len(prism.outer_mm)), prism.outer_mm])
+    mids = (ring + np.roll(ring, -1, axis=0)) / 2
+    assert max(distance(p) for p in ring) < 1e-7                    # on the edges
+    assert 0.5 * TOL < max(distance(p) for p in mids) <= TOL + 1e-9   # sagitta
+    two = kernel.compound([kernel.box((0, 0, 0), (1, 1, 1)), kernel.box((3, 0, 0), (1, 1, 1))])
+    assert x_prism(kernel.cylinder(5, 10), TOL) is None and x_prism(two, TOL) is None
+    box = x_prism(kernel.box((0, 0, 0), (2, 4, 6)), TOL)
+    assert len(box.outer_mm) == 4 and abs(box.volume_mm3() - 48.0) < 1e-12
 
 
 def _box_model():

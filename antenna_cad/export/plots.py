@@ -14,7 +14,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import trimesh  # noqa: E402
-from matplotlib.collections import PolyCollection  # noqa: E402
+from matplotlib.collections import TriMesh  # noqa: E402
+from matplotlib.tri import Triangulation  # noqa: E402
 
 from antenna_cad.verification import Plot  # noqa: E402
 
@@ -82,7 +83,9 @@ def assembly_png(meshes: list[tuple[trimesh.Trimesh, str]]) -> bytes:
     """Four shaded orthographic views (front, side, top, isometric) of coloured meshes, one PNG.
 
     Painter's algorithm in one collection per view: parts far to near by their centres, inside a
-    part the back faces culled and the rest sorted far to near; Lambert shading."""
+    part the back faces culled and the rest sorted far to near; Lambert shading. The triangles go to
+    Agg in one call (a TriMesh of flat-coloured triangles, drawn in order), not as one path each
+    (a third faster on the Ka arrays' 94,000 triangles)."""
     light = LIGHT / np.linalg.norm(LIGHT)
     triangles = np.concatenate([m.triangles for m, _ in meshes])
     normals = np.concatenate([m.face_normals for m, _ in meshes])
@@ -101,10 +104,11 @@ def assembly_png(meshes: list[tuple[trimesh.Trimesh, str]]) -> bytes:
             front = front[np.lexsort((-(centres[front] @ d), -(part_centres[part[front]] @ d)))]  # far first
             shade = 0.45 + 0.55 * np.abs(normals[front] @ light)
             rgb = np.clip(shade[:, None] * base[front], 0, 1)
-            flat = triangles[front] @ screen
-            ax.add_collection(PolyCollection(flat, facecolors=rgb, edgecolors="none", antialiased=False),
-                              autolim=False)
-            low, high = flat.reshape(-1, 2).min(axis=0), flat.reshape(-1, 2).max(axis=0)
+            flat = (triangles[front] @ screen).reshape(-1, 2)
+            soup = TriMesh(Triangulation(flat[:, 0], flat[:, 1], np.arange(len(flat)).reshape(-1, 3)))
+            soup.set_facecolor(np.repeat(np.column_stack([rgb, np.ones(len(rgb))]), 3, axis=0))
+            ax.add_collection(soup, autolim=False)
+            low, high = flat.min(axis=0), flat.max(axis=0)
             pad = 0.02 * (high - low).max()
             ax.set_xlim(low[0] - pad, high[0] + pad)
             ax.set_ylim(low[1] - pad, high[1] + pad)

@@ -74,7 +74,7 @@ def build_model(design, grades: list[Material], fab, base: Material) -> Model:
     total = 0.0
     for L, m in zip(design.layers, grades):
         pins = pin_layout(L.r_inner_mm, L.r_outer_mm, fab.pins_per_shell, fab.pin_diameter_mm)
-        cutters, pin_solids = [], []
+        pin_solids = []
         if pins:
             rp, d, depth = pins
             for k in range(fab.pins_per_shell):

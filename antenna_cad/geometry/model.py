@@ -61,11 +61,14 @@ class SlottedPrism:
     slotted_plate` builds with one face and one prism. Slots are rows (x, y, length, width, angle) with
     the angle from +y, as :func:`geometry.slot_array.slot_wire` draws them: a straight core of half-length
     max(length/2 − width/2, 1e-4) along u = (sin a, cos a) and semicircular ends of radius width/2.
-    It lets the part be meshed without OCCT (:func:`export.mesh.mesh_prism`, issue 16)."""
+    It lets the part be meshed without OCCT (:func:`export.mesh.mesh_prism`, issue 16). With
+    ``axis_x`` the profile is drawn in (y, z) and extruded along x from ``z0_mm`` to ``z1_mm`` (the
+    cyclic turn (u, v, w) → (w, u, v): the parallel plates of :func:`geometry.bifocal.plate_parts`)."""
     outer_mm: np.ndarray
     slots: np.ndarray
     z0_mm: float
     z1_mm: float
+    axis_x: bool = False
 
     def cores(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """(centres (m, 2), unit axes u (m, 2), straight half-lengths, radii) of the slots."""

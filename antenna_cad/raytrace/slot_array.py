@@ -165,10 +165,24 @@ def tolerance_effects(bf: BeamFormer, cells: Cells, sources_mm: np.ndarray, aims
     (moves the frequency-scanned beam; a mirror–lens lens of the same dielectric gets n² + Δε)
     and alternating guide to guide (the worst-case spread: a phase error growing along the
     guides). The feed moves ± along and across its axis. ``scale`` multiplies every tolerance.
+    The rays of a feed through a beam former are traced once: εr and width change only the guides
+    (the same guide axes), so those cases refit the same paths (issue 16).
     """
     alt = np.where(np.arange(cells.guide_x_mm.size) % 2, -1.0, 1.0)
     sides = np.stack([-aims[:, 1], aims[:, 0]], -1)
-    nominal = [trace_beam(bf, s, cells, f_ghz) for s in sources_mm]
+    traced: dict[tuple, tuple[np.ndarray, np.ndarray]] = {}
+
+    def beam(bfv: BeamFormer, source, cv: Cells, f) -> BeamFit:
+        """:func:`trace_beam` with the paths kept by (beam former, source); ``cases`` below keeps
+        every beam former alive, so its id is its own."""
+        key = (id(bfv), *np.asarray(source, float).tolist())
+        if key not in traced:
+            traced[key] = (traced_eikonal_mm(bfv, np.asarray(source, float), cv.guide_x_mm),
+                           bfv.guide_curve.y_at(cv.guide_x_mm))
+        path, entry = traced[key]
+        return fit_beam(cell_phase_rad(path, entry, cv, f), cv, f)
+
+    nominal = [beam(bf, s, cells, f_ghz) for s in sources_mm]
     widths = beamwidths_rad(cells, f_ghz, float(nominal[0].elevation_rad[0]), float(nominal[0].azimuth_rad[0]))
 
     def lens_bf(d_eps):
@@ -191,7 +205,7 @@ def tolerance_effects(bf: BeamFormer, cells: Cells, sources_mm: np.ndarray, aims
         worst = None
         for bfv, cv, shift in variants:
             for k, (src, nom) in enumerate(zip(sources_mm, nominal)):
-                fit = trace_beam(bfv, src + (shift[k] if np.ndim(shift) else 0.0), cv, f_ghz)
+                fit = beam(bfv, src + (shift[k] if np.ndim(shift) else 0.0), cv, f_ghz)
                 de = float(fit.elevation_rad[0] - nom.elevation_rad[0])
                 da = float(fit.azimuth_rad[0] - nom.azimuth_rad[0])
                 loss = float(fit.ruze_loss_db[0] - nom.ruze_loss_db[0] + pointing_loss_db(de, da, widths))

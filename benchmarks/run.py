@@ -9,7 +9,7 @@ machine and read the load average it records.
 Each recipe runs in a fresh interpreter, so its import time and peak RSS are its own; the stage
 times are the median of ``--runs`` builds in that process after imports. Writes
 ``benchmarks/results.md`` (table, machine, date, commit, budgets) and ``benchmarks/results.json``
-(to compare commits: ``--compare`` prints the ratios against an older JSON). Exits 1 when a
+(to compare commits: ``--compare OLD.json`` adds the before/after table with its figures). Exits 1 when a
 scaling exponent exceeds 1.1 or a budget is missed, naming the stage (``--no-fail``: report only).
 """
 
@@ -357,10 +357,13 @@ def _markdown(results: dict) -> str:
 
 
 def _side_by_side(results: dict) -> list[str]:
-    """The before/after tables of a ``--before`` run (each pair measured back to back)."""
+    """The before/after tables of a ``--before`` run (each pair measured back to back) or of a
+    ``--compare`` run (the older JSON's figures as they were measured then)."""
     old = results["before"]
-    lines = ["", f"Before (commit {old['commit']}) and after (commit {results['machine']['commit']}), each recipe "
-             "run in both trees back to back (load average at the start of each run)", "",
+    how = (f"the before figures from {old['from']}" if "from" in old
+           else "each recipe run in both trees back to back")
+    lines = ["", f"Before (commit {old['commit']}) and after (commit {results['machine']['commit']}), {how} "
+             "(load average at the start of each run; MB: the largest process, build or forked writer)", "",
              "| recipe | load | before s | after s | before / after | CPU s before | CPU s after | before MB | "
              "after MB | slowest stage before | slowest stage after |",
              "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---|"]
@@ -368,17 +371,19 @@ def _side_by_side(results: dict) -> list[str]:
         if name not in old["recipes"]:
             continue
         b = old["recipes"][name]
-        tb, ta = sum(b["stages"].values()), sum(r["stages"].values())
-        sb, sa = (max(x["stages"], key=x["stages"].get) for x in (b, r))
+        tb, ta = sum(_budgeted(b["stages"]).values()), sum(_budgeted(r["stages"]).values())
+        sb, sa = (max(_budgeted(x["stages"]), key=x["stages"].get) for x in (b, r))
+        mb, ma = (max(x["peak_mb"], x.get("child_peak_mb", 0.0)) for x in (b, r))
         lines.append(f"| {name} | {b.get('load', 0):.1f}/{r.get('load', 0):.1f} | {tb:.2f} | {ta:.2f} | "
-                     f"{tb / ta:.2f}× | {b.get('cpu_s', 0):.1f} | {r.get('cpu_s', 0):.1f} | "
-                     f"{b['peak_mb']:.0f} | {r['peak_mb']:.0f} | "
+                     f"{tb / ta:.2f}× | {b.get('cpu_s', 0):.1f} | {r.get('cpu_s', 0):.1f} | {mb:.0f} | {ma:.0f} | "
                      f"{sb} {b['stages'][sb]:.2f} s | {sa} {r['stages'][sa]:.2f} s |")
+    earlier = {c["args"]: c for c in old["cli"]}
     lines += ["", "| command | before s | after s | CPU s before | CPU s after | CAD modules before | CAD modules after |",
               "|---|---:|---:|---:|---:|---|---|"]
-    lines += [f"| make-lens {a['args']} | {b['seconds']:.2f} | {a['seconds']:.2f} | {b['cpu_s']:.2f} | {a['cpu_s']:.2f} | "
-              f"{', '.join(b['cad_modules']) or 'none'} | {', '.join(a['cad_modules']) or 'none'} |"
-              for b, a in zip(old["cli"], results["cli"])]
+    lines += [f"| make-lens {a['args']} | {b['seconds']:.2f} | {a['seconds']:.2f} | {b.get('cpu_s', float('nan')):.2f} | "
+              f"{a.get('cpu_s', float('nan')):.2f} | {', '.join(b['cad_modules']) or 'none'} | "
+              f"{', '.join(a['cad_modules']) or 'none'} |"
+              for a in results["cli"] for b in [earlier.get(a["args"])] if b is not None]
     return lines
 
 
@@ -396,7 +401,8 @@ def main() -> int:
     parser.add_argument("--naive-guides", type=int, default=0,
                         help="per-slot booleans on the first N guides only (default: all 40; ~15 s a guide)")
     parser.add_argument("--large", action="store_true", help="the D/λ = 100 Luneburg layup with templates")
-    parser.add_argument("--compare", type=Path, help="an older results.json to compare totals with")
+    parser.add_argument("--compare", type=Path, help="an older results.json: its figures as the before column of "
+                        "the before/after table")
     parser.add_argument("--before", type=Path, help="an older checkout (git worktree) run side by side: each "
                         "recipe and command there, then here, so both see the same load")
     parser.add_argument("--no-fail", action="store_true", help="report missed budgets without exit 1")
@@ -413,6 +419,11 @@ def main() -> int:
     before = args.before.resolve() if args.before else None
     if before:
         results["before"] = {"commit": _commit(before), "recipes": {}, "cli": []}
+    elif args.compare:          # an earlier run's JSON: its own date and load, not measured back to back
+        old = json.loads(args.compare.read_text(encoding="utf-8"))
+        results["before"] = {"commit": old["machine"]["commit"], "recipes": old["recipes"], "cli": old["cli"],
+                             "from": f"{args.compare.name} ({old['machine']['date']}, load "
+                                     f"{old['machine']['load_average_start']:.2f})"}
     for name in recipes:
         print(f"recipe {name} …", file=sys.stderr, flush=True)
         if before and (before / "recipes" / name).is_file():
@@ -451,12 +462,6 @@ def main() -> int:
     (ROOT / "benchmarks" / "results.json").write_text(json.dumps(results, indent=1) + "\n", encoding="utf-8")
     (ROOT / "benchmarks" / "results.md").write_text(_markdown(results), encoding="utf-8")
     print(_markdown(results))
-    if args.compare:
-        old = json.loads(args.compare.read_text(encoding="utf-8"))["recipes"]
-        for name, r in results["recipes"].items():
-            if name in old:
-                before, now = sum(old[name]["stages"].values()), sum(r["stages"].values())
-                print(f"{name:36s} {before:8.2f} → {now:8.2f} s  ({before / now:.2f}×)")
     for line in failures:
         print(line, file=sys.stderr)
     return 1 if failures and not args.no_fail else 0

@@ -129,8 +129,28 @@ _NEGATIVE_ZERO = re.compile(r"(?<![\w.])-0\.(?![\dE])")
 def snap_near_zero(text: str) -> str:
     """Reals below 1e-9 (mm, or direction components) written as 0. and −0. as 0.: OCCT's
     parallel booleans leave ±3e-30 or exactly 0 on the same point from run to run, which made
-    the STEP (and the STLs) of the same spec differ between builds."""
-    return _NEGATIVE_ZERO.sub("0.", _TINY.sub("0.", text))
+    the STEP (and the STLs) of the same spec differ between builds.
+
+    A match never spans a newline and holds ``E-`` or ``-0.``, so the patterns run only on the
+    few lines holding those (found by ``str.find``): same text out, ~40× faster on 20 MB."""
+    out, done = [], 0
+    for start, stop in _lines_holding(text, ("E-", "-0.")):
+        out += [text[done:start], _NEGATIVE_ZERO.sub("0.", _TINY.sub("0.", text[start:stop]))]
+        done = stop
+    return "".join(out) + text[done:]
+
+
+def _lines_holding(text: str, needles: tuple[str, ...]) -> list[tuple[int, int]]:
+    """(start, stop) of every line of ``text`` holding one of ``needles``, in order, no repeats."""
+    spans = set()
+    for needle in needles:
+        at = text.find(needle)
+        while at >= 0:
+            start, stop = text.rfind("\n", 0, at) + 1, text.find("\n", at)
+            stop = len(text) if stop < 0 else stop
+            spans.add((start, stop))
+            at = text.find(needle, stop)
+    return sorted(spans)
 
 
 _NAUO = re.compile(r"NEXT_ASSEMBLY_USAGE_OCCURRENCE\('\d+',(.*?)\);", re.DOTALL)

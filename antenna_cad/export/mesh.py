@@ -90,7 +90,7 @@ def picture_meshes(shapes: list[Shape], tolerance_mm: float,
     with _scratch() as scratch:
         path = str(Path(scratch) / "part.stl")
         meshes = [mesh_prism(prism, tolerance_mm, picture=True) if prism is not None
-                  else _stl_read_back(shape, path) for shape, prism in zip(shapes, prisms)]
+                  else _snapped(_stl_read_back(shape, path)) for shape, prism in zip(shapes, prisms)]
     if brep:
         _release(compound)
     return meshes
@@ -293,14 +293,21 @@ def _write_triangulation(shape, path: str) -> str:
 SNAP_MM = 1e-9       # coordinates below this are written as 0 (run-to-run noise of OCCT booleans)
 
 
+def _snapped(mesh: trimesh.Trimesh) -> trimesh.Trimesh:
+    """``mesh`` with coordinates below :data:`SNAP_MM` set to 0: OCCT's parallel booleans leave ±1e-30
+    on the same point from run to run, which reordered equal-depth triangles in the report's
+    pictures (a few pixels one grey level apart between two builds of the same spec)."""
+    mesh.vertices = np.where(np.abs(mesh.vertices) < SNAP_MM, 0.0, mesh.vertices)
+    return mesh
+
+
 def write_stl(shape: Shape, path: Path, tolerance_mm: float, prism: SlottedPrism | RingPrism | None = None) -> trimesh.Trimesh:
     """Binary STL of ``shape`` (meshed from ``prism`` when given, :func:`mesh_prism`); near-zero
     coordinates snapped to 0 so the bytes are reproducible.
     ``metadata["watertight"]``: the file as any STL reader sees it (vertices merged by position)
     is a closed 2-manifold, False when bodies touch along edges (4 faces on an edge) even though
     each body (``bodies_watertight``) is closed."""
-    mesh = mesh_prism(prism, tolerance_mm) if prism is not None else mesh_shape(shape, tolerance_mm)
-    mesh.vertices = np.where(np.abs(mesh.vertices) < SNAP_MM, 0.0, mesh.vertices)
+    mesh = _snapped(mesh_prism(prism, tolerance_mm) if prism is not None else mesh_shape(shape, tolerance_mm))
     mesh.metadata["watertight"] = bool(trimesh.Trimesh(mesh.vertices, mesh.faces).is_watertight)
     mesh.metadata.setdefault("bodies_watertight", mesh.metadata["watertight"])     # one body (a prism)
     path.write_bytes(trimesh.exchange.stl.export_stl(mesh))

@@ -14,6 +14,7 @@ import html
 import io
 import math
 import re
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from functools import cache
 from pathlib import Path
@@ -285,7 +286,7 @@ def tile_windows(drawing: Drawing, bounds: tuple[float, float, float, float]) ->
     return [o for o, keep in zip(origins, holds) if keep]
 
 
-def write_tiled_pdf(drawings: list[Drawing], path: Path, title: str) -> int:
+def write_tiled_pdf(drawings: Iterable[Drawing], path: Path, title: str) -> int:
     """All drawings at 1:1 on A4 portrait pages with overlap; returns the page count. Each
     drawing's lines are one Form XObject (with registration crosses at the centres of the overlap
     strips, the same model points on neighbouring pages); a page clips it to its window and scales

@@ -121,6 +121,7 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
     from antenna_cad.export.forked import Job
     from antenna_cad.export.report import write_report
     from antenna_cad.export.step import write_step
+    from antenna_cad.export.template_files import template_files, write_templates
     from antenna_cad.fabrication.cutlist import cutlist_csv
     report = progress or (lambda stage, fraction: None)
     seconds: dict[str, float] = {}
@@ -151,7 +152,7 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
             tmp.mkdir()
             if spec.outputs.templates and p.fab.drawings:   # templates and STEP: child processes beside the
                 # model, verification, STL, cut list and report (templates need only the fabrication plan)
-                jobs["templates"] = Job(_write_templates, (spec, p.fab, tmp), _template_files(spec, p.fab, tmp))
+                jobs["templates"] = Job(write_templates, (spec, p.fab, tmp), template_files(spec, p.fab, tmp))
             with solving(_design_field(spec), "solid model"):
                 model = kind.model(spec, p.design, p.layup, p.panels)
             checks = p.checks + list(model.checks)
@@ -247,37 +248,6 @@ def _write_solids(spec, model, out: Path, stage) -> list[dict]:
         parts.append(entry)
     stage("stl")
     return parts
-
-
-def _template_files(spec, fab, out: Path) -> list[Path]:
-    """The files :func:`_write_templates` writes (named from the drawings' labels, which a lazily
-    built plan knows without drawing: ``SheetDrawings.labels``)."""
-    folder = out / "templates"
-    labels = getattr(fab.drawings, "labels", None) or [d.label for d in fab.drawings]
-    return [folder / f"{label}.{ext}" for label in labels for ext in ("dxf", "svg")] + [folder / f"{spec.name}-templates.pdf"]
-
-
-def _write_templates(spec, fab, out: Path) -> list[dict]:
-    """DXF + SVG per drawing and one tiled PDF, in one pass over the drawings (a lazily built plan
-    draws each sheet once); returns their manifest entries (files, the CUT outline's bounding box,
-    the SVG's size) that ``make-lens check`` measures again."""
-    from antenna_cad.fabrication.templates import write_dxf, write_svg, write_tiled_pdf
-    folder = out / "templates"
-    folder.mkdir(exist_ok=True)
-    entries = []
-
-    def written():
-        for drawing in fab.drawings:
-            write_dxf(drawing, folder / f"{drawing.label}.dxf")
-            svg_mm = write_svg(drawing, folder / f"{drawing.label}.svg")
-            entries.append({"label": drawing.label, "dxf": f"templates/{drawing.label}.dxf",
-                            "svg": f"templates/{drawing.label}.svg", "cut_bbox_mm": list(drawing.cut_bounds()),
-                            "svg_size_mm": list(svg_mm)})
-            yield drawing
-
-    pages = write_tiled_pdf(written(), folder / f"{spec.name}-templates.pdf", spec.name)
-    entries.append({"label": "all", "pdf": f"templates/{spec.name}-templates.pdf", "pages": pages})
-    return entries
 
 
 def _write_manifest(spec, out: Path, figures, checks, parts, layup, fab, templates, verification) -> None:

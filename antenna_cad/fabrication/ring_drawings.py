@@ -20,11 +20,14 @@ from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
 
 class SheetDrawings(Sequence):
     """The layup's drawings in sheet order (each sheet's assembly view, its rings, its foot), built
-    lazily by ``build(sheet_index)`` one sheet at a time (the last sheet's kept); ``labels`` and the
-    count are known without drawing anything. The same drawings, in the same order, as building
+    lazily by ``build(sheet_index)`` one sheet at a time (the last sheet's kept); the labels (per
+    sheet: ``groups``) and the count are known without drawing anything, ``weights`` estimates
+    each sheet's share of the work (its pages). The same drawings, in the same order, as building
     them all at once."""
 
-    def __init__(self, labels: list[list[str]], build: Callable[[int], list[Drawing]]):
+    def __init__(self, labels: list[list[str]], build: Callable[[int], list[Drawing]], weights: list[float]):
+        self.groups = tuple(tuple(group) for group in labels)
+        self.weights = list(weights)
         self.labels = tuple(label for group in labels for label in group)
         self._starts = [0]
         for group in labels:

@@ -113,7 +113,8 @@ def _drawings(plan: RingLayupPlan, pieces: list, title: str) -> SheetDrawings:
         return [_sheet_drawing(plan, s, parts, title), *parts]
 
     return SheetDrawings([[s.label, *(r.label for r in s.rings), *(p.label for p in feet[s.index])]
-                          for s in plan.sheets], build)
+                          for s in plan.sheets], build,
+                         [s.radius_mm ** 2 + sum(r.r_outer_mm ** 2 for r in s.rings) for s in plan.sheets])
 
 
 def _material(piece) -> Material:

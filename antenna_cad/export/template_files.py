@@ -46,9 +46,13 @@ def write_templates(spec, fab, out: Path) -> list[dict]:
     (folder / "pdf").mkdir(exist_ok=True)
     shares = _shares(fab.drawings.weights, WORKERS)
     jobs = [Job(_write_sheets, (spec, fab, folder, share)) for share in shares[1:]]
-    done = _write_sheets(spec, fab, folder, shares[0])
-    for job in jobs:
-        done |= job.finish()
+    try:
+        done = _write_sheets(spec, fab, folder, shares[0])
+        for job in jobs:
+            done |= job.finish()
+    finally:
+        for job in jobs:                    # stopped when this share failed (no-op once finished)
+            job.finish(wait=False)
     return [entry for k in sorted(done) for entry in done[k]]
 
 

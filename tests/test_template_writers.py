@@ -108,6 +108,7 @@ def test_luneburg_drawings_built_a_sheet_at_a_time_are_the_same_drawings():
         again, first = drawings[k], listed[k]
         assert again.label == first.label and again.texts == first.texts and again.title == first.title
         assert all(np.array_equal(np.asarray(a), np.asarray(b)) for a, b in zip(again.cut, first.cut))
+    assert [d.label for d in drawings[1::3]] == [d.label for d in listed[1::3]]
     with pytest.raises(IndexError):
         drawings[len(listed)]
 

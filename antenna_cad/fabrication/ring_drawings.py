@@ -44,7 +44,9 @@ class SheetDrawings(Sequence):
             self._cached = (k, self._build(k))
         return self._cached[1]
 
-    def __getitem__(self, i: int) -> Drawing:
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return [self[k] for k in range(*i.indices(len(self)))]
         if not -len(self) <= i < len(self):
             raise IndexError(i)
         i %= len(self)

@@ -13,7 +13,6 @@ would). :func:`build` keeps these promises (DESIGN.md "Outputs", issue 11):
 
 from __future__ import annotations
 
-import contextlib
 import ctypes
 import errno
 import fcntl
@@ -22,7 +21,7 @@ import shutil
 import tempfile
 import time
 from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from contextlib import contextmanager, suppress
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
@@ -122,6 +121,7 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
     from antenna_cad.export.forked import Job
     from antenna_cad.export.report import write_report
     from antenna_cad.export.step import write_step
+    from antenna_cad.export.template_files import template_files, write_templates
     from antenna_cad.fabrication.cutlist import cutlist_csv
     report = progress or (lambda stage, fraction: None)
     seconds: dict[str, float] = {}
@@ -139,12 +139,9 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
     p = plan or prepare(spec)
     stage("synthesize")
     stage("fabricate")
-    with solving(_design_field(spec), "solid model"):
-        model = kind.model(spec, p.design, p.layup, p.panels)
-    checks = p.checks + list(model.checks)
-    stage("model")
-    made_root = not out_root.exists()
+    created = not out_root.exists()
     out_root.mkdir(exist_ok=True)
+    done = False
     with _locked(out_root, report):
         _remove_leftovers(out_root, spec.name)
         final = out_root / spec.name
@@ -153,16 +150,21 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
         jobs: dict[str, Job] = {}
         try:
             tmp.mkdir()
-            if spec.outputs.step:      # STEP and templates: child processes beside verification, STL,
-                step_file = tmp / f"{spec.name}.step"            # cut list and report
+            if spec.outputs.templates and p.fab.drawings:   # templates and STEP: child processes beside the
+                # model, verification, STL, cut list and report (templates need only the fabrication plan)
+                jobs["templates"] = Job(write_templates, (spec, p.fab, tmp), template_files(spec, p.fab, tmp))
+            with solving(_design_field(spec), "solid model"):
+                model = kind.model(spec, p.design, p.layup, p.panels)
+            checks = p.checks + list(model.checks)
+            stage("model")
+            if spec.outputs.step:     # the STEP needs only the model: written beside verification, STL, report
+                step_file = tmp / f"{spec.name}.step"
                 jobs["step"] = Job(write_step, (model, spec.name, step_file), [step_file])
-            if spec.outputs.templates and p.fab.drawings:
-                jobs["templates"] = Job(_write_templates, (spec, p.fab, tmp), _template_files(spec, p.fab, tmp))
             with solving(_design_field(spec), "as-built verification"):
                 verification = kind.verify(spec, p.design, p.layup, p.fab)
             checks += list(verification.checks)
-            figures = kind.summary(spec, p.design, p.layup)
             stage("verify")
+            figures = kind.summary(spec, p.design, p.layup)
             stage("step")
             parts = _write_solids(spec, model, tmp, stage)
             stage("templates")
@@ -182,6 +184,7 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
             _write_manifest(spec, tmp, figures, checks, parts, p.layup, p.fab, templates, verification)
             stage("manifest")
             _swap_into_place(tmp, final)
+            done = True
         except OSError as exc:
             raise OutputError(f"{out_root}: writing the build failed ({exc.strerror or exc}); "
                               "the previous build is untouched") from None
@@ -190,8 +193,8 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
                 job.finish(wait=False)
             shutil.rmtree(tmp, ignore_errors=True)
             IN_PROGRESS.discard(tmp)
-            if made_root and not final.exists():      # verification failed: nothing written
-                with contextlib.suppress(OSError):
+            if created and not done:                    # a failed first build leaves no folder behind
+                with suppress(OSError):
                     out_root.rmdir()
     files = sorted(q.relative_to(final).as_posix() for q in final.rglob("*") if q.is_file())
     return BuildResult(spec.name, spec.kind, final, figures, checks, dict(p.fab.totals_kg), dict(p.fab.boards),
@@ -246,31 +249,6 @@ def _write_solids(spec, model, out: Path, stage) -> list[dict]:
         parts.append(entry)
     stage("stl")
     return parts
-
-
-def _template_files(spec, fab, out: Path) -> list[Path]:
-    """The files :func:`_write_templates` writes."""
-    folder = out / "templates"
-    return ([folder / f"{d.label}.{ext}" for d in fab.drawings for ext in ("dxf", "svg")]
-            + [folder / f"{spec.name}-templates.pdf"])
-
-
-def _write_templates(spec, fab, out: Path) -> list[dict]:
-    """DXF + SVG per drawing and one tiled PDF; returns their manifest entries (files, the CUT
-    outline's bounding box, the SVG's size) that ``make-lens check`` measures again."""
-    from antenna_cad.fabrication.templates import write_dxf, write_svg, write_tiled_pdf
-    folder = out / "templates"
-    folder.mkdir(exist_ok=True)
-    entries = []
-    for drawing in fab.drawings:
-        write_dxf(drawing, folder / f"{drawing.label}.dxf")
-        svg_mm = write_svg(drawing, folder / f"{drawing.label}.svg")
-        entries.append({"label": drawing.label, "dxf": f"templates/{drawing.label}.dxf",
-                        "svg": f"templates/{drawing.label}.svg", "cut_bbox_mm": list(drawing.cut_bounds()),
-                        "svg_size_mm": list(svg_mm)})
-    pages = write_tiled_pdf(list(fab.drawings), folder / f"{spec.name}-templates.pdf", spec.name)
-    entries.append({"label": "all", "pdf": f"templates/{spec.name}-templates.pdf", "pages": pages})
-    return entries
 
 
 def _write_manifest(spec, out: Path, figures, checks, parts, layup, fab, templates, verification) -> None:

@@ -47,17 +47,17 @@ def run(d_over_lambda: float, sheet_mm: float) -> None:
     t_plan = lap()
     fab = kind.fabricate(spec, design, layup, ())
     t_fab = lap()
-    drawn = fabricate_rings(layup, spec.name, drawings=True)
+    drawings = list(fabricate_rings(layup, spec.name, drawings=True).drawings)   # built lazily: all of them here
     t_draw = lap() - t_fab
     pages = write_s = 0.0
     if "--write" in sys.argv:
         from antenna_cad.fabrication.templates import write_dxf, write_svg, write_tiled_pdf
         lap()
         with tempfile.TemporaryDirectory() as out:
-            for d in drawn.drawings:
+            for d in drawings:
                 write_dxf(d, Path(out) / f"{d.label}.dxf")
                 write_svg(d, Path(out) / f"{d.label}.svg")
-            pages = write_tiled_pdf(list(drawn.drawings), Path(out) / "all.pdf", spec.name)
+            pages = write_tiled_pdf(drawings, Path(out) / "all.pdf", spec.name)
         write_s = lap()
     kind.fabrication_checks(spec, design, layup)
     t_chk = lap()
@@ -65,7 +65,7 @@ def run(d_over_lambda: float, sheet_mm: float) -> None:
     t_ver = lap()
     rings, pieces = len(layup.rings), len(fab.pieces)
     work = t_plan + t_fab
-    print(f"{d_over_lambda:5.0f} {sheet_mm:5.0f} {layup.count:6d} {rings:6d} {pieces:7d} {len(drawn.drawings):7d} "
+    print(f"{d_over_lambda:5.0f} {sheet_mm:5.0f} {layup.count:6d} {rings:6d} {pieces:7d} {len(drawings):7d} "
           f"{sum(fab.boards.values()):6d} | {t_syn:6.2f} {t_plan:6.2f} {t_fab:6.2f} {t_draw:7.2f} {t_chk:6.2f} "
           f"{t_ver:6.2f} | {1e3 * work / rings:7.3f} {1e3 * work / pieces:7.3f} {1e3 * t_draw / pieces:7.3f}"
           + (f" | {write_s:6.1f} {pages:7.0f} {1e3 * write_s / pieces:7.3f}" if write_s else ""), flush=True)

@@ -94,6 +94,25 @@ def test_luneburg_templates_one_per_ring_hold_every_sector():
             assert any(row.part == label or row.part.startswith(label + "-") for label in drawings)
 
 
+def test_luneburg_drawings_built_a_sheet_at_a_time_are_the_same_drawings():
+    R = 500.0
+    mats = [Material(f"g{k}", 2.0 - 0.2 * k, 1e-4, 100.0 - 10 * k) for k in range(2)]
+    plan = plan_rings([0, 0.5 * R], [0.5 * R, R], mats, shape="sphere", height_mm=None, sheet_thickness_mm=100.0,
+                      sizing="contain", kerf_mm=0.5, board_width_mm=600, board_length_mm=1200,
+                      registration_hole_mm=6.0, pedestal_height_mm=60.0, pedestal_width_mm=300.0)
+    drawings = fabricate_rings(plan, "t", drawings=True).drawings
+    listed = list(drawings)
+    assert len(drawings) == len(listed) == len(drawings.labels) == len(plan.sheets) * 2 + len(plan.rings)
+    assert [d.label for d in listed] == list(drawings.labels)          # labels known before drawing
+    for k in (len(listed) - 1, 0, len(listed) // 2, -1):               # random access: same drawing, same lines
+        again, first = drawings[k], listed[k]
+        assert again.label == first.label and again.texts == first.texts and again.title == first.title
+        assert all(np.array_equal(np.asarray(a), np.asarray(b)) for a, b in zip(again.cut, first.cut))
+    assert [d.label for d in drawings[1::3]] == [d.label for d in listed[1::3]]
+    with pytest.raises(IndexError):
+        drawings[len(listed)]
+
+
 @pytest.mark.parametrize("n", [3, 40])
 def test_polylines_short_and_long_format_alike(n):
     pts = np.column_stack([np.linspace(-3, 3, n), np.linspace(0.1234, 9.87651, n)])

@@ -1,10 +1,14 @@
 """Templates of a Luneburg sheet layup: one assembly drawing per sheet, one 1:1 drawing per ring
 (its sectors' cut paths in place) and per stand foot, all in the sheet frame, with dowel hole
-marks and title blocks."""
+marks and title blocks. :class:`SheetDrawings` builds them a sheet at a time, when a writer asks:
+a 3 m layup has 4,456 ring templates (issue 16) that a ``validate`` or a build without templates
+never draws."""
 
 from __future__ import annotations
 
+import bisect
 import math
+from collections.abc import Callable, Iterator, Sequence
 
 from antenna_cad.fabrication.outline import CHORD_TOL_MM, Circle, arc_paths
 from antenna_cad.fabrication.ring_pieces import FootPiece, RingPiece, _arc, _suffix
@@ -13,6 +17,46 @@ from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
 
 
 # ---------------------------------------------------------------- templates
+
+class SheetDrawings(Sequence):
+    """The layup's drawings in sheet order (each sheet's assembly view, its rings, its foot), built
+    lazily by ``build(sheet_index)`` one sheet at a time (the last sheet's kept); the labels (per
+    sheet: ``groups``) and the count are known without drawing anything, ``weights`` estimates
+    each sheet's share of the work (its pages). The same drawings, in the same order, as building
+    them all at once."""
+
+    def __init__(self, labels: list[list[str]], build: Callable[[int], list[Drawing]], weights: list[float]):
+        self.groups = tuple(tuple(group) for group in labels)
+        self.weights = list(weights)
+        self.labels = tuple(label for group in labels for label in group)
+        self._starts = [0]
+        for group in labels:
+            self._starts.append(self._starts[-1] + len(group))
+        self._build = build
+        self._cached: tuple[int, list[Drawing]] = (-1, [])
+
+    def __len__(self) -> int:
+        return len(self.labels)
+
+    def sheet(self, k: int) -> list[Drawing]:
+        """The drawings of the ``k``-th sheet (in plan order)."""
+        if self._cached[0] != k:
+            self._cached = (k, self._build(k))
+        return self._cached[1]
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return [self[k] for k in range(*i.indices(len(self)))]
+        if not -len(self) <= i < len(self):
+            raise IndexError(i)
+        i %= len(self)
+        k = bisect.bisect_right(self._starts, i) - 1
+        return self.sheet(k)[i - self._starts[k]]
+
+    def __iter__(self) -> Iterator[Drawing]:
+        for k in range(len(self._starts) - 1):
+            yield from self.sheet(k)
+
 
 def _sheet_drawing(plan: RingLayupPlan, sheet: RingSheet, parts: list[Drawing], title: str) -> Drawing:
     """The sheet's assembly view: the cut paths of its ring and foot templates ``parts`` (the same

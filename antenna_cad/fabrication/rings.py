@@ -7,12 +7,14 @@ from __future__ import annotations
 
 import bisect
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 from antenna_cad.fabrication.cutlist import CutRow, cutlist_csv
 from antenna_cad.fabrication.nesting import Placement, nest
 from antenna_cad.fabrication.outline import NEST_SPACING_MM, circle_polygon, foot_polygon
-from antenna_cad.fabrication.ring_drawings import _foot_drawing, _holes_text, _ring_drawing, _sheet_drawing
+from antenna_cad.fabrication.ring_drawings import (SheetDrawings, _foot_drawing, _holes_text, _ring_drawing,
+                                                  _sheet_drawing)
 from antenna_cad.fabrication.ring_pieces import FootPiece, RingPiece, ring_pieces
 from antenna_cad.fabrication.ring_plan import (Dowel, DowelHole, RingLayupPlan, RingPlan, RingSheet, ring_radii,
                                                plan_rings, sector_box, sector_count)
@@ -32,7 +34,7 @@ class FabPlanRings:
     pieces: tuple
     placements: dict[str, Placement]
     joints: dict
-    drawings: tuple[Drawing, ...]
+    drawings: Sequence[Drawing]               # SheetDrawings: built a sheet at a time when written
     rows: tuple[CutRow, ...]
     totals_kg: dict[str, float]
     boards: dict[str, int]
@@ -87,21 +89,32 @@ def fabricate_rings(plan: RingLayupPlan, title: str, drawings: bool = True) -> F
         boards.setdefault(pl.board_id.rsplit("-B", 1)[0], set()).add(pl.board_id)
     files = {f"cutlist-{grade}.csv": cutlist_csv(g_rows, _totals(g_rows))
              for grade in sorted(by_grade) for g_rows in [[r for r in rows if r.material == grade]]}
-    draws: tuple[Drawing, ...] = ()
+    draws: Sequence[Drawing] = ()
     if drawings:
-        per_sheet: dict[int, list] = {}
-        per_ring: dict[str, list[RingPiece]] = {}
-        for p in pieces:
-            per_sheet.setdefault(p.sheet_index, []).append(p)
-            if isinstance(p, RingPiece):
-                per_ring.setdefault(p.ring.label, []).append(p)
-        for s in plan.sheets:
-            parts = ([_ring_drawing(plan, s, per_ring[r.label], title) for r in s.rings]
-                     + [_foot_drawing(plan, s, p, title) for p in per_sheet.get(s.index, [])
-                        if isinstance(p, FootPiece)])
-            draws += (_sheet_drawing(plan, s, parts, title), *parts)
+        draws = _drawings(plan, pieces, title)
     return FabPlanRings(tuple(pieces), placements, {}, draws, tuple(rows), totals,
                         {m: len(ids) for m, ids in sorted(boards.items())}, kerf, in_hole, saving, files)
+
+
+def _drawings(plan: RingLayupPlan, pieces: list, title: str) -> SheetDrawings:
+    """Per sheet: its assembly view, one template per ring, its stand foot — drawn when asked."""
+    per_sheet: dict[int, list] = {}
+    per_ring: dict[str, list[RingPiece]] = {}
+    for p in pieces:
+        per_sheet.setdefault(p.sheet_index, []).append(p)
+        if isinstance(p, RingPiece):
+            per_ring.setdefault(p.ring.label, []).append(p)
+    feet = {s.index: [p for p in per_sheet.get(s.index, []) if isinstance(p, FootPiece)] for s in plan.sheets}
+
+    def build(k: int) -> list[Drawing]:
+        s = plan.sheets[k]
+        parts = ([_ring_drawing(plan, s, per_ring[r.label], title) for r in s.rings]
+                 + [_foot_drawing(plan, s, p, title) for p in feet[s.index]])
+        return [_sheet_drawing(plan, s, parts, title), *parts]
+
+    return SheetDrawings([[s.label, *(r.label for r in s.rings), *(p.label for p in feet[s.index])]
+                          for s in plan.sheets], build,
+                         [s.radius_mm ** 2 + sum(r.r_outer_mm ** 2 for r in s.rings) for s in plan.sheets])
 
 
 def _material(piece) -> Material:

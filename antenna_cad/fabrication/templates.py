@@ -14,8 +14,9 @@ import html
 import io
 import math
 import re
+from collections.abc import Iterable
 from dataclasses import dataclass, field
-from functools import cache
+from functools import cache, lru_cache
 from pathlib import Path
 
 import numpy as np
@@ -285,7 +286,7 @@ def tile_windows(drawing: Drawing, bounds: tuple[float, float, float, float]) ->
     return [o for o, keep in zip(origins, holds) if keep]
 
 
-def write_tiled_pdf(drawings: list[Drawing], path: Path, title: str) -> int:
+def write_tiled_pdf(drawings: Iterable[Drawing], path: Path, title: str) -> int:
     """All drawings at 1:1 on A4 portrait pages with overlap; returns the page count. Each
     drawing's lines are one Form XObject (with registration crosses at the centres of the overlap
     strips, the same model points on neighbouring pages); a page clips it to its window and scales
@@ -322,18 +323,21 @@ def _texts_by_tile(drawing: Drawing, tiles) -> list[list[tuple[str, float, float
     shifted inside — never on a tile where the shift would move it onto other lines."""
     win_w, win_h = WINDOW_MM
     placed: list[list[tuple[str, float, float, float]]] = [[] for _ in tiles]
+    wxs = np.array([t[2] for t in tiles], dtype=float)
+    wys = np.array([t[3] for t in tiles], dtype=float)
     for i, (text, x, y, size) in enumerate(drawing.texts):
         if i in drawing.title_texts:
             continue
         w, h = text_box(text, size)
-        shifts = []
-        for _, _, wx, wy in tiles:
-            px = min(max(x - wx, 0.5), win_w - w - 0.5)
-            py = min(max(y - wy, 0.5), win_h - h - 0.5)
-            shifts.append((math.hypot(px - (x - wx), py - (y - wy)), px, py))
-        whole = [k for k, (shift, _, _) in enumerate(shifts) if shift == 0.0]
-        for k in whole or [min(range(len(tiles)), key=lambda k: shifts[k][0])]:
-            placed[k].append((text, shifts[k][1], shifts[k][2], size))
+        dx, dy = x - wxs, y - wys                        # all tiles at once (the same float operations)
+        px = np.minimum(np.maximum(dx, 0.5), win_w - w - 0.5)
+        py = np.minimum(np.maximum(dy, 0.5), win_h - h - 0.5)
+        whole = np.flatnonzero((px == dx) & (py == dy)).tolist()
+        if not whole:
+            shifts = [math.hypot(a - b, c - d) for a, b, c, d in zip(px.tolist(), dx.tolist(), py.tolist(), dy.tolist())]
+            whole = [min(range(len(tiles)), key=shifts.__getitem__)]
+        for k in whole:
+            placed[k].append((text, float(px[k]), float(py[k]), size))
     return placed
 
 
@@ -392,18 +396,25 @@ def header_lines(lines: list[str]) -> tuple[tuple[HeaderRow, ...], tuple[HeaderR
     """(text, baseline depth below the page's top margin pt, size pt) of the page line's rows and
     of the title block's, wrapped to the window width; the title shrinks (to 4 pt) to fit the
     header."""
+    first = wrap_text(lines[0], WINDOW_MM[0] * PT_PER_MM, HEADER_PT[0])
+    out = tuple((row, HEADER_PT[0] * (1 + 1.25 * i), HEADER_PT[0]) for i, row in enumerate(first))
+    return out, _title_rows(tuple(lines[1:]), len(first))
+
+
+@lru_cache(maxsize=64)
+def _title_rows(title: tuple[str, ...], first_rows: int) -> tuple[HeaderRow, ...]:
+    """The title block's header rows below ``first_rows`` rows of page line (the same on every
+    tile of a drawing: wrapped once, not per page)."""
     width = WINDOW_MM[0] * PT_PER_MM
     room = (HEADER_MM - 1.0) * PT_PER_MM - 1.25 * HEADER_PT[0]
-    first = wrap_text(lines[0], width, HEADER_PT[0])
     size = HEADER_PT[1]
     while True:
-        rows = [row for line in lines[1:] for row in wrap_text(line, width, size)]
-        if len(rows) * 1.2 * size <= room - 1.25 * HEADER_PT[0] * (len(first) - 1) or size <= HEADER_PT[2]:
+        rows = [row for line in title for row in wrap_text(line, width, size)]
+        if len(rows) * 1.2 * size <= room - 1.25 * HEADER_PT[0] * (first_rows - 1) or size <= HEADER_PT[2]:
             break
         size -= 0.5
-    out = tuple((row, HEADER_PT[0] * (1 + 1.25 * i), HEADER_PT[0]) for i, row in enumerate(first))
-    depth = out[-1][1] + 0.25 * HEADER_PT[0]
-    return out, tuple((row, depth + 1.2 * size * (i + 1), size) for i, row in enumerate(rows))
+    depth = HEADER_PT[0] * (1 + 1.25 * (first_rows - 1)) + 0.25 * HEADER_PT[0]
+    return tuple((row, depth + 1.2 * size * (i + 1), size) for i, row in enumerate(rows))
 
 
 def _padded(box: tuple[float, float, float, float], pad: float) -> tuple[float, float, float, float]:

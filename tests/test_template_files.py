@@ -1,0 +1,79 @@
+"""Template files of a big sheet layup (issue 16): one PDF per sheet, written by two forked
+workers over disjoint sheets, byte for byte what one process writes, and checked by ``check``."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from types import SimpleNamespace
+
+import pytest
+
+from antenna_cad.export import template_files
+from antenna_cad.export.forked import SERIAL_ENV
+from antenna_cad.fabrication.rings import fabricate_rings, plan_rings
+from antenna_cad.materials import Material
+
+RECIPES = Path(__file__).resolve().parents[1] / "recipes"
+
+
+def _fab():
+    R = 400.0
+    mats = [Material(f"g{k}", 2.0 - 0.2 * k, 1e-4, 100.0 - 10 * k) for k in range(2)]
+    plan = plan_rings([0, 0.5 * R], [0.5 * R, R], mats, shape="sphere", height_mm=None, sheet_thickness_mm=100.0,
+                      sizing="contain", kerf_mm=0.5, board_width_mm=600, board_length_mm=1200,
+                      registration_hole_mm=6.0)
+    return plan, fabricate_rings(plan, "t", drawings=True)
+
+
+def _bytes(folder: Path) -> dict[str, bytes]:
+    return {p.relative_to(folder).as_posix(): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def test_shares_balance_the_sheets():
+    shares = template_files._shares([9.0, 1.0, 5.0, 4.0, 1.0], 2)
+    assert sorted(k for s in shares for k in s) == [0, 1, 2, 3, 4]
+    assert shares == [[0, 1], [2, 3, 4]]                           # 10 against 10
+    assert template_files._shares([3.0], 2) == [[0]]
+
+
+def test_per_sheet_pdfs_from_two_workers_match_one_process(tmp_path, monkeypatch):
+    from antenna_cad.export.check import _pdf
+    plan, fab = _fab()
+    spec = SimpleNamespace(name="t")
+    monkeypatch.setattr(template_files, "PER_SHEET_PDF_DRAWINGS", 0)
+    assert template_files.per_sheet(fab) and len(plan.sheets) >= 4
+    written = {}
+    for serial in ("1", "0"):
+        monkeypatch.setenv(SERIAL_ENV, serial)
+        out = tmp_path / serial
+        out.mkdir()
+        entries = template_files.write_templates(spec, fab, out)
+        written[serial] = (entries, _bytes(out))
+        assert sorted(p.relative_to(out).as_posix() for p in template_files.template_files(spec, fab, out)) \
+            == sorted(written[serial][1])
+    assert written["0"] == written["1"]
+    entries, files = written["0"]
+    pdfs = [e for e in entries if "pdf" in e]
+    assert [e["pdf"] for e in pdfs] == [f"templates/pdf/{s.label}.pdf" for s in plan.sheets]
+    assert all(e["pages"] >= 1 for e in pdfs) and f"templates/{plan.rings[0].label}.dxf" in files
+    findings = list(_pdf(tmp_path / "0", pdfs[0]["pdf"], templates=True))           # what `make-lens check` runs
+    assert {f.check for f in findings} >= {"pdf check bar", "pdf text inside page"} and all(f.ok for f in findings)
+    monkeypatch.setattr(template_files, "PER_SHEET_PDF_DRAWINGS", 10**6)     # small builds: the one PDF
+    (tmp_path / "single").mkdir()
+    single = template_files.write_templates(spec, fab, tmp_path / "single")
+    assert [e["pdf"] for e in single if "pdf" in e] == ["templates/t-templates.pdf"]
+    assert single[-1]["pages"] == sum(e["pages"] for e in pdfs)               # the same pages, split
+
+
+@pytest.mark.slow
+def test_layup_build_with_per_sheet_pdfs_passes_check(tmp_path, monkeypatch):
+    from antenna_cad.export.check import check_build
+    from antenna_cad.pipeline import build
+    from antenna_cad.spec import load_spec
+    monkeypatch.setattr(template_files, "PER_SHEET_PDF_DRAWINGS", 0)
+    result = build(load_spec(RECIPES / "luneburg-cylinder-5.yaml"), tmp_path)
+    assert any(f.startswith("templates/pdf/") for f in result.files)
+    findings = check_build(result.out_dir)
+    pdf = [f for f in findings if f.file.startswith("templates/pdf/")]
+    assert {f.check for f in pdf} >= {"pdf check bar", "pdf text inside page"}
+    assert all(f.ok for f in findings), [f for f in findings if not f.ok]

@@ -38,10 +38,22 @@ EXPONENT_LIMIT = 1.1
 BUDGET = {"recipe_s": 10.0, "peak_mb": 500.0, "cli_s": 1.0, "naive_speedup": 20.0, "large_luneburg_s": 60.0}
 NOT_BUDGETED = ("fullwave",)        # the full-wave stage has its own budget (its issue): reported apart
 CLI_PROBE = """
-import atexit, sys
+import atexit, sys, time
 atexit.register(lambda: sys.stderr.write("\\nCAD-MODULES:" + ",".join(
     m for m in %r if m in sys.modules) + "\\n"))
 sys.argv = ["make-lens", *sys.argv[1:]]
+if sys.argv[1] == "validate":        # time the rules' work (pipeline.prepare) and the packages it imports
+    import antenna_cad.pipeline as pipeline
+    plain = pipeline.prepare
+    def prepare(spec):
+        before, start = {m.split(".")[0] for m in sys.modules}, time.perf_counter()
+        try:
+            return plain(spec)
+        finally:
+            new = sorted(m for m in {m.split(".")[0] for m in sys.modules} - before - {"antenna_cad"}
+                         if not m.startswith("_") and m not in sys.stdlib_module_names)
+            sys.stderr.write("\\nPREPARE:%%.3f:%%s\\n" %% (time.perf_counter() - start, ",".join(new)))
+    pipeline.prepare = prepare
 from antenna_cad.cli import main
 main()
 """ % (CAD_MODULES,)
@@ -246,8 +258,11 @@ def _cli_timing(args: list[str], root: Path = ROOT) -> dict:
                           env=os.environ | {"PYTHONPATH": str(root)})
     wall = time.perf_counter() - start
     cad = [line.split(":", 1)[1] for line in done.stderr.splitlines() if line.startswith("CAD-MODULES:")]
+    prepare = [line.split(":")[1:] for line in done.stderr.splitlines() if line.startswith("PREPARE:")]
     return {"args": " ".join(args), "seconds": wall, "cpu_s": _children_cpu_s() - cpu, "exit": done.returncode,
-            "cad_modules": [m for m in (cad[-1].split(",") if cad else []) if m]}
+            "cad_modules": [m for m in (cad[-1].split(",") if cad else []) if m],
+            "prepare_s": float(prepare[-1][0]) if prepare else None,
+            "prepare_imports": [m for m in prepare[-1][1].split(",") if m] if prepare else []}
 
 
 def fitted_exponent(items: list[float], seconds: list[float]) -> tuple[float, float]:
@@ -289,8 +304,11 @@ def _budget_rows(results: dict) -> list[dict]:
                      "unit": "MB", "why": f"main {r['peak_mb']:.0f} MB, of it {r.get('import_mb', float('nan')):.0f} MB "
                                           f"right after imports; largest child {r.get('child_peak_mb', 0.0):.0f} MB"})
     for c in results["cli"]:
+        work = ("" if c.get("prepare_s") is None else
+                f"; the rules' work (synthesis, fabrication plan) {c['prepare_s']:.2f} s, importing "
+                f"{', '.join(c['prepare_imports']) or 'nothing new'}; the rest start-up (Python, CLI, spec models, numpy)")
         rows.append({"what": f"make-lens {c['args']}", "value": c["seconds"], "limit": BUDGET["cli_s"], "unit": "s",
-                     "why": f"CAD modules imported: {', '.join(c['cad_modules']) or 'none'}"})
+                     "why": f"CAD modules imported: {', '.join(c['cad_modules']) or 'none'}{work}"})
         if c["cad_modules"]:
             rows.append({"what": f"make-lens {c['args']}: CAD imports", "value": len(c["cad_modules"]),
                          "limit": 0, "unit": "modules", "why": ", ".join(c["cad_modules"])})

@@ -10,19 +10,13 @@ import pytest
 
 from antenna_cad.export import template_files
 from antenna_cad.export.forked import SERIAL_ENV
-from antenna_cad.fabrication.rings import fabricate_rings, plan_rings
-from antenna_cad.materials import Material
+from tests.ring_cases import two_grade_sphere
 
 RECIPES = Path(__file__).resolve().parents[1] / "recipes"
 
 
 def _fab():
-    R = 400.0
-    mats = [Material(f"g{k}", 2.0 - 0.2 * k, 1e-4, 100.0 - 10 * k) for k in range(2)]
-    plan = plan_rings([0, 0.5 * R], [0.5 * R, R], mats, shape="sphere", height_mm=None, sheet_thickness_mm=100.0,
-                      sizing="contain", kerf_mm=0.5, board_width_mm=600, board_length_mm=1200,
-                      registration_hole_mm=6.0)
-    return plan, fabricate_rings(plan, "t", drawings=True)
+    return two_grade_sphere(400.0)
 
 
 def _bytes(folder: Path) -> dict[str, bytes]:

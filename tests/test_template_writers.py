@@ -8,10 +8,9 @@ import re
 import numpy as np
 import pytest
 
-from antenna_cad.fabrication.rings import fabricate_rings, plan_rings
 from antenna_cad.fabrication.templates import Drawing, dxf_text, write_dxf
 from antenna_cad.fabrication.vector_pdf import _helvetica, num, nums, wrap_text
-from antenna_cad.materials import Material
+from tests.ring_cases import two_grade_sphere
 
 
 def _drawing() -> Drawing:
@@ -69,12 +68,7 @@ def test_title_wrapping_fills_lines_greedily():
 
 
 def test_luneburg_templates_one_per_ring_hold_every_sector():
-    R = 700.0
-    mats = [Material(f"g{k}", 2.0 - 0.2 * k, 1e-4, 100.0 - 10 * k) for k in range(2)]
-    plan = plan_rings([0, 0.5 * R], [0.5 * R, R], mats, shape="sphere", height_mm=None, sheet_thickness_mm=100.0,
-                      sizing="contain", kerf_mm=0.5, board_width_mm=600, board_length_mm=1200,
-                      registration_hole_mm=6.0)
-    fab = fabricate_rings(plan, "t", drawings=True)
+    plan, fab = two_grade_sphere(700.0)
     drawings = {d.label: d for d in fab.drawings}
     assert set(drawings) == {s.label for s in plan.sheets} | {r.label for r in plan.rings}
     sectored = [r for r in plan.rings if r.sectors > 1]
@@ -95,12 +89,8 @@ def test_luneburg_templates_one_per_ring_hold_every_sector():
 
 
 def test_luneburg_drawings_built_a_sheet_at_a_time_are_the_same_drawings():
-    R = 500.0
-    mats = [Material(f"g{k}", 2.0 - 0.2 * k, 1e-4, 100.0 - 10 * k) for k in range(2)]
-    plan = plan_rings([0, 0.5 * R], [0.5 * R, R], mats, shape="sphere", height_mm=None, sheet_thickness_mm=100.0,
-                      sizing="contain", kerf_mm=0.5, board_width_mm=600, board_length_mm=1200,
-                      registration_hole_mm=6.0, pedestal_height_mm=60.0, pedestal_width_mm=300.0)
-    drawings = fabricate_rings(plan, "t", drawings=True).drawings
+    plan, fab = two_grade_sphere(500.0, pedestal_height_mm=60.0, pedestal_width_mm=300.0)
+    drawings = fab.drawings
     listed = list(drawings)
     assert len(drawings) == len(listed) == len(drawings.labels) == len(plan.sheets) * 2 + len(plan.rings)
     assert [d.label for d in listed] == list(drawings.labels)          # labels known before drawing

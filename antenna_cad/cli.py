@@ -1,11 +1,11 @@
 """``make-lens``: thin Typer front end over :mod:`antenna_cad.pipeline` (no logic here).
 
-    make-lens SPEC [-o OUT]          build everything into OUT/<name>/ (default exports/)
+    make-lens SPEC [-o OUT] [-q|-v]  build everything into OUT/<name>/ (default exports/)
     make-lens build SPEC [-o OUT]    the same; options may come before or after SPEC
     make-lens validate SPEC          every rule a build applies, before any CAD work; writes nothing
     make-lens schema [-o FILE]       the JSON Schema of specs (stdout unless -o)
     make-lens check OUT              re-read every file of a build folder with independent readers
-    make-lens sweep SWEEP [-o OUT] [--scheduler tcp://HOST:PORT] [--workers N]
+    make-lens sweep SWEEP [-o OUT] [--scheduler tcp://HOST:PORT|tls://HOST:PORT] [--workers N] [-q|-v]
                                      run a design sweep on dask into OUT/<sweep name>/
     make-lens --version
 """
@@ -14,31 +14,39 @@ from __future__ import annotations
 
 import os
 import sys
+import time
 import warnings
 from pathlib import Path
 
 import typer
-from rich.console import Console
 from rich.table import Table
 
 from antenna_cad import __version__
-from antenna_cad.interrupt import hold_if_stopping
+from antenna_cad.console import (NORMAL, QUIET, STATUS_STYLE, VERBOSE, BuildProgress, SweepProgress, checks_table,
+                                 seconds_table, stderr_console, stdout_console, summary_table)
+from antenna_cad.interrupt import graceful, hold_if_stopping
 
 EXIT_CODES = ("Exit codes: 0 built/valid (checks pass or warn); 1 built, but a check failed; "
               "2 bad spec, design or output folder (one line per problem: file: field: rule) — nothing written; "
-              "130 interrupted (Ctrl-C; the previous build is kept).")
+              "130 interrupted (Ctrl-C; the previous build is kept; after the swap: 0, the new build is in place).")
 app = typer.Typer(add_completion=False, no_args_is_help=True, rich_markup_mode=None,
                   help="Physics spec of a microwave antenna → STEP/STL, 1:1 templates, cut list.\n\n" + EXIT_CODES)
-out_console = Console()
-err_console = Console(stderr=True, soft_wrap=True)
+err_console = stderr_console()
 COMMANDS = {"build", "validate", "schema", "check", "sweep"}
 VALUE_OPTIONS = {"-o", "--out", "--scheduler", "--workers"}
-STATUS_STYLE = {"pass": "green", "warn": "yellow", "fail": "red"}
+QUIET_OPTION = typer.Option(False, "-q", "--quiet", help="no progress, no tables: only the last line and errors")
+VERBOSE_OPTION = typer.Option(False, "-v", "--verbose", help="every progress report as a line, and stage times")
+
+
+def _mode(quiet: bool, verbose: bool) -> str:
+    if quiet and verbose:
+        _fail(["--quiet and --verbose: choose one"])
+    return QUIET if quiet else (VERBOSE if verbose else NORMAL)
 
 
 def _version(value: bool) -> None:
     if value:
-        out_console.print(f"make-lens (antenna_cad) {__version__}")
+        stdout_console().print(f"make-lens (antenna_cad) {__version__}")
         raise typer.Exit()
 
 
@@ -74,16 +82,6 @@ def _load(spec_path: Path, out: Path | None = None):
         _fail([str(exc)])
 
 
-def _checks_table(checks) -> Table:
-    table = Table(title="checks", show_lines=False)
-    for col in ("check", "status", "value", "limit", "message"):
-        table.add_column(col, overflow="fold")
-    for c in checks:
-        table.add_row(c.name, f"[{STATUS_STYLE[c.status]}]{c.status}[/]", f"{c.value:.4g} {c.unit}",
-                      f"{c.limit:.4g} {c.unit}", c.message)
-    return table
-
-
 @app.command(epilog=EXIT_CODES)
 def validate(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML")) -> None:
     """Check the spec and run every rule a build applies (synthesis, layup, limits, fabrication
@@ -92,52 +90,38 @@ def validate(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YA
     # validate's small problems — 100× on a busy 2-core machine for one 400×400 eigvalsh)
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     spec, plan = _load(spec_path)
-    out_console.print(_checks_table(plan.checks))
-    out_console.print(f"{spec_path}: valid {spec.kind} spec '{spec.name}'")
+    stdout_console().print(checks_table(plan.checks))
+    stdout_console().print(f"{spec_path}: valid {spec.kind} spec '{spec.name}'")
 
 
 @app.command(epilog=EXIT_CODES)
 def build(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML"),
-          out: Path = typer.Option(Path("exports"), "-o", "--out", help="output root folder")) -> None:
-    """Build STEP/STL, templates, cut list, report and manifest into OUT/<name>/."""
-    from rich.progress import Progress
-
+          out: Path = typer.Option(Path("exports"), "-o", "--out", help="output root folder"),
+          quiet: bool = QUIET_OPTION, verbose: bool = VERBOSE_OPTION) -> None:
+    """Build STEP/STL, templates, cut list, report and manifest into OUT/<name>/. Progress on stderr:
+    a bar on a terminal, else a line per stage start and end and a heartbeat every 10 s."""
     from antenna_cad.pipeline import OutputError, build as run_build
     from antenna_cad.synthesis.checks import DesignError
-    spec, plan = _load(spec_path, out)
-    try:
-        with Progress(console=err_console, transient=True) as bar:
-            task = bar.add_task(f"building {spec.name}", total=1.0)
-            result = run_build(spec, out, lambda stage, f: bar.update(task, completed=f,
-                                                                      description=f"{spec.name}: {stage}"), plan)
-    except DesignError as exc:
-        _fail([f"{spec_path}: {exc}"])
-    except OutputError as exc:
-        _fail([str(exc)])
-    out_console.print(_summary_table(result))
-    out_console.print(_checks_table(result.checks))
-    out_console.print(f"{len(result.files)} files in {result.out_dir} "
-                      f"({sum(result.seconds.values()):.1f} s after imports) — overall: "
-                      f"[{STATUS_STYLE[result.status]}]{result.status}[/]")
+    mode, started = _mode(quiet, verbose), time.monotonic()
+    spec, plan = _load(spec_path, out)          # a bad spec: its one line, before any progress line
+    with BuildProgress(spec.name, mode, started=started) as progress:
+        try:
+            result = run_build(spec, out, progress, plan)
+        except DesignError as exc:
+            _fail([f"{spec_path}: {exc}"])
+        except OutputError as exc:
+            _fail([str(exc)])
+    console = stdout_console()
+    if mode != QUIET:
+        console.print(summary_table(result))
+        console.print(checks_table(result.checks))
+    if mode == VERBOSE:
+        console.print(seconds_table(result.seconds))
+    console.print(f"{len(result.files)} files in {result.out_dir} "
+                  f"({sum(result.seconds.values()):.1f} s after imports) — overall: "
+                  f"[{STATUS_STYLE[result.status]}]{result.status}[/]")
     if result.status == "fail":
         raise typer.Exit(1)
-
-
-HEADLINE_SUFFIXES = ("_p2p_deg", "_rms_deg", "_gain_loss_db")   # as-built figures for the terminal
-
-
-def _summary_table(result) -> Table:
-    table = Table(title=f"{result.name} ({result.kind})")
-    table.add_column("figure")
-    table.add_column("value", justify="right")
-    headline = [(f"as-built {k}", v) for k, v in result.verified.items() if k.endswith(HEADLINE_SUFFIXES)]
-    for key, value in list(result.figures.items()) + headline:
-        table.add_row(key, f"{value:.6g}" if isinstance(value, float) else str(value))
-    for material, count in result.boards.items():
-        table.add_row(f"boards {material}", str(count))
-    for label, kg in result.masses_kg.items():
-        table.add_row(f"mass {label} kg", f"{kg:.3f}")
-    return table
 
 
 @app.command(epilog=EXIT_CODES)
@@ -152,7 +136,7 @@ def schema(out: Path | None = typer.Option(None, "-o", "--out", help="write to F
         out.write_text(text, encoding="utf-8")
     except OSError as exc:
         _fail([f"{out}: cannot write ({exc.strerror})"])
-    err_console.print(f"wrote {out}")
+    err_console.print(f"wrote {out}", markup=False, highlight=False)
 
 
 def _with_command(args: list[str]) -> list[str]:
@@ -186,9 +170,10 @@ def check(folder: Path = typer.Argument(..., metavar="OUT", help="a build folder
         shown = (bad or group)[-1] if not bad else bad[0]
         table.add_row(name, str(len(group)), f"[red]FAIL {len(bad)}[/]" if bad else "[green]pass[/]",
                       f"{shown.file}: {shown.message}")
-    out_console.print(table)
+    console = stdout_console()
+    console.print(table)
     failed = [f for f in findings if not f.ok]
-    out_console.print(f"{len(findings) - len(failed)} of {len(findings)} checks passed"
+    console.print(f"{len(findings) - len(failed)} of {len(findings)} checks passed"
                       + (": failed " + "; ".join(f"{f.file} {f.check}" for f in failed[:10]) if failed else ""))
     if failed:
         raise typer.Exit(1)
@@ -197,32 +182,27 @@ def check(folder: Path = typer.Argument(..., metavar="OUT", help="a build folder
 @app.command()
 def sweep(sweep_path: Path = typer.Argument(..., metavar="SWEEP", help="sweep YAML"),
           out: Path = typer.Option(Path("exports"), "-o", "--out", help="output root folder"),
-          scheduler: str = typer.Option(None, "--scheduler", help="running dask scheduler, tcp://HOST:PORT"),
-          workers: int = typer.Option(None, "--workers", min=1, help="local worker processes (default: one per core)")
-          ) -> None:
-    """Run a design sweep (axes over spec fields) on dask: table, Pareto front, index.html in OUT/<name>/."""
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
-
+          scheduler: str = typer.Option(None, "--scheduler",
+                                        help="running dask scheduler, tcp://HOST:PORT or tls://HOST:PORT"),
+          workers: int = typer.Option(None, "--workers", min=1, help="local worker processes (default: one per core)"),
+          quiet: bool = QUIET_OPTION, verbose: bool = VERBOSE_OPTION) -> None:
+    """Run a design sweep (axes over spec fields) on dask: table, Pareto front, index.html in OUT/<name>/.
+    An interrupted sweep keeps its rows and resumes where it stopped on the next run."""
     from antenna_cad.spec import SpecError
-    from antenna_cad.sweep import SchedulerUnreachable, SweepInterrupted, run_sweep
+    from antenna_cad.sweep import SweepError, SweepInterrupted, run_sweep
+    mode = _mode(quiet, verbose)
     if scheduler and workers:
-        err_console.print("--workers: only for a local cluster (not with --scheduler)", markup=False)
-        raise typer.Exit(2)
+        _fail(["--workers: only for a local cluster (not with --scheduler)"])
     try:
-        with Progress("{task.description}", BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
-                      console=err_console, transient=True) as bar:
-            task = bar.add_task(f"sweep {sweep_path.name}", total=None)
-            result = run_sweep(sweep_path, out, scheduler, workers, lambda done, total: bar.update(
-                task, completed=done, total=total))
+        with SweepProgress(sweep_path.stem, mode) as progress, graceful():
+            result = run_sweep(sweep_path, out, scheduler, workers, progress)
     except SpecError as exc:
-        for line in exc.lines:
-            err_console.print(line, markup=False, highlight=False)
-        raise typer.Exit(2)
-    except SchedulerUnreachable as exc:
-        err_console.print(str(exc), markup=False, highlight=False)
-        raise typer.Exit(2)
+        _fail(exc.lines)
+    except SweepError as exc:
+        _fail([str(exc)])
     except SweepInterrupted as stop:
-        err_console.print(f"interrupted: {stop.rows} rows done are in {stop.path}", markup=False)
+        err_console.print(f"interrupted: {stop.rows} rows done are in {stop.path} (index.html and pareto.csv "
+                          "for them beside it); run the same command again to resume", markup=False, highlight=False)
         raise typer.Exit(130)
     counts = {s: sum(r["status"] == s for r in result.rows) for s in ("ok", "invalid", "failed")}
     shown = ["variant", *result.axes, *result.objectives]
@@ -231,10 +211,12 @@ def sweep(sweep_path: Path = typer.Argument(..., metavar="SWEEP", help="sweep YA
         front.add_column(col.rsplit(".", 1)[-1])
     for row in result.front:
         front.add_row(*(f"{row[c]:.4g}" if isinstance(row[c], float) else str(row[c]) for c in shown))
-    out_console.print(front)
-    out_console.print(f"{len(result.rows)} variants ({result.unique} computed, {counts['ok']} ok, "
-                      f"{counts['invalid']} invalid, {counts['failed']} failed) in {result.seconds:.1f} s → "
-                      f"{result.out_dir}/index.html")
+    console = stdout_console()
+    if mode != QUIET:
+        console.print(front)
+    console.print(f"{len(result.rows)} variants ({result.unique} computed, {counts['ok']} ok, {counts['invalid']} "
+                  f"invalid, {counts['failed']} failed) in {result.seconds:.1f} s → {result.out_dir}/index.html"
+                  + (f" ({result.resumed} rows kept from the interrupted run)" if result.resumed else ""))
 
 
 def main() -> None:

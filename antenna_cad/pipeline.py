@@ -1,14 +1,17 @@
 """The one orchestration: spec → design → plan → fabrication plan → model → files.
 
 :func:`prepare` is everything before CAD (``validate`` runs exactly it, so it rejects what ``build``
-would). :func:`build` keeps these promises (DESIGN.md "Outputs", issue 11):
+would). :func:`build` keeps these promises (DESIGN.md "Outputs"):
 
-- the output folder is checked (:func:`check_output`) before any synthesis;
-- one build at a time per output folder: the folder is locked (``flock``, released by the kernel
-  even on SIGKILL) and a second build waits for the first;
+- the output folder is checked (:func:`check_output`) before any synthesis, and again just before the
+  swap: a folder that appeared at the target meanwhile and is not a build is never replaced;
 - files are written into ``.<name>.tmp-<pid>`` beside the target and swapped into place atomically
   (``renameat2(RENAME_EXCHANGE)`` on Linux), so a build killed at any moment leaves the previous build
-  under its own name; leftovers of killed runs (``.<name>.tmp-*``/``.old-*``) are removed by the next.
+  under its own name; leftovers of killed runs (``.<name>.tmp-<pid>``/``.old-<pid>``) are removed by the next;
+- only the clean-up, the re-check and the swap hold the output folder's lock (``flock``, released by
+  the kernel even on SIGKILL), so builds of different specs into one folder run in parallel and two
+  builds of one spec end in one complete build; a temporary folder is locked by its own build while
+  it is written, so no other build takes it for a leftover.
 """
 
 from __future__ import annotations
@@ -16,23 +19,26 @@ from __future__ import annotations
 import ctypes
 import errno
 import fcntl
+import glob
 import os
+import re
 import shutil
 import tempfile
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from contextlib import contextmanager, suppress
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 from antenna_cad.limits import counts, limit_checks
+from antenna_cad.progress import Progress, reporting
 from antenna_cad.registry import adapter
 from antenna_cad.spec.common import SpecBase, resolve_material
 from antenna_cad.synthesis.checks import Check, solving
 
-Progress = Callable[[str, float], None]
 STAGES = ("synthesize", "fabricate", "model", "verify", "step", "stl", "templates", "report", "manifest")
 IN_PROGRESS: set[Path] = set()      # temporary folders being written (removed on Ctrl-C by the CLI)
+PLACED: list[Path] = []             # the build folder once swapped into place (complete whatever follows)
 
 
 class OutputError(ValueError):
@@ -99,6 +105,9 @@ def check_output(out_root: Path, name: str) -> None:
         raise OutputError(f"{out_root}: exists and is not a folder (-o names the folder that gets <name>/)")
     home = out_root if out_root.is_dir() else out_root.parent
     if not home.is_dir():
+        blocker = next((p for p in (home, *home.parents) if p.exists() and not p.is_dir()), None)
+        if blocker is not None:
+            raise OutputError(f"{out_root}: {blocker} is a file, not a folder")
         raise OutputError(f"{out_root}: its parent folder {home} does not exist")
     try:
         fd, probe = tempfile.mkstemp(prefix=".make-lens-probe-", dir=home)
@@ -116,24 +125,37 @@ def check_output(out_root: Path, name: str) -> None:
 
 def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan: Plan | None = None) -> BuildResult:
     """Build every artifact of ``spec`` into ``out_root/<name>/`` atomically (``plan``: from
-    :func:`prepare`, when the caller has it already). The writers (CAD, DXF, PDF, plots) are imported
-    here, not with the module, so ``validate`` stays free of them."""
+    :func:`prepare`, when the caller has it already). ``progress(stage, fraction, detail="")`` is
+    called as each stage of :data:`STAGES` starts (``"done"`` at the end), from inside a stage with
+    what it is doing (the verification's :func:`antenna_cad.progress.report`), and with stage
+    ``"waiting"`` while another build holds the folder. The writers (CAD, DXF, PDF, plots) are
+    imported here, not with the module, so ``validate`` stays free of them."""
     from antenna_cad.export.forked import Job
     from antenna_cad.export.report import write_report
     from antenna_cad.export.step import write_step
     from antenna_cad.export.template_files import template_files, write_templates
     from antenna_cad.fabrication.cutlist import cutlist_csv
-    report = progress or (lambda stage, fraction: None)
+    report = progress or (lambda stage, fraction, detail="": None)
     seconds: dict[str, float] = {}
     clock = time.perf_counter()
 
     def stage(name: str) -> None:
+        """``name`` is done; the next stage starts."""
         nonlocal clock
         now = time.perf_counter()
         seconds[name] = now - clock
         clock = now
-        report(name, (STAGES.index(name) + 1) / len(STAGES))
+        i = STAGES.index(name) + 1
+        report(STAGES[i] if i < len(STAGES) else "done", i / len(STAGES))
 
+    def inside(name: str):
+        """Reports from inside stage ``name`` (its share of the build), their stage named in the detail."""
+        i = STAGES.index(name)
+        return lambda sub, fraction, detail="": report(
+            name, (i + min(max(fraction, 0.0), 1.0)) / len(STAGES), f"{sub}: {detail}" if detail else sub)
+
+    PLACED.clear()
+    report(STAGES[0], 0.0)
     check_output(out_root, spec.name)
     kind = adapter(spec.kind)
     p = plan or prepare(spec)
@@ -141,91 +163,133 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
     stage("fabricate")
     created = not out_root.exists()
     out_root.mkdir(exist_ok=True)
-    done = False
-    with _locked(out_root, report):
-        _remove_leftovers(out_root, spec.name)
-        final = out_root / spec.name
-        tmp = out_root / f".{spec.name}.tmp-{os.getpid()}"
-        IN_PROGRESS.add(tmp)
-        jobs: dict[str, Job] = {}
-        try:
+    final = out_root / spec.name
+    tmp = out_root / f".{spec.name}.tmp-{os.getpid()}"
+    done = kept = False
+    tmp_lock = None
+    jobs: dict[str, Job] = {}
+    try:
+        with _locked(out_root, report):             # no other build cleans up while ours is created
+            _remove_leftovers(out_root, spec.name)
             tmp.mkdir()
-            if spec.outputs.templates and p.fab.drawings:   # templates and STEP: child processes beside the
-                # model, verification, STL, cut list and report (templates need only the fabrication plan)
-                jobs["templates"] = Job(write_templates, (spec, p.fab, tmp), template_files(spec, p.fab, tmp))
-            with solving(_design_field(spec), "solid model"):
-                model = kind.model(spec, p.design, p.layup, p.panels)
-            checks = p.checks + list(model.checks)
-            stage("model")
-            if spec.outputs.step:     # the STEP needs only the model: written beside verification, STL, report
-                step_file = tmp / f"{spec.name}.step"
-                jobs["step"] = Job(write_step, (model, spec.name, step_file), [step_file])
-            with solving(_design_field(spec), "as-built verification"):
-                verification = kind.verify(spec, p.design, p.layup, p.fab)
-            checks += list(verification.checks)
-            stage("verify")
-            figures = kind.summary(spec, p.design, p.layup)
-            stage("step")
-            parts = _write_solids(spec, model, tmp, stage)
-            stage("templates")
-            (tmp / "cutlist.csv").write_text(cutlist_csv(list(p.fab.rows), p.fab.totals_kg), encoding="utf-8")
-            for file_name, text in (p.fab.files | verification.files).items():
-                (tmp / file_name).parent.mkdir(parents=True, exist_ok=True)
-                (tmp / file_name).write_text(text, encoding="utf-8")
-            if spec.outputs.report:
-                write_report(tmp, spec, figures, checks, verification, model, p.fab, parts)
-            stage("report")
-            values = {}
-            for name in list(jobs):                   # the waits: what each child adds to the build
-                values[name] = jobs.pop(name).finish()
-                seconds[name] += time.perf_counter() - clock
-                clock = time.perf_counter()
-            templates = values.get("templates", [])
-            _write_manifest(spec, tmp, figures, checks, parts, p.layup, p.fab, templates, verification)
-            stage("manifest")
+            IN_PROGRESS.add(tmp)
+            tmp_lock = _lock_folder(tmp)
+        if spec.outputs.templates and p.fab.drawings:   # templates and STEP: child processes beside the
+            # model, verification, STL, cut list and report (templates need only the fabrication plan)
+            jobs["templates"] = Job(write_templates, (spec, p.fab, tmp), template_files(spec, p.fab, tmp))
+        with solving(_design_field(spec), "solid model"):
+            model = kind.model(spec, p.design, p.layup, p.panels)
+        checks = p.checks + list(model.checks)
+        stage("model")
+        if spec.outputs.step:     # the STEP needs only the model: written beside verification, STL, report
+            step_file = tmp / f"{spec.name}.step"
+            jobs["step"] = Job(write_step, (model, spec.name, step_file), [step_file])
+        with solving(_design_field(spec), "as-built verification"), reporting(inside("verify")):
+            verification = kind.verify(spec, p.design, p.layup, p.fab)
+        checks += list(verification.checks)
+        stage("verify")
+        figures = kind.summary(spec, p.design, p.layup)
+        stage("step")
+        parts = _write_solids(spec, model, tmp, stage)
+        stage("templates")
+        (tmp / "cutlist.csv").write_text(cutlist_csv(list(p.fab.rows), p.fab.totals_kg), encoding="utf-8")
+        for file_name, text in (p.fab.files | verification.files).items():
+            (tmp / file_name).parent.mkdir(parents=True, exist_ok=True)
+            (tmp / file_name).write_text(text, encoding="utf-8")
+        if spec.outputs.report:
+            write_report(tmp, spec, figures, checks, verification, model, p.fab, parts)
+        stage("report")
+        values = {}
+        for name in list(jobs):                   # the waits: what each child adds to the build
+            report("manifest", (len(STAGES) - 1) / len(STAGES), f"waiting for the {name} writer")
+            values[name] = jobs.pop(name).finish()
+            seconds[name] += time.perf_counter() - clock
+            clock = time.perf_counter()
+        templates = values.get("templates", [])
+        _write_manifest(spec, tmp, figures, checks, parts, p.layup, p.fab, templates, verification)
+        with _locked(out_root, report):
+            kept = not _is_replaceable(final)
+            if kept:
+                raise OutputError(f"{final}: appeared during the build and is not a make-lens build (no "
+                                  f"manifest.json), so it was not replaced; the new build is in {tmp} — rename "
+                                  "it to keep it (the next build into this folder removes it)")
             _swap_into_place(tmp, final)
-            done = True
-        except OSError as exc:
-            raise OutputError(f"{out_root}: writing the build failed ({exc.strerror or exc}); "
-                              "the previous build is untouched") from None
-        finally:
-            for job in jobs.values():
-                job.finish(wait=False)
-            shutil.rmtree(tmp, ignore_errors=True)
             IN_PROGRESS.discard(tmp)
-            if created and not done:                    # a failed first build leaves no folder behind
-                with suppress(OSError):
-                    out_root.rmdir()
+            PLACED.append(final)
+        done = True
+        stage("manifest")
+    except OSError as exc:
+        raise OutputError(f"{out_root}: writing the build failed ({exc.strerror or exc}); "
+                          "the previous build is untouched") from None
+    finally:
+        for job in jobs.values():
+            job.finish(wait=False)
+        if tmp_lock is not None:
+            os.close(tmp_lock)
+        if not kept:
+            shutil.rmtree(tmp, ignore_errors=True)   # this build's leftovers, or the displaced old build
+        IN_PROGRESS.discard(tmp)
+        if created and not done and not kept:       # a failed first build leaves no folder behind
+            with suppress(OSError):
+                out_root.rmdir()
     files = sorted(q.relative_to(final).as_posix() for q in final.rglob("*") if q.is_file())
     return BuildResult(spec.name, spec.kind, final, figures, checks, dict(p.fab.totals_kg), dict(p.fab.boards),
                        files, seconds, dict(verification.figures))
 
 
+def _is_replaceable(final: Path) -> bool:
+    """The target may be replaced: absent, an empty folder, or an earlier build (has manifest.json)."""
+    if final.is_symlink() or (final.exists() and not final.is_dir()):
+        return False
+    return not final.exists() or not any(final.iterdir()) or (final / "manifest.json").is_file()
+
+
+def _lock_folder(folder: Path) -> int:
+    """An open descriptor holding ``folder``'s exclusive lock (the caller closes it to release)."""
+    fd = os.open(folder, os.O_RDONLY | os.O_DIRECTORY)
+    fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    return fd
+
+
 @contextmanager
 def _locked(out_root: Path, report: Progress) -> Iterator[None]:
-    """Hold an exclusive lock on the output folder; wait (reporting it) while another build has it."""
+    """Hold an exclusive lock on the output folder; wait (reporting it at once) while another build has it."""
     fd = os.open(out_root, os.O_RDONLY | os.O_DIRECTORY)
     try:
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
-            report(f"waiting for another build writing into {out_root}", 0.0)
+            report("waiting", 0.0, f"for another build writing into {out_root}")
             fcntl.flock(fd, fcntl.LOCK_EX)
         yield
     finally:
         os.close(fd)
 
 
+def _leftovers(out_root: Path, name: str, kind: str) -> list[Path]:
+    """``.<name>.<kind>-<pid>`` entries: exactly this spec's (the spec ``a.old-1`` is not ``a``'s leftover)."""
+    pattern = re.compile(rf"\.{re.escape(name)}\.{kind}-\d+")
+    return sorted(p for p in out_root.glob(f".{glob.escape(name)}.{kind}-*") if pattern.fullmatch(p.name))
+
+
 def _remove_leftovers(out_root: Path, name: str) -> None:
-    """Temporary and displaced folders of killed runs of ``name`` (safe: the folder lock is held). A
-    displaced old build whose replacement never arrived is put back first."""
+    """Temporary and displaced folders of killed runs of ``name`` (the folder lock is held, so every
+    ``.old-*`` is a dead run's; a ``.tmp-*`` still locked by its build is left alone). A displaced old
+    build whose replacement never arrived is put back first."""
     final = out_root / name
-    for old in sorted(out_root.glob(f".{name}.old-*")):
-        if not final.exists() and old.is_dir():
+    for old in _leftovers(out_root, name, "old"):
+        if not final.exists() and old.is_dir() and not old.is_symlink():
             old.rename(final)
-    for entry in list(out_root.glob(f".{name}.tmp-*")) + list(out_root.glob(f".{name}.old-*")):
+    for entry in _leftovers(out_root, name, "tmp") + _leftovers(out_root, name, "old"):
         try:
-            shutil.rmtree(entry) if entry.is_dir() and not entry.is_symlink() else entry.unlink()
+            if entry.is_dir() and not entry.is_symlink():
+                try:
+                    os.close(_lock_folder(entry))
+                except BlockingIOError:
+                    continue                         # a build writing it now
+                shutil.rmtree(entry)
+            else:
+                entry.unlink()
         except OSError as exc:
             raise OutputError(f"{entry}: cannot remove this leftover of an earlier run ({exc.strerror})") from None
 
@@ -288,12 +352,14 @@ def _write_manifest(spec, out: Path, figures, checks, parts, layup, fab, templat
 
 def _swap_into_place(tmp: Path, final: Path) -> None:
     """``tmp`` becomes ``final``; an earlier ``final`` ends in ``tmp`` (removed by the caller). Atomic
-    exchange where the kernel has it; otherwise two renames, the displaced build named ``.old-<pid>``
-    so that the next run restores it should this one die in between."""
+    exchange where the kernel has it (and a rename that never replaces what appeared meanwhile);
+    otherwise two renames, the displaced build named ``.old-<pid>`` so that the next run restores it
+    should this one die in between."""
     if not final.exists():
-        tmp.rename(final)
+        if not _rename2(tmp, final, _RENAME_NOREPLACE):
+            tmp.rename(final)
         return
-    if _exchange(tmp, final):
+    if _rename2(tmp, final, _RENAME_EXCHANGE):
         return
     old = final.with_name(f".{final.name}.old-{os.getpid()}")
     final.rename(old)
@@ -301,15 +367,15 @@ def _swap_into_place(tmp: Path, final: Path) -> None:
     shutil.rmtree(old, ignore_errors=True)
 
 
-_RENAME_EXCHANGE, _AT_FDCWD = 2, -100
+_RENAME_NOREPLACE, _RENAME_EXCHANGE, _AT_FDCWD = 1, 2, -100
 
 
-def _exchange(a: Path, b: Path) -> bool:
-    """Swap two paths atomically (Linux renameat2); False where unsupported."""
+def _rename2(a: Path, b: Path, flags: int) -> bool:
+    """Linux renameat2 of ``a`` to ``b`` with ``flags``; False where unsupported."""
     fn = getattr(ctypes.CDLL(None, use_errno=True), "renameat2", None)
     if fn is None:
         return False
-    if fn(_AT_FDCWD, os.fsencode(a), _AT_FDCWD, os.fsencode(b), _RENAME_EXCHANGE) == 0:
+    if fn(_AT_FDCWD, os.fsencode(a), _AT_FDCWD, os.fsencode(b), flags) == 0:
         return True
     err = ctypes.get_errno()
     if err in (errno.ENOSYS, errno.EINVAL, errno.ENOTSUP):

@@ -4,43 +4,153 @@ core) by default, or a running cluster by its scheduler address.
 The graph per unique variant (resolved-spec hash ``key``): one task per part of each stage of the mode
 (:mod:`antenna_cad.sweep.tasks`), keyed ``<stage>-<part>-<key>``, then ``row-<key>`` reducing them.
 Rows reach the writer as they complete, so an interrupted sweep keeps what is done.
+
+A running cluster is reached at ``tcp://`` or ``tls://`` only (checked before anything connects);
+``tls://`` takes a :class:`distributed.Security` built from the sweep file's ``tls`` block or Dask's
+own environment settings. Dask sends pickled functions and data: a scheduler and its workers run
+whatever code their clients send, so a cluster shared with others should use ``tls://`` with
+certificates that only trusted users hold.
 """
 
 from __future__ import annotations
 
 import logging
 import os
-from contextlib import contextmanager
+import re
+import tempfile
 from collections.abc import Callable
+from contextlib import contextmanager
 from pathlib import Path
 
 from antenna_cad.sweep.tasks import MODE_STAGES, STAGES, finish, run_part
 from antenna_cad.sweep.variants import Variant
 
-Progress = Callable[[int, int], None]      # rows done, rows in all
+Progress = Callable[[int, int, int], None]      # rows done, rows in all, rows failed
 CONNECT_TIMEOUT = "30s"
+CLOSE_TIMEOUT_S = 10
+HOST_PORT = re.compile(r"(?P<host>\[[0-9a-fA-F:]+\]|[^\s:/\[\]]+):(?P<port>[^/]*)/?")
+ADDRESS_FORM = "expected tcp://HOST:PORT or tls://HOST:PORT (the scheduler's address, port 8786 by default)"
+WHY_NOT = {"http": "that is a web address (the dashboard's?); the scheduler listens on tcp://HOST:8786",
+           "https": "that is a web address (the dashboard's?); the scheduler listens on tcp://HOST:8786",
+           "ucx": "UCX needs the optional ucx-py transport, which make-lens does not install",
+           "inproc": "inproc:// addresses exist only inside the process that made them",
+           "ws": "websocket transports are not supported", "wss": "websocket transports are not supported"}
 
 
-class SchedulerUnreachable(RuntimeError):
+class SweepError(RuntimeError):
+    """The sweep cannot start or go on: one line (the address, the output folder, the certificates)."""
+
+
+class SchedulerUnreachable(SweepError):
     """No dask scheduler answers at the address given."""
 
 
+def check_address(address: str) -> str:
+    """The protocol of a scheduler address (``tcp`` or ``tls``), or SweepError saying what is wrong."""
+    protocol, sep, rest = address.strip().partition("://")
+    if not sep:
+        raise SweepError(f"--scheduler: {address!r}: {ADDRESS_FORM}")
+    if protocol not in ("tcp", "tls"):
+        raise SweepError(f"--scheduler: {address}: {WHY_NOT.get(protocol, f'unknown protocol {protocol}://')}; "
+                         + ADDRESS_FORM)
+    match = HOST_PORT.fullmatch(rest)
+    if not match:
+        raise SweepError(f"--scheduler: {address}: no HOST:PORT after {protocol}://; {ADDRESS_FORM}")
+    port = match["port"]
+    if not port.isdigit() or not 0 < int(port) < 65536:
+        raise SweepError(f"--scheduler: {address}: port {port!r} is not a number from 1 to 65535")
+    return protocol
+
+
+TLS_ENV = ("DASK_DISTRIBUTED__COMM__TLS__CA_FILE", "DASK_DISTRIBUTED__COMM__TLS__CLIENT__CERT",
+           "DASK_DISTRIBUTED__COMM__TLS__CLIENT__KEY")
+
+
+def security(tls, folder: Path):
+    """The distributed Security of a ``tls://`` scheduler: the sweep file's ``tls`` block (paths
+    relative to ``folder``), else Dask's own settings (:data:`TLS_ENV` in the environment, or its
+    configuration files); SweepError when a certificate is missing or unreadable."""
+    import dask
+    from distributed import Security
+    if tls is not None:
+        files = {"tls_ca_file": tls.ca_file, "tls_client_cert": tls.cert, "tls_client_key": tls.key}
+        files = {k: str(folder / v) for k, v in files.items() if v}
+        source = "the sweep file's tls block"
+    else:
+        files = {k: dask.config.get(f"distributed.comm.tls.{name}", None) for k, name in
+                 (("tls_ca_file", "ca-file"), ("tls_client_cert", "client.cert"), ("tls_client_key", "client.key"))}
+        files = {k: v for k, v in files.items() if v}
+        source = "the environment"
+    if "tls_ca_file" not in files or "tls_client_cert" not in files:
+        raise SweepError("--scheduler tls://: needs certificates: a tls block in the sweep file (ca_file, cert, "
+                         f"key) or {TLS_ENV[0]} and {TLS_ENV[1]} (and {TLS_ENV[2]}) in the environment")
+    for file in files.values():
+        try:
+            with open(file, "rb"):
+                pass
+        except OSError as exc:
+            raise SweepError(f"{file}: cannot read this certificate file from {source} ({exc.strerror})") from None
+    return Security(require_encryption=True, **files)
+
+
 @contextmanager
-def connect(scheduler: str | None = None, workers: int | None = None):
-    """A dask Client: to ``scheduler`` when given, else to a new LocalCluster of ``workers`` (default:
-    one per core) single-threaded processes, without dashboard; closed (with its cluster) on exit."""
+def connect(scheduler: str | None = None, workers: int | None = None, security=None):
+    """A dask Client: to ``scheduler`` when given (``security``: a distributed Security for tls://),
+    else to a new LocalCluster of ``workers`` (default: one per core) single-threaded processes,
+    without dashboard. On exit (Ctrl-C included) the cluster is closed, every process it started
+    (workers, and what they run, such as Meep) is ended, and the workers' temporary folder is removed."""
     from dask.distributed import Client, LocalCluster
     if scheduler:
         try:
-            client = Client(scheduler, timeout=CONNECT_TIMEOUT)
-        except OSError as exc:
+            client = Client(scheduler, timeout=CONNECT_TIMEOUT, security=security)
+        except Exception as exc:        # OSError, a TLS handshake, a timeout: one line, never a traceback
             raise SchedulerUnreachable(f"--scheduler: cannot reach {scheduler}: {exc}") from None
         with client:
             yield client
         return
-    with LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
-                      dashboard_address=None, silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
-        yield client
+    with tempfile.TemporaryDirectory(prefix="antenna_cad-sweep-") as scratch:
+        cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
+                               dashboard_address=None, silence_logs=logging.ERROR, env={"TMPDIR": scratch})
+        try:
+            with Client(cluster) as client:
+                yield client
+        finally:
+            started = _descendants(cluster)       # before closing: a dying worker's children lose their parent
+            try:
+                cluster.close(timeout=CLOSE_TIMEOUT_S)
+            finally:
+                _end(started)
+
+
+def _descendants(cluster) -> list:
+    """The worker processes of a LocalCluster and everything they started (psutil processes)."""
+    import psutil
+    found = []
+    for nanny in list(cluster.workers.values()):
+        pid = getattr(getattr(nanny, "process", None), "pid", None)
+        try:
+            worker = psutil.Process(pid)
+            found += [worker, *worker.children(recursive=True)]
+        except (psutil.Error, ValueError, TypeError):
+            continue
+    return found
+
+
+def _end(processes: list) -> None:
+    """Terminate what is still running of ``processes`` (SIGTERM, SIGKILL after 5 s)."""
+    import psutil
+    alive = [p for p in processes if p.is_running()]
+    for p in alive:
+        try:
+            p.terminate()
+        except psutil.Error:
+            pass
+    _, left = psutil.wait_procs(alive, timeout=5)
+    for p in left:
+        try:
+            p.kill()
+        except psutil.Error:
+            pass
 
 
 def submit(client, variants: list[Variant], mode: str, figures: tuple[str, ...], out_dir: Path) -> dict:
@@ -63,22 +173,27 @@ def submit(client, variants: list[Variant], mode: str, figures: tuple[str, ...],
 def run(client, variants: list[Variant], mode: str, figures: tuple[str, ...], out_dir: Path,
         on_row: Callable[[list[Variant], dict], None], progress: Progress | None = None) -> None:
     """Compute every valid variant; ``on_row(variants, row)`` for each unique result as it completes
-    (all variants sharing that spec), ``progress(done, total)`` after each."""
+    (all variants sharing that spec), ``progress(done, total, failed)`` after each. On Ctrl-C the
+    futures not done are cancelled (queued tasks never start)."""
     from dask.distributed import as_completed
-    report = progress or (lambda done, total: None)
+    report = progress or (lambda done, total, failed: None)
     by_key: dict[str, list[Variant]] = {}
     for v in variants:
         if v.key:
             by_key.setdefault(v.key, []).append(v)
     futures = submit(client, variants, mode, figures, out_dir)
-    total, done = len(futures), 0
-    report(done, total)
+    total, done, failed = len(futures), 0, 0
+    report(done, total, failed)
     key_of = {f.key: k for k, f in futures.items()}
-    for future in as_completed(list(futures.values())):
-        try:
-            row = future.result()
-        except Exception as exc:        # a worker that died under the task (KilledWorker), a lost scheduler
-            row = {"error": f"task: {type(exc).__name__}: {exc}"}
-        done += 1
-        on_row(by_key[key_of[future.key]], row)
-        report(done, total)
+    try:
+        for future in as_completed(list(futures.values())):
+            try:
+                row = future.result()
+            except Exception as exc:        # a worker that died under the task (KilledWorker), a lost scheduler
+                row = {"error": f"task: {type(exc).__name__}: {exc}"}
+            done, failed = done + 1, failed + ("error" in row)
+            on_row(by_key[key_of[future.key]], row)
+            report(done, total, failed)
+    except KeyboardInterrupt:
+        client.cancel([f for f in futures.values() if not f.done()], force=True)
+        raise

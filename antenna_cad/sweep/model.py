@@ -12,8 +12,10 @@
     linked: [[material.eps_r, material.density_kg_m3]]   # these vary together (one axis)
     figures: [thickness_mm, mass_kg, fabricated_on_axis_p2p_deg]
     objectives: {mass_kg: min, fabricated_on_axis_p2p_deg: min}
+    tls: {ca_file: ca.pem, cert: client.pem, key: client-key.pem}   # for --scheduler tls://HOST:PORT
 
-Errors name the file, the field and the rule, like spec errors (:class:`antenna_cad.spec.SpecError`).
+Full-wave verification is off in every variant unless the sweep file asks for it (``set`` or an axis
+naming ``verification.full_wave``): a sweep of hundreds of variants runs on the fast model. Errors name the file, the field and the rule, like spec errors (:class:`antenna_cad.spec.SpecError`).
 """
 
 from __future__ import annotations
@@ -45,6 +47,14 @@ class Range(StrictModel):
 
 
 AxisValues = Union[Range, list[Any]]
+FULL_WAVE = "verification.full_wave"
+
+
+class TlsSpec(StrictModel):
+    """Certificates for ``--scheduler tls://…`` (PEM files, relative to the sweep file)."""
+    ca_file: str = Field(description="the certificate authority that signed the scheduler's and workers' certificates")
+    cert: str = Field(description="this client's certificate")
+    key: str | None = Field(None, description="its private key, when not in the cert file")
 
 
 class SweepSpec(StrictModel):
@@ -56,6 +66,7 @@ class SweepSpec(StrictModel):
     linked: list[list[str]] = Field(default_factory=list, description="axes that vary together")
     figures: list[str] = Field(min_length=1)
     objectives: dict[str, Literal["min", "max"]] = Field(default_factory=dict)
+    tls: TlsSpec | None = Field(None, description="certificates for a tls:// scheduler")
 
     @model_validator(mode="after")
     def _rules(self):
@@ -85,6 +96,10 @@ class SweepSpec(StrictModel):
     def axis_values(self, path: str) -> list:
         values = self.axes[path]
         return values.values() if isinstance(values, Range) else list(values)
+
+    def asks_for_full_wave(self) -> bool:
+        """The sweep file sets ``verification.full_wave`` (or the whole ``verification``) or sweeps it."""
+        return any(p in (FULL_WAVE, "verification") for p in (*self.set, *self.axes))
 
     def axis_groups(self) -> list[list[str]]:
         """Axes in file order, linked ones as one group (at the place of their first member)."""

@@ -30,9 +30,13 @@ def cell(value):
     return json.dumps(value, sort_keys=True)
 
 
+def _head(variant: Variant) -> dict:
+    return {"variant": variant.index, "spec_hash": variant.key[:12]} | {p: cell(v) for p, v in variant.values.items()}
+
+
 def make_row(variant: Variant, result: dict | None, out_dir: Path) -> dict:
     """The row of a variant: ``result`` from its task, None for a variant the spec loader rejected."""
-    row = {"variant": variant.index, "spec_hash": variant.key[:12]} | {p: cell(v) for p, v in variant.values.items()}
+    row = _head(variant)
     if result is None:
         return row | {"status": "invalid", "error": variant.error}
     if "error" in result:
@@ -40,6 +44,49 @@ def make_row(variant: Variant, result: dict | None, out_dir: Path) -> dict:
     folder = Path(result["folder"]).relative_to(out_dir).as_posix() if result["folder"] else None
     return row | {"status": "ok", "error": "", "checks": result["checks"], "check_issues": result["check_issues"],
                   "folder": folder} | result["figures"]
+
+
+def previous_results(out_dir: Path, cols: list[str], axes: list[str]) -> dict[str, dict]:
+    """What an earlier, interrupted run of this sweep left in results.csv, by spec hash: the result
+    cells (status, error, checks, figures) of its rows that have one — ok, or failed by the variant
+    itself (not by a lost worker) — when the table has this sweep's columns; else nothing."""
+    try:
+        with open(out_dir / RESULTS_CSV, newline="", encoding="utf-8") as fh:
+            reader = csv.DictReader(fh)
+            if [c for c in reader.fieldnames or [] if c != "pareto"] != cols:
+                return {}
+            rows = list(reader)
+    except (OSError, UnicodeDecodeError, csv.Error):
+        return {}
+    found = {}
+    for row in rows:
+        if row["status"] == "ok" or row["status"] == "failed" and not row["error"].startswith("task:"):
+            found[row["spec_hash"]] = {c: _cell_value(c, row[c], row["status"]) for c in cols
+                                       if c not in ("variant", "spec_hash", *axes)}
+    return found
+
+
+def kept_row(variant: Variant, result_cells: dict) -> dict:
+    """The row of a variant whose result an earlier run computed (:func:`previous_results`)."""
+    return _head(variant) | result_cells
+
+
+def _cell_value(column: str, text: str, status: str):
+    """A results.csv cell read back as :func:`make_row` made it (numbers, booleans, empty = None)."""
+    if column == "error" or column == "check_issues" and status == "ok":
+        return text
+    if text == "":
+        return None
+    if column in META + CHECKS + ("folder",):
+        return text
+    if text in ("True", "False"):
+        return text == "True"
+    for kind in (int, float):
+        try:
+            return kind(text)
+        except ValueError:
+            pass
+    return text
 
 
 def atomic_write(path: Path, data: bytes) -> None:

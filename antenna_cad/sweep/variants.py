@@ -11,7 +11,7 @@ import json
 from dataclasses import dataclass
 
 from antenna_cad.spec import SpecError, parse_spec
-from antenna_cad.sweep.model import SweepFile
+from antenna_cad.sweep.model import FULL_WAVE, SweepFile
 
 
 @dataclass(frozen=True)
@@ -42,9 +42,12 @@ def spec_key(spec: dict) -> str:
 
 
 def base_document(file: SweepFile) -> dict:
-    """The base spec with the sweep's ``set`` applied; every axis must name a field of its resolved
+    """The base spec with full-wave off (unless the sweep file asks for it) and the sweep's ``set``
+    applied; every axis must name a field of its resolved
     spec (defaults included), so a mistyped path is an error of the sweep file, not a sweep of errors."""
     doc = copy.deepcopy(file.base)
+    if not file.sweep.asks_for_full_wave():
+        _set(doc, FULL_WAVE, "off", file.base_source, "base")
     for path, value in file.sweep.set.items():
         _set(doc, path, value, file.source, "set")
     resolved = parse_spec(doc, file.base_source).model_dump(mode="json")

@@ -194,7 +194,7 @@ def sweep(sweep_path: Path = typer.Argument(..., metavar="SWEEP", help="sweep YA
     if scheduler and workers:
         _fail(["--workers: only for a local cluster (not with --scheduler)"])
     try:
-        with SweepProgress(sweep_path.stem, mode) as progress, graceful():
+        with SweepProgress(sweep_path.name, mode) as progress, graceful():
             result = run_sweep(sweep_path, out, scheduler, workers, progress)
     except SpecError as exc:
         _fail(exc.lines)

@@ -21,6 +21,7 @@ HEARTBEAT_S = 10.0
 LOG_WIDTH = 10_000                      # off a terminal: rows are never wrapped
 STATUS_STYLE = {"pass": "green", "warn": "yellow", "fail": "red"}
 QUIET, NORMAL, VERBOSE = "quiet", "normal", "verbose"
+WAITING = "waiting"                     # the pipeline's stage name while another build holds the folder
 
 
 def stdout_console() -> Console:
@@ -77,6 +78,7 @@ class BuildProgress(_Lines):
         self.name, self.mode = name, mode
         self.terminal = self.console.is_terminal if terminal is None else terminal
         self.stage, self.detail, self.since, self.bar, self.task = "", "", self.start, None, None
+        self.paused: tuple | None = None       # the stage a wait for the lock interrupted
 
     def __enter__(self) -> BuildProgress:
         if self.mode == NORMAL and self.terminal:
@@ -103,7 +105,9 @@ class BuildProgress(_Lines):
                 self.bar.update(self.task, completed=fraction, description=text)
                 return
             now = time.monotonic()
-            if stage != self.stage:
+            if stage == WAITING or self.paused:         # a wait for the folder's lock pauses the stage
+                self._wait(stage, detail, now)
+            elif stage != self.stage:
                 if self.stage:
                     self.write(f"{self.stage}: done in {_duration(now - self.since)}")
                 self.stage, self.detail, self.since = stage, detail, now
@@ -113,6 +117,17 @@ class BuildProgress(_Lines):
                 self.detail = detail
                 if self.mode == VERBOSE:
                     self.write(f"{stage}: {detail}")
+
+    def _wait(self, stage: str, detail: str, now: float) -> None:
+        if stage == WAITING and not self.paused:
+            self.paused = (self.stage, self.detail, self.since)
+            self.stage, self.detail, self.since = stage, detail, now
+            self.write(f"{stage}: started — {detail}")
+        elif stage != WAITING:
+            self.write(f"{WAITING}: done in {_duration(now - self.since)}")
+            self.stage, self.detail, self.since = self.paused
+            self.paused = None
+            self(stage, 0.0, detail)
 
     def beat(self) -> None:
         if self.stage and self.stage != "done":
@@ -150,10 +165,11 @@ class SweepProgress(_Lines):
 
     def text(self) -> str:
         done, total, failed = self.state
-        line = f"sweep {self.name}: {done} of {total} variants" + (f" ({failed} failed)" if failed else "")
+        line = f"{self.name}: {done} of {total} variants" + (f" ({failed} failed)" if failed else "")
         if done and self.first is not None:
             per = (time.monotonic() - self.first) / done
-            line += f", {_duration(per)} per variant, about {_duration(per * (total - done))} left"
+            line += f", {_duration(per)} per variant" + (f", about {_duration(per * (total - done))} left"
+                                                           if done < total else "")
         return line
 
     def __call__(self, done: int, total: int, failed: int = 0) -> None:

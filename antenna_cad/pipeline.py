@@ -169,7 +169,7 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
     tmp_lock = None
     jobs: dict[str, Job] = {}
     try:
-        with _locked(out_root, report):             # no other build cleans up while ours is created
+        with _locked(out_root, report, "model"):    # no other build cleans up while ours is created
             _remove_leftovers(out_root, spec.name)
             tmp.mkdir()
             IN_PROGRESS.add(tmp)
@@ -207,7 +207,7 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
             clock = time.perf_counter()
         templates = values.get("templates", [])
         _write_manifest(spec, tmp, figures, checks, parts, p.layup, p.fab, templates, verification)
-        with _locked(out_root, report):
+        with _locked(out_root, report, "manifest"):
             kept = not _is_replaceable(final)
             if kept:
                 raise OutputError(f"{final}: appeared during the build and is not a make-lens build (no "
@@ -252,15 +252,17 @@ def _lock_folder(folder: Path) -> int:
 
 
 @contextmanager
-def _locked(out_root: Path, report: Progress) -> Iterator[None]:
-    """Hold an exclusive lock on the output folder; wait (reporting it at once) while another build has it."""
+def _locked(out_root: Path, report: Progress, stage: str) -> Iterator[None]:
+    """Hold an exclusive lock on the output folder; while another build has it, wait, reported at
+    once as stage ``waiting`` (then ``stage`` again)."""
     fd = os.open(out_root, os.O_RDONLY | os.O_DIRECTORY)
     try:
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
-            report("waiting", 0.0, f"for another build writing into {out_root}")
+            report("waiting", STAGES.index(stage) / len(STAGES), f"for another build writing into {out_root}")
             fcntl.flock(fd, fcntl.LOCK_EX)
+            report(stage, STAGES.index(stage) / len(STAGES))
         yield
     finally:
         os.close(fd)

@@ -22,12 +22,17 @@ def stage_profiles(spec) -> dict[str, pstats.Stats]:
     from antenna_cad.pipeline import build
     profiles: dict[str, pstats.Stats] = {}
     current = cProfile.Profile()
+    running = ""
 
-    def progress(name: str, fraction: float) -> None:
-        nonlocal current
+    def progress(name: str, fraction: float, detail: str = "") -> None:
+        """Called as each stage starts (and from inside one, with the same name): a new profile."""
+        nonlocal current, running
+        if name == running:
+            return
         current.disable()
-        profiles[name] = pstats.Stats(current)
-        current = cProfile.Profile()
+        if running:
+            profiles[running] = pstats.Stats(current)
+        current, running = cProfile.Profile(), name
         current.enable()
 
     with tempfile.TemporaryDirectory(prefix="antenna_cad-why-") as out:

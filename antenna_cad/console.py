@@ -138,7 +138,7 @@ class BuildProgress(_Lines):
 class SweepProgress(_Lines):
     """``progress(done, total, failed)`` of :func:`antenna_cad.sweep.run_sweep`: rows done of all,
     failures, wall time per variant and the time left; a line per row off a terminal (at most one a
-    second, and a heartbeat while none completes)."""
+    second unless a variant failed, and a heartbeat while none completes)."""
 
     def __init__(self, name: str, mode: str = NORMAL, console: Console | None = None,
                  terminal: bool | None = None, period: float = HEARTBEAT_S):
@@ -178,10 +178,11 @@ class SweepProgress(_Lines):
         with self.lock:
             if self.first is None:
                 self.first = time.monotonic()
-            changed, self.state = (done, total, failed) != self.state, (done, total, failed)
+            before, self.state = self.state, (done, total, failed)
             if self.bar is not None:
                 self.bar.update(self.task, completed=done, total=total, description=self.text())
-            elif changed and (self.mode == VERBOSE or done in (0, total) or time.monotonic() - self.last_line >= 1.0):
+            elif self.state != before and (self.mode == VERBOSE or done in (0, total) or failed != before[2]
+                                           or time.monotonic() - self.last_line >= 1.0):
                 self.write(self.text())
 
     def beat(self) -> None:

@@ -1,6 +1,8 @@
-"""Build promises (issue 11): output-folder problems are one line and exit 2 before synthesis;
-leftovers of killed runs are cleaned; SIGKILL at any moment leaves the previous build complete under
-its own name; Ctrl-C exits 130 at once; two builds into one folder are serialised."""
+"""Build promises: output-folder problems are one line and exit 2 before synthesis; leftovers of
+killed runs are cleaned (only this spec's, only dead builds'); SIGKILL at any moment leaves the
+previous build complete under its own name; Ctrl-C exits 130 at once, or 0 once the new build is in
+place; a folder created at the target during a build is never replaced; builds into one folder run
+in parallel and only their swaps are serialised."""
 
 import fcntl
 import hashlib
@@ -16,6 +18,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
+from antenna_cad import pipeline
 from antenna_cad.cli import app
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -50,6 +53,34 @@ def test_output_problems_are_one_line_before_synthesis(tmp_path, monkeypatch):
     (tmp_path / NAME / "thesis.tex").write_text("precious")
     _one_line_exit_2(["build", str(SPEC), "-o", str(tmp_path)], "not a make-lens build (no manifest.json)")
     assert (tmp_path / NAME / "thesis.tex").read_text() == "precious"
+
+
+def test_a_file_in_the_output_path_is_named(tmp_path):
+    a_file = tmp_path / "file.txt"
+    a_file.write_text("x")
+    for out in (a_file / "sub", a_file / "sub" / "deeper"):
+        _one_line_exit_2(["build", str(SPEC), "-o", str(out)], f"{out}: {a_file} is a file, not a folder")
+
+
+def test_leftovers_are_only_this_specs_and_only_dead_builds(tmp_path):
+    """Spec ``a`` never adopts or removes what belongs to spec ``a.old-1``; a temporary folder whose
+    build still runs (it holds the folder's lock) is kept; a dead build's is removed."""
+    other = tmp_path / ".a.old-1.tmp-99"          # spec a.old-1 being written (or killed while writing)
+    other.mkdir()
+    (other / "half.stl").write_text("half")
+    dead, live = tmp_path / ".a.tmp-7", tmp_path / ".a.tmp-8"
+    dead.mkdir()
+    live.mkdir()
+    fd = os.open(live, os.O_RDONLY | os.O_DIRECTORY)
+    fcntl.flock(fd, fcntl.LOCK_EX)                # its build is running
+    try:
+        pipeline._remove_leftovers(tmp_path, "a")
+        assert sorted(p.name for p in tmp_path.iterdir()) == [".a.old-1.tmp-99", ".a.tmp-8"]
+        assert (other / "half.stl").read_text() == "half"
+    finally:
+        os.close(fd)
+    pipeline._remove_leftovers(tmp_path, "a")
+    assert sorted(p.name for p in tmp_path.iterdir()) == [".a.old-1.tmp-99"]
 
 
 def _complete(folder: Path) -> str:
@@ -137,6 +168,11 @@ def test_two_builds_into_one_folder_are_serialised(first_build):
     fcntl.flock(fd, fcntl.LOCK_EX)              # a build in progress (holding the folder)
     proc = _run(out)
     try:
+        lines = [""]
+        while "waiting" not in lines[-1]:       # said at once, while it waits
+            lines.append(proc.stderr.readline())
+            assert lines[-1], "".join(lines)
+        assert f"waiting: started — for another build writing into {out}" in lines[-1]
         time.sleep(min(60.0, 2 * first_build[1]))
         assert proc.poll() is None              # still waiting for the folder
         assert not any(p.name.startswith(f".{NAME}.tmp-") for p in out.iterdir())
@@ -147,3 +183,71 @@ def test_two_builds_into_one_folder_are_serialised(first_build):
     assert a.wait(timeout=900) == 0 and b.wait(timeout=900) == 0
     assert sorted(p.name for p in out.iterdir()) == [NAME]
     _complete(out / NAME)
+
+
+@pytest.mark.slow
+def test_a_folder_created_during_the_build_is_kept_and_so_is_the_build(tmp_path):
+    """A folder that appears at OUT/<name> while a build runs (after the first check) is not replaced:
+    exit 2 naming it, the folder untouched, the new build complete under its temporary name."""
+    proc = _run(tmp_path)
+    deadline = time.monotonic() + 600
+    while not any(p.name.startswith(f".{NAME}.tmp-") for p in tmp_path.iterdir()):
+        assert proc.poll() is None and time.monotonic() < deadline, proc.stderr.read()
+        time.sleep(0.05)
+    (tmp_path / NAME).mkdir()
+    (tmp_path / NAME / "thesis.tex").write_text("precious")
+    _, err = proc.communicate(timeout=600)
+    assert proc.returncode == 2, err
+    last = err.strip().splitlines()[-1]
+    assert last.startswith(f"{tmp_path / NAME}: appeared during the build and is not a make-lens build"), err
+    assert (tmp_path / NAME / "thesis.tex").read_text() == "precious"
+    assert sorted(p.name for p in (tmp_path / NAME).iterdir()) == ["thesis.tex"]
+    [kept] = [p for p in tmp_path.iterdir() if p.name.startswith(f".{NAME}.tmp-")]
+    assert f"the new build is in {kept}" in last
+    _complete(kept)
+
+
+@pytest.mark.slow
+def test_ctrl_c_after_the_swap_says_the_build_is_in_place(tmp_path):
+    """SIGINT while the summary is printed (stdout is a one-page pipe nobody reads, so the process
+    stops there, after the swap): exit 0 and a line saying the complete build is in place."""
+    read_end, write_end = os.pipe()
+    fcntl.fcntl(write_end, 1031, 4096)            # F_SETPIPE_SZ: a page; the tables are larger
+    proc = subprocess.Popen([EXE, str(SPEC), "-o", str(tmp_path)], stdout=write_end, stderr=subprocess.PIPE,
+                            text=True, env=dict(os.environ, PYTHONUNBUFFERED="1"))
+    os.close(write_end)
+    try:
+        lines = [""]
+        while "manifest: done" not in lines[-1]:  # the swap is done
+            lines.append(proc.stderr.readline())
+            assert lines[-1], "".join(lines)
+        time.sleep(1.0)                           # it is now blocked writing the tables
+        proc.send_signal(signal.SIGINT)
+        err = proc.stderr.read()
+        assert proc.wait(timeout=60) == 0, err
+    finally:
+        os.close(read_end)
+    assert f"interrupted after the build was complete: {tmp_path / NAME} is in place" in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == [NAME]
+    _complete(tmp_path / NAME)
+
+
+@pytest.mark.slow
+def test_builds_into_one_folder_run_in_parallel(tmp_path):
+    """Three builds into one folder at once — two of one spec, one of another: their temporary folders
+    exist side by side (only the swaps are serialised); all succeed; one complete build per spec."""
+    other_spec, other = ROOT / "recipes" / "luneburg-classic-5.yaml", "luneburg-classic-5"
+    env = dict(os.environ, ANTENNA_CAD_MEEP_PYTHON="/usr/bin/false")
+    procs = [subprocess.Popen([EXE, str(spec), "-o", str(tmp_path)], stdout=subprocess.DEVNULL,
+                              stderr=subprocess.PIPE, text=True, env=env) for spec in (SPEC, SPEC, other_spec)]
+    most = 0
+    while any(p.poll() is None for p in procs):
+        with_tmp = {p.name for p in tmp_path.iterdir() if ".tmp-" in p.name}
+        most = max(most, len(with_tmp))
+        time.sleep(0.05)
+    errors = [p.stderr.read() for p in procs]
+    assert [p.returncode for p in procs] == [0, 0, 0], errors
+    assert most >= 2, "the builds never wrote at the same time"
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted([NAME, other])
+    _complete(tmp_path / NAME)
+    _complete(tmp_path / other)

@@ -1,8 +1,13 @@
-"""Design sweeps (issue 17): sweep files, variant expansion, dask execution on a 2-worker LocalCluster
-and on a scheduler + worker started here, the table, the Pareto front and the page in Chromium."""
+"""Design sweeps: sweep files, variant expansion, dask execution on a 2-worker LocalCluster and on a
+scheduler + worker started here, the table, the Pareto front and the page in Chromium; scheduler
+addresses and certificates checked before connecting; the folder's lock; Ctrl-C (workers ended,
+rows kept with their page) and resuming an interrupted sweep."""
 
+import contextlib
 import csv
+import fcntl
 import json
+import os
 import math
 import re
 import shutil
@@ -13,6 +18,7 @@ import sys
 import time
 from pathlib import Path
 
+import psutil
 import pyarrow.parquet as pq
 import pytest
 import yaml
@@ -271,9 +277,10 @@ def test_ctrl_c_keeps_the_rows_done(scheduler, tmp_path):
     output, _ = cli.communicate(timeout=60)
     rows = _rows(table.parent)
     print(f"Ctrl-C: exit {cli.returncode}, {len(rows)} of 30 rows kept; {output.strip()}")
-    assert cli.returncode == 130 and "interrupted" in output and "Traceback" not in output
+    assert cli.returncode == 130 and "Traceback" not in output
+    assert f"interrupted: {len(rows)} rows done are in {table}" in output
     assert 2 <= len(rows) < 30 and all(r["status"] == "ok" and float(r["mass_kg"]) > 0 for r in rows)
-    assert not (table.parent / "index.html").exists()
+    assert (table.parent / "index.html").exists() and len(_rows(table.parent, "pareto.csv")) >= 1
 
 
 @pytest.mark.slow
@@ -302,3 +309,127 @@ def test_sweep_recipes_expand_to_valid_variants(name):
     assert file.sweep.name == name and len(variants) >= 50 and all(v.key for v in variants), \
         [v.error for v in variants if v.error][:3]
     assert path not in (ROOT / "recipes").glob("*.yaml")      # spec recipe tests do not pick sweeps up
+
+
+@pytest.mark.parametrize("address,expected", [
+    ("http://127.0.0.1:8787", "that is a web address"),
+    ("ucx://127.0.0.1:8786", "UCX needs the optional ucx-py transport"),
+    ("inproc://x", "inproc:// addresses exist only inside the process"),
+    ("tcp://127.0.0.1:abc", "port 'abc' is not a number from 1 to 65535"),
+    ("127.0.0.1:8786", "expected tcp://HOST:PORT or tls://HOST:PORT"),
+    ("tls://127.0.0.1:8786", "--scheduler tls://: needs certificates: a tls block in the sweep file"),
+])
+def test_scheduler_address_is_checked_before_connecting(tmp_path, monkeypatch, address, expected):
+    def no_connection(*args):
+        raise AssertionError("connected")
+    monkeypatch.setattr("antenna_cad.sweep.connect", no_connection)
+    for name in ("CA_FILE", "CLIENT__CERT", "CLIENT__KEY"):
+        monkeypatch.delenv(f"DASK_DISTRIBUTED__COMM__TLS__{name}", raising=False)
+    path, out = _write(tmp_path, SMALL), tmp_path / "out"
+    done = CliRunner().invoke(app, ["sweep", str(path), "-o", str(out), "--scheduler", address])
+    lines = done.output.strip().splitlines()
+    assert done.exit_code == 2 and len(lines) == 1 and expected in lines[0], done.output
+    assert lines[0].startswith("--scheduler") and not out.exists()
+
+
+def test_tls_certificates_from_the_sweep_file_or_the_environment(tmp_path, monkeypatch):
+    (tmp_path / "ca.pem").write_text("not checked here")
+    doc = SMALL | {"tls": {"ca_file": "ca.pem", "cert": "client.pem"}}
+    path = _write(tmp_path, doc)
+    done = CliRunner().invoke(app, ["sweep", str(path), "--scheduler", "tls://127.0.0.1:8786"])
+    assert done.exit_code == 2 and done.output.strip() == (
+        f"{tmp_path / 'client.pem'}: cannot read this certificate file from the sweep file's tls block "
+        "(No such file or directory)"), done.output
+    from antenna_cad.sweep.execute import security
+    (tmp_path / "client.pem").write_text("x")
+    monkeypatch.setattr("distributed.Security", lambda **kw: kw)
+    from antenna_cad.sweep.model import TlsSpec
+    assert security(TlsSpec(ca_file="ca.pem", cert="client.pem"), tmp_path) == {
+        "require_encryption": True, "tls_ca_file": str(tmp_path / "ca.pem"),
+        "tls_client_cert": str(tmp_path / "client.pem")}
+    import dask
+    with dask.config.set({"distributed.comm.tls.ca-file": str(tmp_path / "ca.pem"),
+                          "distributed.comm.tls.client.cert": str(tmp_path / "client.pem")}):
+        assert security(None, tmp_path)["tls_client_cert"] == str(tmp_path / "client.pem")
+
+
+def test_full_wave_is_off_unless_the_sweep_asks_for_it(tmp_path):
+    shipped = expand(load_sweep(ROOT / "recipes" / "sweeps" / "luneburg-layers.yaml"))
+    assert {v.spec["verification"]["full_wave"] for v in shipped} == {"off"}
+    asked = expand(load_sweep(_write(tmp_path, SMALL | {"set": {"verification.full_wave": "auto"}})))
+    assert {v.spec["verification"]["full_wave"] for v in asked if v.spec} == {"auto"}
+    swept = SMALL | {"axes": {"verification.full_wave": ["off", "on"]}}
+    assert [v.spec["verification"]["full_wave"] for v in expand(load_sweep(_write(tmp_path, swept)))] == ["off", "on"]
+
+
+def test_a_sweep_folder_held_by_another_sweep_is_refused(tmp_path, monkeypatch):
+    monkeypatch.setattr("antenna_cad.sweep.connect", lambda *args: contextlib.nullcontext())
+    folder = tmp_path / "out" / "small"
+    folder.mkdir(parents=True)
+    fd = os.open(folder, os.O_RDONLY | os.O_DIRECTORY)
+    fcntl.flock(fd, fcntl.LOCK_EX)                              # another sweep runs into it
+    try:
+        done = CliRunner().invoke(app, ["sweep", str(_write(tmp_path, SMALL)), "-o", str(tmp_path / "out")])
+    finally:
+        os.close(fd)
+    assert done.exit_code == 2 and done.output.strip() == (
+        f"{folder}: another sweep is writing into this folder; wait for it to end or choose another -o")
+    assert list(folder.iterdir()) == []
+
+
+def test_an_interrupted_sweep_resumes_where_it_stopped(local, tmp_path, monkeypatch):
+    """results.csv cut after variant 5 (as an interrupted run leaves it): the next run computes only
+    the variants missing, and the table is byte for byte the one of a run never interrupted."""
+    path, out, _ = local
+    whole = (out / "results.csv").read_bytes()
+    again = tmp_path / "small"
+    again.mkdir()
+    lines = whole.decode().splitlines(keepends=True)
+    (again / "results.csv").write_text("".join(lines[:6]), encoding="utf-8")       # header + variants 1–5
+    computed = []
+    import antenna_cad.sweep as sweep_pkg
+    real_run = sweep_pkg.run
+
+    def counting_run(client, todo, *args):
+        computed.extend(v.index for v in todo)
+        return real_run(client, todo, *args)
+    monkeypatch.setattr(sweep_pkg, "run", counting_run)
+    result = run_sweep(path, tmp_path, workers=1)
+    assert computed == [7, 8, 9]            # 1–3 failed, 4–5 ok, 6 is 5 (sheet 50.0): kept; 10–12 invalid
+    assert result.resumed == 6
+    assert (again / "results.csv").read_bytes() == whole
+
+
+@pytest.mark.slow
+def test_ctrl_c_on_a_local_sweep_ends_every_worker_and_resumes(tmp_path):
+    """SIGINT to `make-lens sweep --workers 2`: exit 130 saying how many rows are done, every process
+    it started ended, its temporary folder removed, no leaked-semaphore warning, index.html and
+    pareto.csv for the rows done, progress lines off a terminal; the same command then finishes the
+    sweep, computing only what was missing."""
+    many = SMALL | {"name": "stopped", "axes": {"design.focal_length_mm": {"from": 3000, "to": 8000, "steps": 8},
+                                                "fabrication.sheet_thickness_mm": [50]}}
+    scratch = tmp_path / "tmp"
+    scratch.mkdir()
+    exe = shutil.which("make-lens") or str(Path(sys.executable).parent / "make-lens")
+    command = [exe, "sweep", str(_write(tmp_path, many)), "-o", str(tmp_path / "out"), "--workers", "2"]
+    env = dict(os.environ, TMPDIR=str(scratch))
+    cli = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
+    table = tmp_path / "out" / "stopped" / "results.csv"
+    _wait_for_rows(table, 1, cli, limit_s=600)
+    started = psutil.Process(cli.pid).children(recursive=True)
+    cli.send_signal(signal.SIGINT)
+    output, _ = cli.communicate(timeout=120)
+    alive = [p for p in started if p.is_running() and p.status() != psutil.STATUS_ZOMBIE]
+    rows = _rows(table.parent)
+    print(f"Ctrl-C: exit {cli.returncode}, {len(rows)} of 8 rows kept, {len(started)} processes before, "
+          f"{len(alive)} after; {output.strip()}")
+    assert cli.returncode == 130 and "Traceback" not in output and "leaked semaphore" not in output
+    assert len(started) >= 2 and alive == []
+    assert f"interrupted: {len(rows)} rows done are in {table}" in output
+    assert re.search(r"stopped.yaml: \d of 8 variants", output)
+    assert list(scratch.iterdir()) == []
+    assert (table.parent / "index.html").exists() and (table.parent / "pareto.csv").exists()
+    done = subprocess.run(command, capture_output=True, text=True, env=env, timeout=1200)
+    assert done.returncode == 0, done.stderr
+    assert f"({len(rows)} rows kept from the interrupted run)" in done.stdout.replace("\n", " ")
+    assert [r["status"] for r in _rows(table.parent)] == ["ok"] * 8

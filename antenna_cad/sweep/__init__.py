@@ -43,7 +43,7 @@ class SweepResult:
     front: list[dict]
     unique: int              # distinct resolved specs computed
     seconds: float           # wall time of the computation (cluster start included)
-    resumed: int = 0         # rows kept from an interrupted earlier run
+    resumed: int = 0         # rows kept from an interrupted earlier run (not computed again)
 
 
 def run_sweep(path: str | Path, out_root: Path, scheduler: str | None = None, workers: int | None = None,
@@ -96,7 +96,7 @@ def run_sweep(path: str | Path, out_root: Path, scheduler: str | None = None, wo
     if interrupted:
         raise SweepInterrupted(out_dir / RESULTS_CSV, len(rows))
     return SweepResult(sweep.name, out_dir, list(sweep.axes), dict(sweep.objectives), cols, rows, front, unique,
-                       seconds, len({v.key for v in kept}))
+                       seconds, len(kept))
 
 
 def _lock(out_dir: Path) -> int:

@@ -186,7 +186,8 @@ class SweepProgress(_Lines):
                 self.write(self.text())
 
     def beat(self) -> None:
-        self.write(self.text())
+        if self.first is not None:
+            self.write(self.text())
 
 
 def checks_table(checks) -> Table:

@@ -433,3 +433,36 @@ def test_ctrl_c_on_a_local_sweep_ends_every_worker_and_resumes(tmp_path):
     assert done.returncode == 0, done.stderr
     assert f"({len(rows)} rows kept from the interrupted run)" in done.stdout.replace("\n", " ")
     assert [r["status"] for r in _rows(table.parent)] == ["ok"] * 8
+
+
+@pytest.mark.slow
+def test_sweep_on_a_tls_scheduler(tmp_path):
+    """A scheduler and worker that speak TLS only (certificates made here with openssl): the sweep
+    connects with the sweep file's tls block and computes its rows."""
+    def openssl(*args):
+        subprocess.run(["openssl", *args], cwd=tmp_path, check=True, capture_output=True, timeout=120)
+    openssl("req", "-x509", "-newkey", "rsa:2048", "-nodes", "-keyout", "ca-key.pem", "-out", "ca.pem", "-days", "2",
+            "-subj", "/CN=antenna-cad-test-ca")
+    openssl("req", "-newkey", "rsa:2048", "-nodes", "-keyout", "key.pem", "-out", "req.csr", "-subj", "/CN=127.0.0.1")
+    openssl("x509", "-req", "-in", "req.csr", "-CA", "ca.pem", "-CAkey", "ca-key.pem", "-CAcreateserial",
+            "-out", "cert.pem", "-days", "2")
+    tls = ["--tls-ca-file", "ca.pem", "--tls-cert", "cert.pem", "--tls-key", "key.pem"]
+    port, dask = _free_port(), [sys.executable, "-m", "dask"]
+    address = f"tls://127.0.0.1:{port}"
+    procs = [subprocess.Popen(dask + ["scheduler", "--protocol", "tls", "--host", "127.0.0.1", "--port", str(port),
+                                      "--no-dashboard", *tls], cwd=tmp_path, stdout=subprocess.DEVNULL,
+                              stderr=subprocess.DEVNULL)]
+    try:
+        procs.append(subprocess.Popen(dask + ["worker", address, "--no-nanny", "--nthreads", "1", "--no-dashboard",
+                                              "--host", "127.0.0.1", *tls], cwd=tmp_path,
+                                      stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+        doc = SMALL | {"name": "tls", "axes": {"design.focal_length_mm": [3000, 4000],
+                                                "fabrication.sheet_thickness_mm": [50]},
+                       "tls": {"ca_file": "ca.pem", "cert": "cert.pem", "key": "key.pem"}}
+        result = run_sweep(_write(tmp_path, doc), tmp_path / "out", scheduler=address)
+        assert [r["status"] for r in result.rows] == ["ok", "ok"]
+    finally:
+        for p in reversed(procs):
+            p.terminate()
+        for p in procs:
+            p.wait(timeout=30)

@@ -110,7 +110,8 @@ def connect(scheduler: str | None = None, workers: int | None = None, security=N
         return
     with tempfile.TemporaryDirectory(prefix="antenna_cad-sweep-") as scratch:
         cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
-                               dashboard_address=None, silence_logs=logging.ERROR, env={"TMPDIR": scratch})
+                               dashboard_address=None, silence_logs=logging.ERROR, local_directory=scratch,
+                               env={"TMPDIR": scratch})
         try:
             with Client(cluster) as client:
                 yield client

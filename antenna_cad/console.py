@@ -42,15 +42,35 @@ def _duration(seconds: float) -> str:
 
 
 class _Lines:
-    """Timestamped lines on stderr, and a heartbeat thread calling ``beat`` every ``period`` seconds."""
+    """A progress bar on a terminal (``mode`` normal); else timestamped lines on stderr and a
+    heartbeat thread calling ``beat`` every ``period`` seconds without a line (nothing when quiet)."""
 
-    def __init__(self, console: Console, period: float, started: float | None = None):
-        self.console, self.period = console, period
+    def __init__(self, name: str, mode: str, console: Console | None, terminal: bool | None, period: float,
+                 started: float | None = None):
+        self.name, self.mode, self.console, self.period = name, mode, console or stderr_console(), period
+        self.terminal = self.console.is_terminal if terminal is None else terminal
         self.start = time.monotonic() if started is None else started
         self.lock = threading.RLock()
         self.last_line = self.start
         self.stopped = threading.Event()
         self.thread = threading.Thread(target=self._run, daemon=True, name="progress-heartbeat")
+        self.bar, self.task = None, None
+
+    def __enter__(self):
+        if self.mode == NORMAL and self.terminal:
+            from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+            self.bar = Progress(TextColumn("{task.description}"), BarColumn(), TimeElapsedColumn(),
+                                console=self.console, transient=True)
+            self.bar.start()
+            self.task = self.bar.add_task(self.name, total=None)
+        elif self.mode != QUIET:
+            self.thread.start()
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.stopped.set()
+        if self.bar is not None:
+            self.bar.stop()
 
     def write(self, text: str) -> None:
         with self.lock:
@@ -74,27 +94,9 @@ class BuildProgress(_Lines):
     def __init__(self, name: str, mode: str = NORMAL, console: Console | None = None,
                  terminal: bool | None = None, period: float = HEARTBEAT_S, started: float | None = None):
         """``started``: the monotonic clock when the work began (the spec's loading), else now."""
-        super().__init__(console or stderr_console(), period, started)
-        self.name, self.mode = name, mode
-        self.terminal = self.console.is_terminal if terminal is None else terminal
-        self.stage, self.detail, self.since, self.bar, self.task = "", "", self.start, None, None
+        super().__init__(name, mode, console, terminal, period, started)
+        self.stage, self.detail, self.since = "", "", self.start
         self.paused: tuple | None = None       # the stage a wait for the lock interrupted
-
-    def __enter__(self) -> BuildProgress:
-        if self.mode == NORMAL and self.terminal:
-            from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
-            self.bar = Progress(TextColumn("{task.description}"), BarColumn(), TimeElapsedColumn(),
-                                console=self.console, transient=True)
-            self.bar.start()
-            self.task = self.bar.add_task(f"building {self.name}", total=1.0)
-        elif self.mode != QUIET:
-            self.thread.start()
-        return self
-
-    def __exit__(self, *exc) -> None:
-        self.stopped.set()
-        if self.bar is not None:
-            self.bar.stop()
 
     def __call__(self, stage: str, fraction: float, detail: str = "") -> None:
         if self.mode == QUIET:
@@ -102,7 +104,7 @@ class BuildProgress(_Lines):
         with self.lock:
             if self.bar is not None:
                 text = f"{self.name}: {stage}" + (f" — {detail}" if detail else "")
-                self.bar.update(self.task, completed=fraction, description=text)
+                self.bar.update(self.task, completed=fraction, total=1.0, description=text)
                 return
             now = time.monotonic()
             if stage == WAITING or self.paused:         # a wait for the folder's lock pauses the stage
@@ -142,26 +144,8 @@ class SweepProgress(_Lines):
 
     def __init__(self, name: str, mode: str = NORMAL, console: Console | None = None,
                  terminal: bool | None = None, period: float = HEARTBEAT_S):
-        super().__init__(console or stderr_console(), period)
-        self.name, self.mode = name, mode
-        self.terminal = self.console.is_terminal if terminal is None else terminal
-        self.state, self.first, self.bar, self.task = (0, 0, 0), None, None, None
-
-    def __enter__(self) -> SweepProgress:
-        if self.mode == NORMAL and self.terminal:
-            from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
-            self.bar = Progress(TextColumn("{task.description}"), BarColumn(), TimeElapsedColumn(),
-                                console=self.console, transient=True)
-            self.bar.start()
-            self.task = self.bar.add_task(f"sweep {self.name}", total=None)
-        elif self.mode != QUIET:
-            self.thread.start()
-        return self
-
-    def __exit__(self, *exc) -> None:
-        self.stopped.set()
-        if self.bar is not None:
-            self.bar.stop()
+        super().__init__(name, mode, console, terminal, period)
+        self.state, self.first = (0, 0, 0), None
 
     def text(self) -> str:
         done, total, failed = self.state

@@ -86,7 +86,7 @@ class _Cut:
 
 def test_half_power_bracket_uses_the_refined_peak():
     h = 0.1
-    cut = _Cut(u0=0.05, w=0.1, grid=np.arange(-1.0, 1.0 + h / 2, h))
+    cut = _Cut(u0=0.04, w=0.1, grid=np.arange(-1.0, 1.0 + h / 2, h))
     beam = beam_figures(cut)
     edge = cut.w * np.sqrt(np.log(2) / 2)          # |F|² = 1/2 at u0 ± w·√(ln 2 / 2)
     assert beam.peak == pytest.approx(1.0, abs=1e-9)
@@ -107,3 +107,14 @@ def test_template_pages_are_counted_before_drawing():
     big = template_pages([Drawing(200_000, 200_000)])          # the 350,000-page ellipse template
     assert big > LIMITS["pages"].hard
     assert LIMITS["pages"].field == "outputs.templates"
+
+
+def test_as_built_focus_search_stays_on_the_lens(tmp_path):
+    """phase_error_budget_deg: 180 (the schema's maximum) puts the scan-edge feed 3 m off the axis
+    of a Ø500 mm lens: the focus search stepped past the lens and polyfit got no ray."""
+    from antenna_cad.pipeline import prepare
+    from antenna_cad.registry import adapter
+    spec = load_spec(_spec(tmp_path, "phase_error_budget_deg: 22.5", "phase_error_budget_deg: 180"))
+    plan = prepare(spec)
+    verification = adapter(spec.kind).verify(spec, plan.design, plan.layup, plan.fab)
+    assert verification.checks and all(np.isfinite(v) for v in verification.figures.values() if isinstance(v, float))

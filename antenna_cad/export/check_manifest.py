@@ -38,6 +38,7 @@ class FileEntry(_Entry):
 class PartEntry(_Entry):
     label: str = Field(pattern=NAME)
     material: str
+    role: str = "fabricated"
     volume_mm3: float = Field(gt=0)
     solids: int = Field(1, ge=1)
     file: str | None = None
@@ -70,6 +71,7 @@ class SpecPart(_Entry):
 
 class Tolerances(_Entry):
     mesh_tolerance_mm: float = Field(gt=0)
+    template_chord_tolerance_mm: float = Field(ge=0)
 
 
 class MaterialEntry(_Entry):
@@ -88,6 +90,7 @@ class Manifest(_Entry):
     templates: list[TemplateEntry]
     mass_kg: dict[str, float]
     pieces: list[dict]
+    sheets: list[dict] = []
 
 
 def read_manifest(folder: Path) -> tuple[Manifest, dict]:
@@ -99,13 +102,14 @@ def read_manifest(folder: Path) -> tuple[Manifest, dict]:
     def refuse(constant):
         raise ValueError(f"bare {constant} is not JSON")
     try:
-        raw = json.loads(path.read_bytes().decode("utf-8"), parse_constant=refuse)
+        text = path.read_bytes().decode("utf-8")
+        raw = json.loads(text, parse_constant=refuse)
     except (ValueError, OSError) as exc:
         raise CheckError(f"{path}: not strict JSON: {exc}") from None
     if not isinstance(raw, dict):
         raise CheckError(f"{path}: not a build manifest (a JSON {type(raw).__name__}, not an object)")
     try:
-        return Manifest.model_validate(raw), raw
+        return Manifest.model_validate_json(text), raw
     except ValidationError as exc:
         first = exc.errors()[0]
         where = ".".join(str(p) for p in first["loc"]) or "<root>"

@@ -171,6 +171,7 @@ def test_check_command_on_a_build_and_on_tampered_copies(ptfe_build, tmp_path):
     assert result.exit_code == 1
     failed = {(f.file, f.check) for f in check.check_build(bad) if not f.ok}
     assert failed == {("templates/profile.dxf", "sha256"), ("templates/profile.dxf", "required"), ("manifest.json", "sha256"),
+                      ("manifest.json", "required"),
                       ("ptfe-lens-120mm.step", "step volumes"), ("stl/lens.stl", "stl watertight"),
                       ("stl/lens.stl", "stl volume")}
     (bad / "manifest.json").write_text(json.dumps(manifest).replace('"kerf_mm": 0.0', '"kerf_mm": Infinity'))

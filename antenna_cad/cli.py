@@ -91,6 +91,10 @@ def validate(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YA
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     spec, plan = _load(spec_path)
     stdout_console().print(checks_table(plan.checks))
+    failed = [c.name for c in plan.checks if c.status == "fail"]
+    if failed:                      # as build: exit 1 when a check fails
+        stdout_console().print(f"{spec_path}: {spec.kind} spec '{spec.name}' fails its checks: {', '.join(failed)}")
+        raise typer.Exit(1)
     stdout_console().print(f"{spec_path}: valid {spec.kind} spec '{spec.name}'")
 
 

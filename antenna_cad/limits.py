@@ -1,10 +1,11 @@
-"""Resource limits of a build (issue 11): how many sheets, shells, slots, pieces and drawings a
-design may make. Above ``soft`` the build goes on with a warning check (a workshop job of that size
+"""Resource limits of a build: how many sheets, shells, slots, pieces, drawings and template
+pages a design may make. Above ``soft`` the build goes on with a warning check (a workshop job of that size
 is unusual — often a unit slip); above ``hard`` it stops with a DesignError naming the spec field to
 change, before any CAD work. New kinds need nothing: :func:`counts` reads the plans generically."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from antenna_cad.synthesis.checks import Check, DesignError
@@ -34,6 +35,7 @@ LIMITS = {
     "slots": Limit("slots", "array.count", soft=20_000, hard=100_000),
     "pieces": Limit("pieces", "fabrication.board", soft=400, hard=4000),
     "drawings": Limit("drawings", "fabrication.board", soft=300, hard=3000),
+    "pages": Limit("template pages", "outputs.templates", soft=5000, hard=100_000),
 }
 
 
@@ -52,6 +54,21 @@ def counts(design, layup, fab=None) -> dict[str, int]:
         found["pieces"] = len(fab.rows)
         found["drawings"] = len(fab.drawings)
     return found
+
+
+def template_pages(drawings) -> int:
+    """Estimated A4 pages of the tiled templates, before drawing: per drawing the tile grid over its
+    CUT outline (an upper bound: empty tiles are dropped when tiling); a lazily drawn layup's from
+    its sheets' weights (Σ r², the area of each sheet's disc and rings over π)."""
+    from antenna_cad.fabrication.templates import OVERLAP_MM, WINDOW_MM
+    step_w, step_h = WINDOW_MM[0] - OVERLAP_MM, WINDOW_MM[1] - OVERLAP_MM
+    if hasattr(drawings, "weights"):
+        return len(drawings) + math.ceil(4 * sum(drawings.weights) / (step_w * step_h))
+    pages = 0
+    for drawing in drawings:
+        x0, y0, x1, y1 = drawing.cut_bounds()
+        pages += math.ceil(max(x1 - x0, 0) / step_w + 1) * math.ceil(max(y1 - y0, 0) / step_h + 1)
+    return pages
 
 
 def limit_checks(found: dict[str, int]) -> list[Check]:

@@ -30,7 +30,7 @@ from contextlib import contextmanager, suppress
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
-from antenna_cad.limits import counts, limit_checks
+from antenna_cad.limits import counts, limit_checks, template_pages
 from antenna_cad.progress import Progress, reporting
 from antenna_cad.registry import adapter
 from antenna_cad.spec.common import SpecBase, resolve_material
@@ -86,6 +86,8 @@ def prepare(spec: SpecBase) -> Plan:
         checks += limit_checks(counts(design, layup))
         fab = kind.fabricate(spec, design, layup, panels)
         checks += limit_checks({k: v for k, v in counts(design, layup, fab).items() if k in ("pieces", "drawings")})
+        if spec.outputs.templates and len(fab.drawings):
+            checks += limit_checks({"pages": template_pages(fab.drawings)})
         checks += list(kind.fabrication_checks(spec, design, layup)) + list(fab.checks)
     return Plan(design, layup, panels, fab, checks)
 

@@ -1,5 +1,6 @@
-"""Spec mutations for the fuzz tests (issue 11): every recipe, with random values, wrong types,
-deleted and added keys, and YAML oddities (alias bombs, deep nesting, non-UTF-8 bytes, duplicate
+"""Spec mutations for the fuzz tests: every recipe, with random values, wrong types (booleans,
+strings, YAML 1.1 forms written unquoted: ``on``, ``4:00``, ``0x78``, ``'1e2'``), deleted and added
+keys, and YAML oddities (alias bombs, deep nesting, non-UTF-8 bytes, duplicate
 keys, tags, truncation). ``outcome`` runs ``make-lens validate`` (or ``build``) in-process and
 classifies what happened; only "valid" and "clean" are allowed."""
 
@@ -39,6 +40,11 @@ leaves = st.one_of(numbers, st.text(max_size=20), st.booleans(), st.none(),
                    st.sampled_from(["auto", "sheet_layup", "solid", "shells", "xps", "ptfe", "dowels", "neck",
                                     "kinber", "nikulina", "cylinder", "sphere", "ladder", "classic", "machined_plates"]))
 values = st.one_of(leaves, st.lists(leaves, max_size=6), st.dictionaries(st.text(max_size=8), leaves, max_size=3))
+# a value's type changed as a hand-written YAML file would: written unquoted into the text
+TYPE_TOKENS = ["on", "off", "yes", "no", "On", "TRUE", "false", "y", "4:00", "1:30:00", "190:20:30.15", "0x78",
+               "0o17", "017", "0b101", "1_000", "'1e2'", '"12"', "'auto'", "1e2", "-1E-3", ".inf", "-.Inf", ".NaN",
+               "~", "null", "''", "12 mm", "1,5", "[1]", "{a: 1}", "2001-12-14", "!!float '3'"]
+RAW = "__raw_token_{}__"
 
 
 def _paths(node, prefix=()):
@@ -66,12 +72,17 @@ def mutated_spec(draw) -> bytes:
     """A recipe with 1–3 data mutations, dumped to YAML, then perhaps a text-level oddity."""
     recipe = draw(st.sampled_from(RECIPES))
     data = yaml.safe_load(recipe.read_text(encoding="utf-8"))
+    tokens = []
     for _ in range(draw(st.integers(1, 3))):
         paths = list(_paths(data))
         path = draw(st.sampled_from(paths))
         parent, key = _parent(data, path), path[-1]
-        op = draw(st.sampled_from(["value", "value", "scale", "scale", "delete", "add", "wrap", "string"]))
-        if op == "value":
+        op = draw(st.sampled_from(["value", "value", "scale", "scale", "delete", "add", "wrap", "string",
+                                   "type", "type"]))
+        if op == "type":
+            parent[key] = RAW.format(len(tokens))
+            tokens.append(draw(st.sampled_from(TYPE_TOKENS)))
+        elif op == "value":
             parent[key] = draw(values)
         elif op == "scale" and isinstance(parent[key], (int, float)) and not isinstance(parent[key], bool):
             parent[key] = parent[key] * draw(st.sampled_from(SCALES))
@@ -84,6 +95,8 @@ def mutated_spec(draw) -> bytes:
         elif op == "string":
             parent[key] = str(parent[key])
     text = yaml.safe_dump(data, sort_keys=False, allow_unicode=True)
+    for i, token in enumerate(tokens):
+        text = text.replace(RAW.format(i), token)
     odd = draw(st.sampled_from(["none"] * 6 + ["bomb", "deep", "duplicate", "bytes", "truncate", "tag", "long_list",
                                                 "anchor_reuse", "tab", "bom", "huge", "cycle"]))
     if odd == "bomb":

@@ -14,7 +14,7 @@ from shapely.geometry import box
 from typer.testing import CliRunner
 
 from antenna_cad.cli import app
-from antenna_cad.export import check
+from antenna_cad.export import check, check_readers as readers
 from antenna_cad.export.manifest import write_manifest
 from antenna_cad.export.mesh import write_stl
 from antenna_cad.export.report_pdf import A4_INCH, COURIER_ADVANCE_EM, MARGIN, text_layout
@@ -41,15 +41,15 @@ def test_stl_claim_is_what_a_reader_sees(tmp_path):
     mesh = write_stl(pair, tmp_path / "pair.stl", 0.01)
     assert mesh.metadata["bodies"] == 2 and mesh.metadata["bodies_watertight"]
     assert mesh.metadata["watertight"] is False
-    assert not check.stl_closed(check.read_stl(tmp_path / "pair.stl"))
+    assert not readers.stl_closed(readers.read_stl(tmp_path / "pair.stl"))
     one = write_stl(kernel.box((-5, -10, -15), (10, 20, 30)), tmp_path / "one.stl", 0.01)
-    tri = check.read_stl(tmp_path / "one.stl")
-    assert one.metadata["watertight"] and check.stl_closed(tri)
+    tri = readers.read_stl(tmp_path / "one.stl")
+    assert one.metadata["watertight"] and readers.stl_closed(tri)
     volume = np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])).sum() / 6
     assert volume == pytest.approx(6000.0, rel=1e-6)
     flipped = tri[:, ::-1].copy()
     flipped[0] = tri[0]                                       # one face turned the wrong way
-    assert not check.stl_closed(flipped)
+    assert not readers.stl_closed(flipped)
 
 
 def test_arc_paths_true_circles_and_straight_joints(tmp_path):
@@ -65,7 +65,7 @@ def test_arc_paths_true_circles_and_straight_joints(tmp_path):
     d = Drawing("strip")
     d.add_polygon(path, [outer, hole])
     write_dxf(d, tmp_path / "strip.dxf")
-    bbox, count = check.dxf_cut_bounds(check.dxf_entities(tmp_path / "strip.dxf"))
+    bbox, count = readers.dxf_cut_bounds(readers.dxf_entities(tmp_path / "strip.dxf"))
     y = math.sqrt(R**2 - 100**2)        # the nominal corner: the tool rounds it on a kerf/2 radius
     assert count == 2
     assert bbox == pytest.approx((-R - kerf / 2, -R - kerf / 2, 100 + kerf / 2, R + kerf / 2), abs=0.003)
@@ -89,7 +89,7 @@ def _drawing() -> Drawing:
 def test_tiled_pdf_text_whole_and_title_on_every_tile(tmp_path):
     pages = write_tiled_pdf([_drawing()], tmp_path / "t.pdf", "demo")
     assert pages >= 4
-    findings = {f.check: f for f in check._pdf(tmp_path, "t.pdf", templates=True)}
+    findings = {f.check: f for f in readers.pdf_findings(tmp_path / "t.pdf", "t.pdf", templates=True)}
     assert all(f.ok for f in findings.values()), findings
     pdf = pypdfium2.PdfDocument(tmp_path / "t.pdf")
     texts = [pdf[k].get_textpage().get_text_range() for k in range(len(pdf))]
@@ -98,7 +98,7 @@ def test_tiled_pdf_text_whole_and_title_on_every_tile(tmp_path):
     assert any(whole in t.replace("\r\n", " ") for t in texts)
     assert any("+X far away" in t for t in texts)
     for k in range(len(pdf)):
-        assert check.check_bar_mm(pdf[k]) == pytest.approx(100.0, abs=check.BAR_TOL_MM)
+        assert readers.check_bar_mm(pdf[k]) == pytest.approx(100.0, abs=readers.BAR_TOL_MM)
 
 
 def test_text_beyond_the_outline_gets_its_own_tile_unmoved():
@@ -131,7 +131,7 @@ def test_pdf_check_fails_on_text_off_the_page_or_across_a_window(tmp_path):
     with VectorPdf(tmp_path / "bad.pdf", A4_MM, "bad") as pdf:
         pdf.add_page(text_ops("runs past the right edge of the page", (A4_MM[0] - 30) * k, 400, 10))
         pdf.add_page(text_ops("straddles the window", (10 + WINDOW_MM[0] - 10) * k, 400, 5))
-    findings = {f.check: f for f in check._pdf(tmp_path, "bad.pdf", templates=True)}
+    findings = {f.check: f for f in readers.pdf_findings(tmp_path / "bad.pdf", "bad.pdf", templates=True)}
     assert not findings["pdf text inside page"].ok and "pages [1]" in findings["pdf text inside page"].message
     assert not findings["pdf text unclipped"].ok and "[1, 2]" in findings["pdf text unclipped"].message
     assert not findings["pdf check bar"].ok                       # no bar printed on these pages
@@ -170,7 +170,8 @@ def test_check_command_on_a_build_and_on_tampered_copies(ptfe_build, tmp_path):
     result = runner.invoke(app, ["check", str(bad)])
     assert result.exit_code == 1
     failed = {(f.file, f.check) for f in check.check_build(bad) if not f.ok}
-    assert failed == {("templates/profile.dxf", "sha256"), ("manifest.json", "sha256"),
+    assert failed == {("templates/profile.dxf", "sha256"), ("templates/profile.dxf", "required"), ("manifest.json", "sha256"),
+                      ("manifest.json", "required"),
                       ("ptfe-lens-120mm.step", "step volumes"), ("stl/lens.stl", "stl watertight"),
                       ("stl/lens.stl", "stl volume")}
     (bad / "manifest.json").write_text(json.dumps(manifest).replace('"kerf_mm": 0.0', '"kerf_mm": Infinity'))

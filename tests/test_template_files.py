@@ -31,7 +31,7 @@ def test_shares_balance_the_sheets():
 
 
 def test_per_sheet_pdfs_from_two_workers_match_one_process(tmp_path, monkeypatch):
-    from antenna_cad.export.check import _pdf
+    from antenna_cad.export.check_readers import pdf_findings
     plan, fab = _fab()
     spec = SimpleNamespace(name="t")
     monkeypatch.setattr(template_files, "PER_SHEET_PDF_DRAWINGS", 0)
@@ -50,7 +50,7 @@ def test_per_sheet_pdfs_from_two_workers_match_one_process(tmp_path, monkeypatch
     pdfs = [e for e in entries if "pdf" in e]
     assert [e["pdf"] for e in pdfs] == [f"templates/pdf/{s.label}.pdf" for s in plan.sheets]
     assert all(e["pages"] >= 1 for e in pdfs) and f"templates/{plan.rings[0].label}.dxf" in files
-    findings = list(_pdf(tmp_path / "0", pdfs[0]["pdf"], templates=True))           # what `make-lens check` runs
+    findings = list(pdf_findings(tmp_path / "0" / pdfs[0]["pdf"], pdfs[0]["pdf"], templates=True))           # what `make-lens check` runs
     assert {f.check for f in findings} >= {"pdf check bar", "pdf text inside page"} and all(f.ok for f in findings)
     monkeypatch.setattr(template_files, "PER_SHEET_PDF_DRAWINGS", 10**6)     # small builds: the one PDF
     (tmp_path / "single").mkdir()

@@ -115,18 +115,30 @@ def aperture_stats(lens: Lens, tr: Trace2D, keep: np.ndarray) -> Stats:
                  1.0 - keep.sum() / _aperture(lens, tr).sum())
 
 
+MAX_HALVINGS = 30
+MIN_KEPT_RAYS = 3          # a linear fit of the aperture phase needs a few rays
+
+
 def focus_shift(lens: Lens, medium: Medium, feed) -> tuple[float, Stats]:
     """Axial feed move (+ toward the lens) that minimizes the RMS phase error, and the stats there.
     Gauss–Newton on the first-order change of the optical path, −δz·cos γ (γ the ray's angle at the
-    feed, Fermat), two steps."""
+    feed, Fermat), two steps; a step that leaves the aperture without rays is halved until it does not."""
     z0, y0 = feed
     shift = 0.0
+    tr, keep = trace_lens(lens, medium, feed)
     for _ in range(2):
-        tr, keep = trace_lens(lens, medium, (z0 + shift, y0))
         ap = ApertureTrace.from_trace(tr, lens.wavelength_mm, keep)
         grad = detrended(ap.y_mm, -360.0 / lens.wavelength_mm * tr.directions[0][keep, 0])
-        shift -= float(np.dot(ap.detrended_phase_deg(), grad) / np.dot(grad, grad))
-    return shift, aperture_stats(lens, *trace_lens(lens, medium, (z0 + shift, y0)))
+        step = -float(np.dot(ap.detrended_phase_deg(), grad) / np.dot(grad, grad))
+        for _ in range(MAX_HALVINGS):        # a step past the lens (a feed far off axis) is halved
+            moved, kept = trace_lens(lens, medium, (z0 + shift + step, y0))
+            if kept.sum() >= MIN_KEPT_RAYS:
+                break
+            step /= 2
+        else:
+            break
+        shift, tr, keep = shift + step, moved, kept
+    return shift, aperture_stats(lens, tr, keep)
 
 
 # ------------------------------------------------------------------ layers and the stock thickness

@@ -170,15 +170,16 @@ def _refine_max(cut: Cut, u: np.ndarray, i: int) -> tuple[float, float]:
     return float(res.x), float(math.sqrt(-res.fun))
 
 
-def _side(p: np.ndarray, i0: int, step: int) -> tuple[int | None, int | None]:
-    """From the peak ``i0`` walking by ``step``: the first half-power sample and the first
-    sidelobe's maximum sample (after the first local minimum)."""
+def _side(p: np.ndarray, i0: int, step: int, half_level: float) -> tuple[int | None, int | None]:
+    """From the peak ``i0`` walking by ``step``: the first sample below ``half_level`` (half the
+    refined peak's power, the level the root is sought at, so the bracket has a sign change) and
+    the first sidelobe's maximum sample (after the first local minimum)."""
     n = len(p)
     half = lobe = None
     j = i0
     while 0 <= j + step < n and p[j + step] <= p[j]:
         j += step
-        if half is None and p[j] < 0.5 * p[i0]:
+        if half is None and p[j] < half_level:
             half = j
     if not (0 <= j + step < n):
         return half, None
@@ -197,7 +198,7 @@ def beam_figures(cut: Cut) -> Beam:
     half_level = 0.5 * peak**2
     edges, sll = [], -np.inf
     for step in (1, -1):
-        half, lobe = _side(p, i0, step)
+        half, lobe = _side(p, i0, step, half_level)
         if half is None:
             edges.append(np.nan)
         else:

@@ -20,6 +20,7 @@ from antenna_cad.spec.mirror_lens import MirrorLensSpec
 from antenna_cad.spec.reader import ReadError, read_yaml
 from antenna_cad.spec.polyfocal import PolyfocalSpec
 from antenna_cad.spec.slot_array import SlotArraySpec
+from antenna_cad.spec.strict import strict_data
 
 SPEC_MODELS: dict[str, type[BaseModel]] = {
     "collimator": CollimatorSpec,
@@ -54,9 +55,14 @@ def _got(value: object) -> str:
     return text if len(text) <= MAX_GOT else text[:MAX_GOT - 1] + "…"
 
 
+def _loc(parts) -> str:
+    """A field path, odd keys quoted: one line, unambiguous."""
+    return ".".join(p if isinstance(p, str) and p.isidentifier() else repr(p) if isinstance(p, str) else str(p)
+                    for p in parts if p not in UNION_TAGS)
+
+
 def _format(source: str, err: dict) -> str:
-    loc = ".".join(p if isinstance(p, str) and p.isidentifier() else repr(p) if isinstance(p, str) else str(p)
-                   for p in err["loc"] if p not in UNION_TAGS)      # odd keys quoted: one line, unambiguous
+    loc = _loc(err["loc"])
     msg = err["msg"].removeprefix("Value error, ")
     for long, short in _WORDING:
         msg = msg.replace(long, short)
@@ -86,13 +92,16 @@ def parse_spec(data: object, source: str = "<spec>") -> BaseModel:
     kind = data.get("kind")
     if not isinstance(kind, str) or kind not in SPEC_MODELS:
         raise SpecError([f"{source}: kind: must be one of {', '.join(sorted(SPEC_MODELS))} (got {_got(kind)})"])
-    try:
-        return SPEC_MODELS[kind].model_validate(data)
-    except ValidationError as exc:
-        lines = [_format(source, e) for e in exc.errors()]
-        if len(lines) > MAX_LINES:
-            lines = lines[:MAX_LINES] + [f"{source}: <root>: … and {len(lines) - MAX_LINES} more problems"]
-        raise SpecError(lines) from None
+    data, problems = strict_data(SPEC_MODELS[kind], data)
+    lines = [f"{source}: {_loc(loc)}: {rule} (got {_got(value)})" for loc, rule, value in problems]
+    if not lines:
+        try:
+            return SPEC_MODELS[kind].model_validate(data)
+        except ValidationError as exc:
+            lines = [_format(source, e) for e in exc.errors()]
+    if len(lines) > MAX_LINES:
+        lines = lines[:MAX_LINES] + [f"{source}: <root>: … and {len(lines) - MAX_LINES} more problems"]
+    raise SpecError(lines) from None
 
 
 def load_spec(path: str | Path) -> BaseModel:

@@ -4,11 +4,20 @@
 Limits (a spec is a few hundred bytes; these are generous for hand-written or generated specs):
 file size, nesting depth and node count after alias expansion (alias "billion laughs"),
 items per list. Duplicate keys, unhashable (list/mapping) keys and non-UTF-8 bytes are refused
-with the line they are on.
+with the line they are on. Only a regular file is read, opened without blocking (a named pipe or a
+device is refused at once instead of waiting for a writer).
+
+Numbers are YAML 1.2 core numbers (``12``, ``-3.5``, ``1e3``, ``.inf``): YAML 1.1's base-60
+(``4:00`` → 240), hexadecimal/octal/binary (``0x78``) and underscored forms stay strings, which the
+spec models refuse for numeric fields. YAML 1.1 booleans (``on``/``off``/``yes``/``no``) stay
+booleans, accepted by on/off fields only.
 """
 
 from __future__ import annotations
 
+import os
+import re
+import stat
 from pathlib import Path
 
 import yaml
@@ -27,9 +36,14 @@ def _where(mark) -> str:
     return f"line {mark.line + 1}, column {mark.column + 1}" if mark is not None else "unknown position"
 
 
+INT_12 = re.compile(r"^[-+]?[0-9]+$")
+FLOAT_12 = re.compile(r"^(?:[-+]?(?:\.[0-9]+|[0-9]+(?:\.[0-9]*)?)(?:[eE][-+]?[0-9]+)?"
+                      r"|[-+]?\.(?:inf|Inf|INF)|\.(?:nan|NaN|NAN))$")
+
+
 class _Loader(yaml.SafeLoader):
-    """SafeLoader that bounds nesting while composing (the composer recurses per level) and
-    refuses duplicate and unhashable keys."""
+    """SafeLoader with YAML 1.2 core numbers (see the module doc) that bounds nesting while
+    composing (the composer recurses per level) and refuses duplicate and unhashable keys."""
 
     def __init__(self, stream):
         super().__init__(stream)
@@ -59,6 +73,14 @@ class _Loader(yaml.SafeLoader):
                                     f"(first at line {seen[key] + 1})")
                 seen[key] = key_node.start_mark.line
         return super().construct_mapping(node, deep=deep)
+
+
+_Loader.yaml_implicit_resolvers = {
+    first: [(tag, regexp) for tag, regexp in resolvers
+            if tag not in ("tag:yaml.org,2002:int", "tag:yaml.org,2002:float")]
+    for first, resolvers in yaml.SafeLoader.yaml_implicit_resolvers.items()}
+_Loader.add_implicit_resolver("tag:yaml.org,2002:int", INT_12, list("-+0123456789"))
+_Loader.add_implicit_resolver("tag:yaml.org,2002:float", FLOAT_12, list("-+.0123456789"))
 
 
 def _check_size(root: yaml.Node) -> None:
@@ -102,13 +124,30 @@ def _children(node: yaml.Node) -> list[yaml.Node]:
     return []
 
 
-def read_yaml(path: Path) -> object:
-    """The YAML document of ``path`` as Python values, within the limits above (ReadError if not)."""
+def _read_regular(path: Path) -> bytes:
+    """At most MAX_BYTES + 1 bytes of ``path``, which must be a regular file; opened with
+    O_NONBLOCK so that a named pipe without a writer cannot block (ReadError otherwise)."""
     try:
-        with path.open("rb") as fh:
-            raw = fh.read(MAX_BYTES + 1)
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_NOCTTY)
     except OSError as exc:
         raise ReadError(f"file: cannot read it ({exc.strerror or exc})") from None
+    try:
+        mode = os.fstat(fd).st_mode
+        if not stat.S_ISREG(mode):
+            what = ("a folder" if stat.S_ISDIR(mode) else "a named pipe" if stat.S_ISFIFO(mode)
+                    else "not a regular file")
+            raise ReadError(f"file: {what}; a spec is a regular YAML text file")
+        with os.fdopen(fd, "rb", closefd=False) as fh:
+            return fh.read(MAX_BYTES + 1)
+    except OSError as exc:
+        raise ReadError(f"file: cannot read it ({exc.strerror or exc})") from None
+    finally:
+        os.close(fd)
+
+
+def read_yaml(path: Path) -> object:
+    """The YAML document of ``path`` as Python values, within the limits above (ReadError if not)."""
+    raw = _read_regular(path)
     if len(raw) > MAX_BYTES:
         raise ReadError(f"file size: more than {MAX_BYTES // 1024} KiB (a spec is a short text file)")
     try:

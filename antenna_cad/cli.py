@@ -108,8 +108,8 @@ def build(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML"
     try:
         with Progress(console=err_console, transient=True) as bar:
             task = bar.add_task(f"building {spec.name}", total=1.0)
-            result = run_build(spec, out, lambda stage, f: bar.update(task, completed=f,
-                                                                      description=f"{spec.name}: {stage}"), plan)
+            result = run_build(spec, out, lambda stage, f, detail="": bar.update(
+                task, completed=f, description=f"{spec.name}: {detail or stage}"), plan)
     except DesignError as exc:
         _fail([f"{spec_path}: {exc}"])
     except OutputError as exc:

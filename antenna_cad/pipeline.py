@@ -25,12 +25,13 @@ from contextlib import contextmanager, suppress
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
+from antenna_cad.fullwave.budget import session as fullwave_session
 from antenna_cad.limits import counts, limit_checks
 from antenna_cad.registry import adapter
 from antenna_cad.spec.common import SpecBase, resolve_material
 from antenna_cad.synthesis.checks import Check, solving
 
-Progress = Callable[[str, float], None]
+Progress = Callable[..., None]      # progress(stage, fraction, detail="")
 STAGES = ("synthesize", "fabricate", "model", "verify", "step", "stl", "templates", "report", "manifest")
 IN_PROGRESS: set[Path] = set()      # temporary folders being written (removed on Ctrl-C by the CLI)
 
@@ -123,7 +124,7 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
     from antenna_cad.export.step import write_step
     from antenna_cad.export.template_files import template_files, write_templates
     from antenna_cad.fabrication.cutlist import cutlist_csv
-    report = progress or (lambda stage, fraction: None)
+    report = progress or (lambda stage, fraction, detail="": None)
     seconds: dict[str, float] = {}
     clock = time.perf_counter()
 
@@ -160,7 +161,9 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
             if spec.outputs.step:     # the STEP needs only the model: written beside verification, STL, report
                 step_file = tmp / f"{spec.name}.step"
                 jobs["step"] = Job(write_step, (model, spec.name, step_file), [step_file])
-            with solving(_design_field(spec), "as-built verification"):
+            verifying = STAGES.index("verify")          # full-wave heartbeats: fraction of its budget used
+            with solving(_design_field(spec), "as-built verification"), fullwave_session(
+                    lambda used, detail: report("verify", (verifying + used) / len(STAGES), detail)):
                 verification = kind.verify(spec, p.design, p.layup, p.fab)
             checks += list(verification.checks)
             stage("verify")

@@ -15,7 +15,7 @@ import pytest
 from selenium import webdriver
 from selenium.webdriver.chrome.service import Service
 
-from antenna_cad.fullwave import solver
+from antenna_cad.fullwave import budget, solver
 
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                   "--disable-background-networking", "--disable-component-update", "--disable-sync",
@@ -72,3 +72,12 @@ def meep(monkeypatch):
             pytest.fail(f"{solver.MISSING} (CI must run the full-wave tests)")
         pytest.skip(solver.MISSING)
     return python
+
+
+@pytest.fixture
+def fullwave_cache(tmp_path, monkeypatch):
+    """A fresh full-wave cache for this test, its throughput known (the default: no probe run first)."""
+    folder = tmp_path / "cache"
+    monkeypatch.setenv("ANTENNA_CAD_FULLWAVE_CACHE", str(folder))
+    budget.keep(folder, budget.DEFAULT_THROUGHPUT)
+    return folder

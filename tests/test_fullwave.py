@@ -26,8 +26,8 @@ LAM = 30.0                          # 10 GHz
 
 
 @pytest.fixture(autouse=True)
-def cache(tmp_path, monkeypatch):
-    monkeypatch.setenv("ANTENNA_CAD_FULLWAVE_CACHE", str(tmp_path / "cache"))
+def cache(fullwave_cache):
+    return fullwave_cache
 
 
 def _free_deck(parts, resolution, feed_z_lambda=-100.0, radius_lambda=6.0, pattern="dipole"):

@@ -18,8 +18,8 @@ NOTHING = [{"label": "nothing", "eps_r": 1.0, "polygon": [[0, 0], [1, 0], [1, 1]
 
 
 @pytest.fixture(autouse=True)
-def cache(tmp_path, monkeypatch):
-    monkeypatch.setenv("ANTENNA_CAD_FULLWAVE_CACHE", str(tmp_path / "cache"))
+def cache(fullwave_cache):
+    return fullwave_cache
 
 
 def _deck(resolution=10.0, radius_lambda=3.0, feed_z_lambda=-20.0, pattern="dipole"):

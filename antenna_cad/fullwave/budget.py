@@ -4,8 +4,8 @@ the stages report through, and the machine's measured throughput the estimates u
 One build's full-wave stages share one budget: :func:`session` (entered by the pipeline around the
 verification) holds the progress callback, and the first stage that needs Meep starts its clock with
 the spec's ``budget_s``; outside a session every stage gets a budget of its own. The throughput (cell
-updates per second of one solver process, as measured on this machine under its load at the time) is
-kept beside the cached results in ``throughput.json``; when none is known a short probe run measures
+updates per second of one solver process, as measured on this machine under its load at the time) and
+the set-up time of a run are kept beside the cached results in ``throughput.json``; when none is known a short probe run measures
 it (:func:`antenna_cad.fullwave.solver.calibrate`), and every finished run refines it (:func:`record`).
 """
 
@@ -24,7 +24,7 @@ from pathlib import Path
 Beat = Callable[[float, str], None]     # (fraction of the budget used, "full-wave: run 2 of 4, 35 s of 120 s budget")
 THROUGHPUT_FILE = "throughput.json"
 DEFAULT_THROUGHPUT = 1.0e7   # cell-updates/s of one busy core before anything was measured (1.0–2.9·10⁷ measured)
-SETUP_S = 2.0                # interpreter start, import meep, rasterizing ε
+SETUP_S = 2.0                # interpreter start, import meep, rasterizing ε (before anything was measured)
 HEARTBEAT_S = 5.0            # a progress line at least this often while the solver runs
 NEWEST_WEIGHT = 0.5          # weight of the newest run in the kept throughput (log-average: a busy day pulls it down)
 
@@ -90,30 +90,30 @@ def _file(folder: Path) -> Path:
     return folder / THROUGHPUT_FILE
 
 
-def measured(folder: Path) -> float | None:
-    """The kept throughput (cell-updates/s), None when this machine has not measured one."""
+def measured(folder: Path) -> tuple[float, float] | None:
+    """The kept (cell-updates/s, set-up s), None when this machine has not measured them."""
     try:
-        return float(json.loads(_file(folder).read_text(encoding="utf-8"))["cell_updates_per_s"])
+        data = json.loads(_file(folder).read_text(encoding="utf-8"))
+        return float(data["cell_updates_per_s"]), float(data["setup_s"])
     except (OSError, ValueError, KeyError, TypeError):
         return None
 
 
-def throughput(folder: Path) -> float:
-    return measured(folder) or DEFAULT_THROUGHPUT
+def record(folder: Path, cell_updates: float, run_s: float, wall_s: float) -> None:
+    """Fold one finished run into the kept figures: its time-stepping (``run_s``, as the runner timed it)
+    gives the throughput, the rest of its wall time the set-up (start, import, rasterizing)."""
+    new = (cell_updates / max(run_s, 1e-3), max(wall_s - run_s, 0.0))
+    old = measured(folder) or new
+    keep(folder, *(math.exp(NEWEST_WEIGHT * math.log(max(n, 1e-3)) + (1 - NEWEST_WEIGHT) * math.log(max(o, 1e-3)))
+                   for n, o in zip(new, old)))
 
 
-def record(folder: Path, cell_updates: float, wall_s: float) -> None:
-    """Fold one finished run (its cell updates and wall time) into the kept throughput."""
-    new = cell_updates / max(wall_s - SETUP_S, 0.25 * wall_s, 1e-3)
-    old = measured(folder)
-    keep(folder, new if old is None else math.exp(NEWEST_WEIGHT * math.log(new) + (1 - NEWEST_WEIGHT) * math.log(old)))
-
-
-def keep(folder: Path, cell_updates_per_s: float) -> None:
-    """Store the throughput beside the cache (atomic write)."""
+def keep(folder: Path, cell_updates_per_s: float, setup_s: float = SETUP_S) -> None:
+    """Store the figures beside the cache (atomic write)."""
     folder.mkdir(parents=True, exist_ok=True)
     part = folder / f".{THROUGHPUT_FILE}.{os.getpid()}.part"
-    part.write_text(json.dumps({"cell_updates_per_s": cell_updates_per_s}) + "\n", encoding="utf-8")
+    part.write_text(json.dumps({"cell_updates_per_s": cell_updates_per_s, "setup_s": setup_s}) + "\n",
+                    encoding="utf-8")
     os.replace(part, _file(folder))
 
 
@@ -121,5 +121,5 @@ def estimate_s(cell_updates: list[float], folder: Path, jobs: int) -> float:
     """Wall time of runs of these sizes, ``jobs`` at a time, at the kept throughput."""
     if not cell_updates:
         return 0.0
-    rate = throughput(folder)
-    return sum(SETUP_S + c / rate for c in cell_updates) / max(1, min(jobs, len(cell_updates)))
+    rate, setup = measured(folder) or (DEFAULT_THROUGHPUT, SETUP_S)
+    return sum(setup + c / rate for c in cell_updates) / max(1, min(jobs, len(cell_updates)))

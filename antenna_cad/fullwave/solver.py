@@ -35,8 +35,8 @@ from antenna_cad.fullwave.deck import make_deck
 RUNNER = Path(runner.__file__)
 MISSING = "Meep not found, install python3-meep"
 POLL_S = 0.2                # how often running solver processes are looked at
-PROBE = make_deck([], frequency_ghz=10.0, resolution=16.0, feed_z_mm=-3000.0, feed_pattern="dipole", feed_q=1.0,
-                  radius_mm=240.0, plane_offset_lambda=2.0, field_map=False)     # ≈ 6·10⁷ cell updates, a few s
+PROBE = make_deck([], frequency_ghz=10.0, resolution=10.0, feed_z_mm=-3000.0, feed_pattern="dipole", feed_q=1.0,
+                  radius_mm=90.0, plane_offset_lambda=2.0, field_map=False)      # ≈ 10⁷ cell updates: ~1 s of solver
 
 
 class FullWaveError(RuntimeError):
@@ -92,7 +92,7 @@ def estimate_s(decks: list[dict], jobs: int = 1) -> float:
 def calibrate(python: str, within: budget.Budget) -> None:
     """Measure the throughput with a short probe run when none is known (its time counts in ``within``)."""
     if budget.measured(cache_dir()) is None:
-        run_decks([PROBE], python, 1, within, "calibrating throughput", cache=False)
+        run_decks([PROBE], python, 1, within, "probe run", cache=False)
 
 
 def _clean_env() -> dict:
@@ -157,9 +157,9 @@ def _finish(proc: subprocess.Popen, key: str, tmp: Path, wall_s: float, deck: di
     if proc.returncode != 0:
         lines = [s for s in (tmp / f"{key}.err").read_text(errors="replace").splitlines() if s.strip()]
         raise FullWaveError(f"Meep runner failed (exit {proc.returncode}): {lines[-1] if lines else ''}")
-    budget.record(cache_dir(), runner.cell_updates(deck), wall_s)
     with np.load(tmp / f"{key}.npz") as data:
         out = {name: data[name] for name in data.files}
+    budget.record(cache_dir(), runner.cell_updates(deck), float(out["seconds"]), wall_s)
     if cache:
         part = cache_dir() / f".{key}.{os.getpid()}.part"
         shutil.copyfile(tmp / f"{key}.npz", part)

@@ -90,9 +90,9 @@ def budget_decision(settings, decks: list[dict], jobs: int) -> Decision:
         solver.calibrate(python, within)
     estimate, left = solver.estimate_s(decks, jobs), within.left()
     if settings.full_wave == "auto" and estimate > left:
-        return Decision(None, f"skipped: estimated {estimate:.0f} s > budget_s {settings.budget_s:g} s"
-                        + (f" ({left:.0f} s left)" if left < settings.budget_s else "")
-                        + " (raise it, or lower resolution_px_per_lambda)", estimate, within, "warn")
+        spent = f"the {left:.0f} s left of " if left < settings.budget_s else ""
+        return Decision(None, f"skipped: estimated {estimate:.0f} s > {spent}budget_s {settings.budget_s:g} s (raise "
+                        "it, or lower resolution_px_per_lambda)", estimate, within, "warn")
     return Decision(python, f"ran (estimated {estimate:.0f} s, at most budget_s {settings.budget_s:g} s)",
                     estimate, within)
 

@@ -58,6 +58,13 @@ def pytest_configure(config):
     os.environ["ANTENNA_CAD_MEEP_PYTHON"] = sys.executable          # an interpreter without meep
 
 
+def pytest_collection_modifyitems(config, items):
+    """Every test that runs Meep (it asks for the ``meep`` fixture) carries the ``fullwave`` marker."""
+    for item in items:
+        if "meep" in getattr(item, "fixturenames", ()):
+            item.add_marker(pytest.mark.fullwave)
+
+
 @pytest.fixture
 def meep(monkeypatch):
     """The interpreter with Meep for this test; without one, CI (CI=true) fails and elsewhere the

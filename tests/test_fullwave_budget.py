@@ -176,7 +176,7 @@ def test_a_rebuild_that_ran_nothing_spends_nothing(fake):
     assert first.cached == 0 and first.figures()["fullwave_cached_solver_seconds"] == 0.0
     assert again.cached == 1 and again.figures()["fullwave_cached_solver_seconds"] == 0.5
     assert again.figures()["fullwave_seconds"] < again.figures()["fullwave_cached_solver_seconds"]
-    assert "1 of 1 runs (1 from the cache, solver 0 s then; 0 s in this build)" == again.text()
+    assert "1 of 1 runs (1 from the cache, their solver 0 s; 0 s in this build)" == again.text()
 
 
 def test_a_cut_stage_says_what_did_not_finish_and_warns(fake, monkeypatch):

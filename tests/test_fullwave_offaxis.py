@@ -153,4 +153,4 @@ def test_scan_edge_stage_of_a_small_lens(meep):
     assert any(t.name == "fullwave-scan-edge" for t in v.tables)
     assert any(p.name == "fullwave-scan-edge-phase" for p in v.plots)
     again = next(c for c in _verify(data).checks if c.name == "full_wave_scan_edge")
-    assert "12 runs (12 from the cache" in again.message
+    assert "12 of 12 runs (12 from the cache" in again.message

@@ -132,6 +132,8 @@ def run_decks(decks: list[dict], python: str, jobs: int = 1, within: budget.Budg
             finally:
                 for proc, _ in running.values():
                     _end(proc)
+        within.heartbeat(f"{what}s: {len(done)} of {total} finished" + ("" if len(done) == total else
+                                                                          ", the rest cut at the budget"), force=True)
     results = []
     for k in keys:
         if k in done:

@@ -115,8 +115,8 @@ class Ran:
 
     def text(self) -> str:
         done = self.runs - len(set(self.cut))
-        text = (f"{done} of {self.runs} runs ({self.cached} from the cache, solver {self.cached_seconds:.0f} s then; "
-                f"{self.seconds:.0f} s in this build)")
+        saved = f"{self.cached} from the cache, their solver {self.cached_seconds:.0f} s; " if self.cached else ""
+        text = f"{done} of {self.runs} runs ({saved}{self.seconds:.0f} s in this build)"
         if self.cut:
             text += f"; cut at budget_s {self.budget_s:g} s: {', '.join(self.cut)} did not finish"
         return text

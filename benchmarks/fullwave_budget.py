@@ -121,6 +121,12 @@ def write_section(results: dict) -> None:
     path.write_text(text.rstrip("\n") + "\n\n" + section(results), encoding="utf-8")
 
 
+def keep_section() -> None:
+    """Put the last measured full-wave section back into a freshly written results.md."""
+    if RESULTS.exists():
+        write_section(json.loads(RESULTS.read_text(encoding="utf-8")))
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--recipe", nargs="*", default=None)

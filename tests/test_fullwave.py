@@ -187,6 +187,22 @@ def test_without_meep_verdicts_follow_the_fast_model_and_say_why():
     assert "runner.py stepped.json stepped.npz" in v.files["fullwave/rerun.sh"]
 
 
+def test_the_budget_stops_the_runs_and_the_verdicts_keep_the_fast_model(meep):
+    """``on`` with budget_s 3 s: Meep starts on the default lens (tens of seconds of runs) and is stopped;
+    the check warns naming what was cut, the verdicts follow the fast model, no full-wave figures."""
+    v = _verify(_recipe(full_wave="on", budget_s=3))
+    checks = {c.name: c for c in v.checks}
+    note, edge = checks["full_wave"], checks["full_wave_scan_edge"]
+    assert note.status == "warn" and "0 of 2 runs" in note.message, note.message
+    assert "cut at budget_s 3 s: ideal, stepped, fabricated did not finish" in note.message
+    assert "from the fast sub-wavelength model" in note.message and "cut by the budget" in note.message
+    assert "fast sub-wavelength model" in checks["unsanded_step_phase_error"].message
+    assert edge.status == "warn" and "no scan-edge figures" in edge.message
+    assert v.figures["fullwave_runs_cut"] == 2.0 and not any(k.endswith("_on_axis_p2p_deg") and k.startswith("fullwave")
+                                                             for k in v.figures)
+    assert not list(solver.cache_dir().glob("*.npz"))
+
+
 def test_auto_over_budget_says_so_and_on_without_meep_is_an_error(monkeypatch, tmp_path):
     from typer.testing import CliRunner
     import yaml

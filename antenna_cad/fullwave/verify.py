@@ -106,15 +106,16 @@ class Ran:
     cached_seconds: float
     runs: int
     cached: int
-    cut: tuple[str, ...]
+    cut: tuple[str, ...]                  # the names whose run did not finish
+    cut_runs: int                         # the runs (identical decks run once)
     budget_s: float
 
     def figures(self, prefix: str = "fullwave") -> dict[str, float]:
         return {f"{prefix}_seconds": self.seconds, f"{prefix}_cached_solver_seconds": self.cached_seconds,
-                f"{prefix}_runs_cut": float(len(self.cut))}
+                f"{prefix}_runs_cut": float(self.cut_runs)}
 
     def text(self) -> str:
-        done = self.runs - len(set(self.cut))
+        done = self.runs - self.cut_runs
         saved = f"{self.cached} from the cache, their solver {self.cached_seconds:.0f} s; " if self.cached else ""
         text = f"{done} of {self.runs} runs ({saved}{self.seconds:.0f} s in this build)"
         if self.cut:
@@ -132,10 +133,11 @@ def run_named(names: list[str], decks: list[dict], decision: Decision, jobs: int
     out = solver.run_decks(decks, decision.python, jobs, decision.budget, what)
     spent = time.monotonic() - t0
     unique = {o["key"]: o for o in out if o is not None}
-    keys = {solver.deck_key(d) for d in decks}
+    keys = [solver.deck_key(d) for d in decks]
     cached = [o for o in unique.values() if o["cached"]]
-    return Ran(dict(zip(names, out)), spent, float(sum(float(o["seconds"]) for o in cached)), len(keys), len(cached),
-               tuple(n for n, o in zip(names, out) if o is None), decision.budget.seconds)
+    cut = [(n, k) for n, k, o in zip(names, keys, out) if o is None]
+    return Ran(dict(zip(names, out)), spent, float(sum(float(o["seconds"]) for o in cached)), len(set(keys)),
+               len(cached), tuple(n for n, _ in cut), len({k for _, k in cut}), decision.budget.seconds)
 
 
 def full_wave_study(lens: RevolvedLens, settings, go: dict[str, tuple[np.ndarray, np.ndarray]]) -> FullWave:

@@ -71,15 +71,14 @@ def _build(recipe: Path, logs: Path, meep: bool, cache: Path, budget_s: float | 
 
 
 def _cut(row: dict) -> str:
-    """What the budget cut or why full-wave did not run, from the stage checks."""
+    """What the budget cut, or why full-wave did not run, from the stage checks."""
     notes = []
     for c in row.get("checks", []):
         text = c["message"]
-        if "cut at budget_s" in text:
-            notes.append(c["name"] + ": " + text[text.index("cut at budget_s"):].split(";")[0])
-        elif "skipped:" in text or "not run" in text:
-            notes.append(c["name"] + ": " + text[text.index("full-wave stage") + 16:].split(";")[0]
-                         if "full-wave stage" in text else c["name"] + ": skipped")
+        for key in ("cut at budget_s", "skipped: ", "not run: "):
+            if key in text:
+                notes.append(f"{c['name']}: " + text[text.index(key):].split(";")[0].split(" (raise")[0])
+                break
     return "; ".join(notes) or "nothing"
 
 

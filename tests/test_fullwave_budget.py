@@ -186,3 +186,18 @@ def test_a_cut_stage_says_what_did_not_finish_and_warns(fake, monkeypatch):
     assert ran.status == "warn" and ran.cut == ("ideal", "stepped")
     assert ran.text().endswith("cut at budget_s 0.5 s: ideal, stepped did not finish")
     assert ran.figures()["fullwave_runs_cut"] == 2.0
+
+
+def test_one_build_shares_one_budget_and_its_heartbeats():
+    """Inside a session (a build) every stage gets the same budget, started once, reporting to the
+    build's callback; outside one each stage has its own."""
+    from antenna_cad.spec.common import VerificationSpec
+    settings = VerificationSpec(budget_s=30)
+    heard = []
+    with budget.session(lambda used, detail: heard.append(detail)):
+        first, second = budget.budget_for(settings), budget.budget_for(settings)
+        first.heartbeat("on-axis run 1 of 2", force=True)
+    assert first is second and first.seconds == 30.0
+    assert heard == ["full-wave: on-axis run 1 of 2, 0 s of 30 s budget"]
+    alone = budget.budget_for(settings)
+    assert alone is not first and alone.beat is None

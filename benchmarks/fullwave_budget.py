@@ -67,7 +67,8 @@ def _build(recipe: Path, logs: Path, meep: bool, cache: Path, budget_s: float | 
         elapsed = time.perf_counter() - start
     if done.returncode != 0:
         return {"error": f"exit {done.returncode} (see {log})", "wall_s": elapsed, "log": str(log)}
-    return json.loads(done.stdout) | {"process_s": elapsed, "log": str(log)}
+    row = json.loads(done.stdout) | {"process_s": elapsed, "log": str(log)}
+    return row | {"progress": _progress(row)}
 
 
 def _cut(row: dict) -> str:
@@ -109,7 +110,18 @@ def section(results: dict) -> str:
         over = on["process_s"] - off["process_s"] - on["budget_s"]
         lines.append(f"| {name} | {off['process_s']:.1f} | {on['process_s']:.1f} | {solver:.1f} | {on['budget_s']:g} "
                      f"| {over:+.1f} | {on['status']} | {_cut(on)} |")
+    first = next(iter(results["recipes"].items()), None)
+    if first and _progress(first[1]["on"]):
+        lines += ["", f"Progress lines of `{first[0]}` with full-wave on (its stderr, redirected to a file):", "",
+                  "```", *_progress(first[1]["on"]), "```"]
     return "\n".join(lines + ["", MARK_END]) + "\n"
+
+
+def _progress(row: dict) -> list[str]:
+    """The build's stderr lines (kept in the row, or read from its log while it exists)."""
+    if "progress" not in row and Path(row.get("log", "/nonexistent")).is_file():
+        row["progress"] = Path(row["log"]).read_text(encoding="utf-8").splitlines()
+    return row.get("progress", [])
 
 
 def write_section(results: dict) -> None:
@@ -123,7 +135,9 @@ def write_section(results: dict) -> None:
 def keep_section() -> None:
     """Put the last measured full-wave section back into a freshly written results.md."""
     if RESULTS.exists():
-        write_section(json.loads(RESULTS.read_text(encoding="utf-8")))
+        results = json.loads(RESULTS.read_text(encoding="utf-8"))
+        write_section(results)
+        RESULTS.write_text(json.dumps(results, indent=1) + "\n", encoding="utf-8")   # with the progress lines read
 
 
 def main() -> int:

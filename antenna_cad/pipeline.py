@@ -30,6 +30,7 @@ from contextlib import contextmanager, suppress
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
+from antenna_cad.fullwave.budget import session as fullwave_session
 from antenna_cad.limits import counts, limit_checks, template_pages
 from antenna_cad.progress import Progress, reporting
 from antenna_cad.registry import adapter
@@ -186,7 +187,9 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
         if spec.outputs.step:     # the STEP needs only the model: written beside verification, STL, report
             step_file = tmp / f"{spec.name}.step"
             jobs["step"] = Job(write_step, (model, spec.name, step_file), [step_file])
-        with solving(_design_field(spec), "as-built verification"), reporting(inside("verify")):
+        verifying = STAGES.index("verify")          # full-wave heartbeats: fraction of its budget used
+        with solving(_design_field(spec), "as-built verification"), reporting(inside("verify")), fullwave_session(
+                lambda used, detail: report("verify", (verifying + used) / len(STAGES), detail)):
             verification = kind.verify(spec, p.design, p.layup, p.fab)
         checks += list(verification.checks)
         stage("verify")

@@ -287,7 +287,15 @@ def _machine() -> dict:
     return {"cpu": cpu, "cores": os.cpu_count(), "memory_gb": round(mem_kb / 2**20, 1),
             "python": platform.python_version(), "platform": platform.platform(),
             "date": dt.datetime.now(dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
-            "commit": commit + ("-dirty" if dirty else ""), "load_average_start": os.getloadavg()[0]}
+            "commit": commit + ("-dirty" if dirty else ""), "load_average_start": os.getloadavg()[0],
+            "fullwave": _fullwave_state()}
+
+
+def _fullwave_state() -> str:
+    """Whether the builds' full-wave stage could run (Meep found by the interpreter the builds use)."""
+    from antenna_cad.fullwave.solver import meep_python
+    return "on (Meep found; each recipe's verification.full_wave and budget_s decide)" if meep_python() else \
+        "off (Meep hidden or not installed: the fast model only)"
 
 
 def _budget_rows(results: dict) -> list[dict]:
@@ -339,6 +347,8 @@ def _markdown(results: dict) -> str:
     lines = ["# Benchmark results", "",
              f"Machine: {m['cpu']}, {m['cores']} cores, {m['memory_gb']} GB, Python {m['python']}; "
              f"{m['date']}; commit {m['commit']}; load average at start {m['load_average_start']:.2f}.",
+             f"Full-wave stage: {m.get('fullwave', 'not recorded')}; with it on and off side by side: the last section "
+             "(benchmarks/fullwave_budget.py).",
              f"Command: `PYTHONPATH=. python benchmarks/run.py {' '.join(results['argv'])}`. "
              "Seconds after imports, median of the runs in one process; import and peak RSS per fresh interpreter.",
              "`step`, `templates`: the waits for the STEP file and the templates, written by child processes "
@@ -479,6 +489,8 @@ def main() -> int:
                  for b in results["budgets"] if not b["ok"]]
     (ROOT / "benchmarks" / "results.json").write_text(json.dumps(results, indent=1) + "\n", encoding="utf-8")
     (ROOT / "benchmarks" / "results.md").write_text(_markdown(results), encoding="utf-8")
+    import fullwave_budget                  # the full-wave on/off table, measured by its own script: kept
+    fullwave_budget.keep_section()
     print(_markdown(results))
     for line in failures:
         print(line, file=sys.stderr)

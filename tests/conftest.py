@@ -15,7 +15,7 @@ import pytest
 from selenium import webdriver
 from selenium.webdriver.chrome.service import Service
 
-from antenna_cad.fullwave import solver
+from antenna_cad.fullwave import budget, solver
 
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                   "--disable-background-networking", "--disable-component-update", "--disable-sync",
@@ -58,6 +58,13 @@ def pytest_configure(config):
     os.environ["ANTENNA_CAD_MEEP_PYTHON"] = sys.executable          # an interpreter without meep
 
 
+def pytest_collection_modifyitems(config, items):
+    """Every test that runs Meep (it asks for the ``meep`` fixture) carries the ``fullwave`` marker."""
+    for item in items:
+        if "meep" in getattr(item, "fixturenames", ()):
+            item.add_marker(pytest.mark.fullwave)
+
+
 @pytest.fixture
 def meep(monkeypatch):
     """The interpreter with Meep for this test; without one, CI (CI=true) fails and elsewhere the
@@ -72,3 +79,12 @@ def meep(monkeypatch):
             pytest.fail(f"{solver.MISSING} (CI must run the full-wave tests)")
         pytest.skip(solver.MISSING)
     return python
+
+
+@pytest.fixture
+def fullwave_cache(tmp_path, monkeypatch):
+    """A fresh full-wave cache for this test, its throughput known (the default: no probe run first)."""
+    folder = tmp_path / "cache"
+    monkeypatch.setenv("ANTENNA_CAD_FULLWAVE_CACHE", str(folder))
+    budget.keep(folder, budget.DEFAULT_THROUGHPUT)
+    return folder

@@ -215,7 +215,6 @@ def test_auto_build_writes_verification_into_the_manifest(tmp_path):
     for key in ("pattern_fabricated_on_axis_directivity_dbi", "pattern_fabricated_edge_hpbw_deg",
                 "test_zone_diameter_mm", "aut_sum_integral_error", "aut_difference_integral_error"):
         assert np.isfinite(v["figures"][key]), key
-    assert result.seconds["verify"] < 8.0       # GO traces ≈ 1.5 s + patterns, test zone, AUT and feed limits
 
 
 # ------------------------------------------------------------------ tolerances

@@ -61,9 +61,10 @@ def test_console_script_builds_machined_lens(tmp_path):
     done = subprocess.run([exe, str(PTFE), "-o", str(tmp_path)], capture_output=True, text=True, timeout=600,
                           env=fresh)
     assert done.returncode == 0, done.stderr
-    assert "overall: pass" in done.stdout
+    assert "overall: warn" in done.stdout          # only because the full-wave stage did not run (Meep hidden)
     out = tmp_path / "ptfe-lens-120mm"
     manifest = json.loads((out / "manifest.json").read_text())
+    assert {c["name"] for c in manifest["checks"] if c["status"] != "pass"} == {"full_wave", "full_wave_scan_edge"}
     assert [p["label"] for p in manifest["parts"]] == ["lens"]
     f, n, d = 300.0, 2.08 ** 0.5, manifest["figures"]["thickness_mm"]
     assert manifest["parts"][0]["volume_mm3"] == pytest.approx(lens_volume_mm3(f, n, d), rel=1e-6)

@@ -26,8 +26,8 @@ LAM = 30.0                          # 10 GHz
 
 
 @pytest.fixture(autouse=True)
-def cache(tmp_path, monkeypatch):
-    monkeypatch.setenv("ANTENNA_CAD_FULLWAVE_CACHE", str(tmp_path / "cache"))
+def cache(fullwave_cache):
+    return fullwave_cache
 
 
 def _free_deck(parts, resolution, feed_z_lambda=-100.0, radius_lambda=6.0, pattern="dipole"):
@@ -187,6 +187,22 @@ def test_without_meep_verdicts_follow_the_fast_model_and_say_why():
     assert "runner.py stepped.json stepped.npz" in v.files["fullwave/rerun.sh"]
 
 
+def test_the_budget_stops_the_runs_and_the_verdicts_keep_the_fast_model(meep):
+    """``on`` with budget_s 3 s: Meep starts on the default lens (tens of seconds of runs) and is stopped;
+    the check warns naming what was cut, the verdicts follow the fast model, no full-wave figures."""
+    v = _verify(_recipe(full_wave="on", budget_s=3))
+    checks = {c.name: c for c in v.checks}
+    note, edge = checks["full_wave"], checks["full_wave_scan_edge"]
+    assert note.status == "warn" and "0 of 2 runs" in note.message, note.message
+    assert "cut at budget_s 3 s: ideal, stepped, fabricated did not finish" in note.message
+    assert "from the fast sub-wavelength model" in note.message and "cut by the budget" in note.message
+    assert "fast sub-wavelength model" in checks["unsanded_step_phase_error"].message
+    assert edge.status == "warn" and "no scan-edge figures" in edge.message
+    assert v.figures["fullwave_runs_cut"] == 2.0 and not any(k.endswith("_on_axis_p2p_deg") and k.startswith("fullwave")
+                                                             for k in v.figures)
+    assert not list(solver.cache_dir().glob("*.npz"))
+
+
 def test_auto_over_budget_says_so_and_on_without_meep_is_an_error(monkeypatch, tmp_path):
     from typer.testing import CliRunner
     import yaml
@@ -238,8 +254,11 @@ def test_default_recipe_full_wave_figures_deck_and_plots(meep, tmp_path):
     assert all(f'id="plot-fullwave-{n}"' in html for n in ("aperture-phase", "aperture-amplitude", "field-map"))
     again = build(parse_spec(data), tmp_path)          # unchanged geometry: every run from the cache
     first, second = (next(c.message for c in r.checks if c.name == "full_wave") for r in (result, again))
-    assert "2 runs (0 from the cache" in first and "2 runs (2 from the cache" in second     # fabricated = as cut
-    assert again.seconds["verify"] < result.seconds["verify"]
+    assert "2 of 2 runs (" in first and "from the cache" not in first           # fabricated = as cut: one run
+    assert "2 of 2 runs (2 from the cache" in second
+    cost = again.verified                              # the rebuild spent nothing; the solver time it saved beside it
+    assert result.verified["fullwave_cached_solver_seconds"] == 0.0 < cost["fullwave_cached_solver_seconds"]
+    assert cost["fullwave_seconds"] < cost["fullwave_cached_solver_seconds"]
 
 
 @pytest.mark.slow

@@ -72,7 +72,7 @@ def test_mie_focal_gain_limits():
     assert abs(ideal - finer) < 0.02 and shells < ideal < aperture_gain_dbi(R, LAM)
 
 
-def test_auto_declines_a_large_sphere_and_says_why(monkeypatch):
+def test_auto_declines_a_large_sphere_and_says_why(monkeypatch, fullwave_cache):
     """D/λ = 100 with Meep 'present' (never started): the estimate exceeds the budget, the note says
     so with D/λ; no full-wave figures; the Mie figures are there; decks are still written."""
     monkeypatch.setattr(solver, "meep_python", lambda: "/nonexistent/python3")
@@ -96,10 +96,9 @@ def test_cylinder_lens_is_not_run_and_says_why(monkeypatch):
     assert "not a body of revolution" in note
 
 
-def test_point_huygens_feed_radiates_forward(meep, tmp_path, monkeypatch):
+def test_point_huygens_feed_radiates_forward(meep, fullwave_cache):
     """The point Huygens element (Er + Hφ) in free space: ≥ 30 dB more field 2.5 λ ahead than behind;
     the point dipole alone radiates both ways alike."""
-    monkeypatch.setenv("ANTENNA_CAD_FULLWAVE_CACHE", str(tmp_path))
     decks = [{"frequency_ghz": 10.0, "resolution_px_per_lambda": 10.0, "m": 1, "parts": [],
               "feed": {"kind": "point", "z_mm": 0.0, "pattern": p}, "plane_z_mm": 3 * LAM, "r_max_mm": 2 * LAM,
               "z_min_mm": -4 * LAM, "z_max_mm": 4 * LAM, "pml_r_lambda": 2.0, "pml_z_lambda": 2.0, "field_map": True}
@@ -113,11 +112,10 @@ def test_point_huygens_feed_radiates_forward(meep, tmp_path, monkeypatch):
 
 
 @pytest.mark.slow
-def test_stage_on_a_small_sphere_against_mie(meep, tmp_path, monkeypatch):
+def test_stage_on_a_small_sphere_against_mie(meep, fullwave_cache):
     """D = 4 λ, 16 px/λ: every variant's figures; Meep's plane-wave focal gain of the design shells
     within 1 dB of the exact multilayer series; the grades (as built) are a different run from the
     design shells; the decks and plots are there; a rebuild comes from the cache."""
-    monkeypatch.setenv("ANTENNA_CAD_FULLWAVE_CACHE", str(tmp_path))
     v = _verify(_sphere(full_wave="on"))
     f = v.figures
     for lens in ("ideal", "stepped", "fabricated"):
@@ -128,12 +126,12 @@ def test_stage_on_a_small_sphere_against_mie(meep, tmp_path, monkeypatch):
     assert f["fullwave_stepped_minus_ideal_rms_deg"] > 0 and f["fullwave_fabricated_minus_ideal_rms_deg"] > 0
     assert f["fullwave_fabricated_minus_ideal_rms_deg"] != f["fullwave_stepped_minus_ideal_rms_deg"]
     assert f["mie_fabricated_focal_gain_dbi"] != f["mie_shells_focal_gain_dbi"]
-    assert "5 runs (0 from the cache" in _note(v).message
+    assert "5 of 5 runs (" in _note(v).message
     assert {"fullwave-aperture-phase", "fullwave-aperture-amplitude", "fullwave-focal-spot",
             "fullwave-field-map"} <= {p.name for p in v.plots}
     ideal = json.loads(v.files["fullwave/ideal.json"])
     assert ideal["parts"] == [] and ideal["graded"][0]["eps_r"][0] == 2.0 and ideal["graded"][0]["eps_r"][-1] == 1.0
-    assert "5 runs (5 from the cache" in _note(_verify(_sphere(full_wave="on"))).message
+    assert "5 of 5 runs (5 from the cache" in _note(_verify(_sphere(full_wave="on"))).message
 
 
 def test_on_without_meep_is_an_error_naming_the_field(monkeypatch):
@@ -144,14 +142,13 @@ def test_on_without_meep_is_an_error_naming_the_field(monkeypatch):
 
 
 @pytest.mark.slow
-def test_classic_5_recipe_runs_its_stage_under_auto(meep, tmp_path, monkeypatch):
+def test_classic_5_recipe_runs_its_stage_under_auto(meep, fullwave_cache, tmp_path):
     """luneburg-classic-5 (D = 10 λ) with the default verification block: auto runs (its estimate fits
     budget_s); the steps' error full-wave is well below GO's (the shells' zones average); Meep's focal
     gain within 1 dB of Mie; manifest figures, the fullwave/ decks and the report's four plots."""
     from pathlib import Path
     from antenna_cad.pipeline import build
     from antenna_cad.spec import load_spec
-    monkeypatch.setenv("ANTENNA_CAD_FULLWAVE_CACHE", str(tmp_path / "cache"))
     spec = load_spec(Path(__file__).resolve().parents[1] / "recipes" / "luneburg-classic-5.yaml")
     spec = spec.model_copy(update={"outputs": spec.outputs.model_copy(update={"step": False, "stl": False,
                                                                               "templates": False})})

@@ -22,8 +22,8 @@ COURANT = 0.5               # Meep's default
 
 
 @pytest.fixture(autouse=True)
-def cache(tmp_path, monkeypatch):
-    monkeypatch.setenv("ANTENNA_CAD_FULLWAVE_CACHE", str(tmp_path / "cache"))
+def cache(fullwave_cache):
+    return fullwave_cache
 
 
 def _yee_k(n: float, resolution: float) -> float:

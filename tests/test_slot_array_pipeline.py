@@ -124,13 +124,14 @@ def test_bad_beamformer_params_name_the_field(tmp_path):
 
 
 @pytest.mark.slow
-def test_ka_build_and_step_under_20_s(tmp_path):
+def test_ka_build_writes_its_step(tmp_path):
+    """The Ka recipe end to end with its STEP (its time is benchmarks/run.py's, not a test's)."""
     from antenna_cad.pipeline import build
     spec = load_spec(KA_RECIPE)
     spec = spec.model_copy(update={"outputs": spec.outputs.model_copy(update={"stl": False, "templates": False})})
     result = build(spec, tmp_path)
-    s = result.seconds
-    assert s["synthesize"] + s["model"] + s["fabricate"] + s["step"] < 20.0
+    step = result.out_dir / f"{spec.name}.step"
+    assert f"{spec.name}.step" in result.files and step.read_text(errors="replace").startswith("ISO-10303-21;")
 
 
 # --- horns, plates, guide ends (model and layout) ---------------------------------------------

@@ -35,6 +35,7 @@ metadata being wrong in cylindrical coordinates) and |E| over the (r, z) cell, d
 from __future__ import annotations
 
 import json
+import os
 import sys
 import time
 
@@ -238,7 +239,21 @@ def run(deck: dict) -> dict:
     return out
 
 
+def die_with_parent() -> None:
+    """On Linux, have the kernel end this run when the process that started it dies, even by SIGKILL
+    (PR_SET_PDEATHSIG); a run whose parent (``ANTENNA_CAD_PARENT_PID``) is already gone stops at once."""
+    parent = int(os.environ.get("ANTENNA_CAD_PARENT_PID", os.getppid()))
+    try:
+        import ctypes
+        ctypes.CDLL(None, use_errno=True).prctl(1, 9)           # PR_SET_PDEATHSIG, SIGKILL
+    except (OSError, AttributeError):
+        return
+    if os.getppid() != parent:
+        sys.exit(1)
+
+
 def main(argv: list[str]) -> int:
+    die_with_parent()
     deck_path, out_path = argv
     with open(deck_path, encoding="utf-8") as fh:
         deck = json.load(fh)

@@ -4,7 +4,8 @@ per order, in parallel processes, cached per deck).
 
 :func:`plan_scan_edge` makes the decks and decides before anything runs: ``on`` runs it; ``auto`` runs it
 only when the estimate of every run still to do (the on-axis ones and all orders of the scan edge) fits
-``budget_s``, otherwise its check says why (estimated seconds vs budget). :func:`scan_edge_study` rebuilds
+``budget_s``, otherwise its check says why (estimated seconds vs budget). The runs share the build's
+budget with the on-axis ones and stop at it; a cut scan edge reports no figures and says so. :func:`scan_edge_study` rebuilds
 the co-polar aperture field on the plane behind the lens, removes the beam's tilt and reports
 ``fullwave_<lens>_scan_edge_{p2p_deg,rms_deg,beam_deg,phase_efficiency_db}`` beside GO's for the
 same feed, a table and the scan-plane and orthogonal cuts of the phase over GO's.
@@ -15,7 +16,7 @@ from __future__ import annotations
 import json
 import os
 import shlex
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -23,7 +24,7 @@ from antenna_cad.fullwave import solver
 from antenna_cad.fullwave.lens import RevolvedLens
 from antenna_cad.fullwave.offaxis import OrderChoice, aperture_copolar, order_decks, order_fields, tilt_removed, \
     tilted_stats
-from antenna_cad.fullwave.verify import budget_decision, on_axis_decks
+from antenna_cad.fullwave.verify import Decision, budget_decision, on_axis_decks, run_named
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.verification import Plot, Series, Table, Verification
 
@@ -38,11 +39,12 @@ class ScanEdgePlan:
     variants: tuple[str, ...]                 # ideal and the lens as built
     decks: dict[str, list[dict]]              # variant → one deck per order run
     choices: dict[str, OrderChoice]
-    python: str | None                        # the interpreter when it runs
-    why: str
-    estimate_s: float
-    budget_s: float
+    decision: Decision                        # its interpreter when it runs, why, the budget
     plane_offset_lambda: float
+
+    @property
+    def python(self) -> str | None:
+        return self.decision.python
 
 
 def plan_scan_edge(lens: RevolvedLens, settings, feed_y_mm: float) -> ScanEdgePlan:
@@ -55,20 +57,20 @@ def plan_scan_edge(lens: RevolvedLens, settings, feed_y_mm: float) -> ScanEdgePl
             decks[v], choices[v] = order_decks(lens.deck(v, settings, field_map=False), feed_y_mm)
     every = on_axis_decks(lens, settings) + [d for v in variants for d in decks.get(v, [])]
     jobs = os.cpu_count() or 1
-    python, why, estimate = budget_decision(settings, every, jobs)
-    if python is not None:
-        why = why.replace("ran (", "ran (on-axis and scan-edge runs ")
-    return ScanEdgePlan(lens, feed_y_mm, variants, decks, choices, python, why, estimate, settings.budget_s,
-                        settings.plane_offset_lambda)
+    decision = budget_decision(settings, every, jobs)
+    if decision.python is not None:
+        decision = replace(decision, why=decision.why.replace("ran (", "ran (on-axis and scan-edge runs "))
+    return ScanEdgePlan(lens, feed_y_mm, variants, decks, choices, decision, settings.plane_offset_lambda)
 
 
-def _check(plan: ScanEdgePlan, detail: str = "") -> Check:
-    text = f"full-wave scan-edge feed (y {plan.feed_y_mm:.1f} mm) {plan.why}"
+def _check(plan: ScanEdgePlan, detail: str = "", status: str | None = None) -> Check:
+    d = plan.decision
+    text = f"full-wave scan-edge feed (y {plan.feed_y_mm:.1f} mm) {d.why}"
     if plan.choices:
         orders = max(len(c.orders) for c in plan.choices.values())
         text += (f": {orders} azimuthal orders, {sum(len(d) for d in plan.decks.values())} Meep runs over "
                  f"{len(plan.variants)} lenses{detail}")
-    return Check("full_wave_scan_edge", "pass", plan.estimate_s, plan.budget_s, "s", text)
+    return Check("full_wave_scan_edge", status or d.status, d.estimate_s, d.budget.seconds, "s", text)
 
 
 def scan_edge_study(plan: ScanEdgePlan, go: dict[str, tuple[np.ndarray, np.ndarray, float, float]]) -> Verification:
@@ -78,7 +80,13 @@ def scan_edge_study(plan: ScanEdgePlan, go: dict[str, tuple[np.ndarray, np.ndarr
         return Verification(checks=(_check(plan),))
     lens = plan.lens
     flat = [d for v in plan.variants for d in plan.decks[v]]
-    results = solver.run_decks(flat, plan.python, max(1, min(len(flat), os.cpu_count() or 1)))
+    names = [f"{v} m={d['m']}" for v in plan.variants for d in plan.decks[v]]
+    ran = run_named(names, flat, plan.decision, max(1, min(len(flat), os.cpu_count() or 1)), "scan-edge run")
+    if ran.cut:                                   # the aperture field needs every order
+        return Verification(ran.figures("fullwave_scan_edge"),
+                            (_check(plan, f"; {ran.text()}; no scan-edge figures (they need every order)",
+                                    ran.status),))
+    results = list(ran.results.values())
     dz = plan.decks["ideal"][0]["plane_z_mm"] - lens.feed_z_mm
     guess = -plan.feed_y_mm / np.hypot(plan.feed_y_mm, dz)
     figures, rows, series, start = {}, [], [], 0
@@ -87,19 +95,16 @@ def scan_edge_study(plan: ScanEdgePlan, go: dict[str, tuple[np.ndarray, np.ndarr
         start += len(chunk)
         f, t, s = _variant_report(v, chunk[0]["r_mm"], order_fields(plan.choices[v], chunk), lens, guess, go.get(v))
         figures, rows, series = figures | f, rows + t, series + s
-    unique = {o["key"]: o for o in results}
-    seconds = float(sum(float(o["seconds"]) for o in unique.values()))
-    cached = sum(bool(o["cached"]) for o in unique.values())
     worst = max(plan.choices.values(), key=lambda c: c.sheet_error)
+    figures |= ran.figures("fullwave_scan_edge")
     figures |= {"fullwave_scan_edge_feed_y_mm": plan.feed_y_mm, "fullwave_scan_edge_orders": float(len(worst.orders)),
-                "fullwave_scan_edge_runs": float(len(unique)), "fullwave_scan_edge_seconds": seconds,
-                "fullwave_scan_edge_sheet_error": worst.sheet_error,
+                "fullwave_scan_edge_runs": float(ran.runs), "fullwave_scan_edge_sheet_error": worst.sheet_error,
                 "fullwave_scan_edge_sheet_power_fraction": worst.power_fraction}
     detail = (f" |m| ≤ {max(worst.orders)} rebuild the sheet's co-polar field to {worst.sheet_error:.1e} "
               f"({100 * worst.power_fraction:.4f} % of its power)"
               + (f", order −m from m by mirror symmetry (residual {worst.symmetry_residual:.0e})"
                  if worst.mirror else "")
-              + f"; {len(unique)} runs ({cached} from the cache; solver {seconds:.0f} s)")
+              + f"; {ran.text()}")
     check = _check(plan, ";" + detail)
     caption = (f"feed displaced {plan.feed_y_mm:.1f} mm along y (E along x: H-plane scan); co-polar phase on the "
                f"plane {plan.plane_offset_lambda:g} λ behind the lens (GO: on the antenna plane), best-fit tilt "

@@ -6,27 +6,37 @@ interpreter: :mod:`antenna_cad.fullwave.runner` is executed as a script by an in
 JSON in and npz out. Results are cached by the SHA-256 of the deck and the runner's source in
 ``ANTENNA_CAD_FULLWAVE_CACHE`` (default: the user's cache folder, ``$XDG_CACHE_HOME`` or
 ``~/.cache``, ``/antenna_cad/fullwave``), so rebuilding an unchanged geometry costs nothing.
+Every run is a process group of its own, ended whole when the budget (:mod:`.budget`) runs out or the
+build stops for any reason; the runner also dies with the build (see :func:`runner.main`).
 """
 
 from __future__ import annotations
 
 import hashlib
 import json
+import math
 import os
 import shutil
+import signal
 import subprocess
 import tempfile
+import threading
+import time
+from collections.abc import Iterator
+from contextlib import contextmanager, suppress
 from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
 
-from antenna_cad.fullwave import runner
+from antenna_cad.fullwave import budget, runner
+from antenna_cad.fullwave.deck import make_deck
 
 RUNNER = Path(runner.__file__)
 MISSING = "Meep not found, install python3-meep"
-THROUGHPUT = 1.0e7          # cell-updates/s on one busy core (measured 1.0–2.9·10⁷, fullwave-notes)
-SETUP_S = 2.0               # interpreter start, import meep, rasterizing ε
+POLL_S = 0.2                # how often running solver processes are looked at
+PROBE = make_deck([], frequency_ghz=10.0, resolution=10.0, feed_z_mm=-3000.0, feed_pattern="dipole", feed_q=1.0,
+                  radius_mm=90.0, plane_offset_lambda=2.0, field_map=False)      # ≈ 10⁷ cell updates: ~1 s of solver
 
 
 class FullWaveError(RuntimeError):
@@ -66,51 +76,118 @@ def deck_key(deck: dict) -> str:
     return hashlib.sha256(text.encode()).hexdigest()[:32]
 
 
+def _pending(decks: list[dict], keys: list[str], cache: bool = True) -> list[int]:
+    """Indices of the decks that must run: not in the cache, first of identical ones."""
+    folder = cache_dir()
+    return [i for i, k in enumerate(keys) if not (cache and (folder / f"{k}.npz").exists()) and k not in keys[:i]]
+
+
 def estimate_s(decks: list[dict], jobs: int = 1) -> float:
-    """Wall-time estimate of running ``decks`` (uncached ones only) ``jobs`` at a time."""
+    """Wall-time estimate of running ``decks`` (uncached ones only) ``jobs`` at a time, at the
+    throughput measured on this machine (:mod:`.budget`)."""
     keys = [deck_key(d) for d in decks]
-    todo = [d for i, (d, k) in enumerate(zip(decks, keys))
-            if not (cache_dir() / f"{k}.npz").exists() and k not in keys[:i]]
-    total = sum(SETUP_S + runner.cell_updates(d) / THROUGHPUT for d in todo)
-    return total / max(1, min(jobs, len(todo))) if todo else 0.0
+    return budget.estimate_s([runner.cell_updates(decks[i]) for i in _pending(decks, keys)], cache_dir(), jobs)
+
+
+def calibrate(python: str, within: budget.Budget) -> None:
+    """Measure the throughput with a short probe run when none is known (its time counts in ``within``)."""
+    if budget.measured(cache_dir()) is None:
+        run_decks([PROBE], python, 1, within, "probe run", cache=False)
 
 
 def _clean_env() -> dict:
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME", "VIRTUAL_ENV")}
-    return env | {"OMP_NUM_THREADS": "1"}
+    return env | {"OMP_NUM_THREADS": "1", "ANTENNA_CAD_PARENT_PID": str(os.getpid())}
 
 
-def run_decks(decks: list[dict], python: str, jobs: int = 1) -> list[dict]:
+def run_decks(decks: list[dict], python: str, jobs: int = 1, within: budget.Budget | None = None,
+              what: str = "run", cache: bool = True) -> list[dict | None]:
     """Run every deck (cached ones are read back, identical ones run once), ``jobs`` processes at a
-    time; each result is a dict of arrays as the runner saved it, plus ``cached`` (bool) and ``key``."""
+    time, each in its own process group, until ``within`` runs out: then (and on any exception,
+    Ctrl-C or SIGTERM) every group still running is killed and its temporary files removed. Each
+    result is a dict of arrays as the runner saved it, plus ``cached`` (bool), ``key`` and ``wall_s``
+    (seconds this call spent on it); None for a run the budget cut."""
+    within = within or budget.Budget(math.inf)
     folder = cache_dir()
     folder.mkdir(parents=True, exist_ok=True)
     keys = [deck_key(d) for d in decks]
-    pending = [i for i, k in enumerate(keys) if not (folder / f"{k}.npz").exists() and k not in keys[:i]]
-    fresh = {keys[i] for i in pending}
-    with tempfile.TemporaryDirectory(prefix="fullwave-") as tmp:
-        running: list[tuple[int, subprocess.Popen]] = []
-        while pending or running:
-            while pending and len(running) < max(1, jobs):
-                i = pending.pop(0)
-                deck_path = Path(tmp) / f"{keys[i]}.json"
-                deck_path.write_text(json.dumps(decks[i], sort_keys=True), encoding="utf-8")
-                out = Path(tmp) / f"{keys[i]}.npz"
-                running.append((i, subprocess.Popen([python, str(RUNNER), str(deck_path), str(out)], cwd=tmp,
-                                                    env=_clean_env(), stdout=subprocess.DEVNULL,
-                                                    stderr=subprocess.PIPE, text=True)))
-            i, proc = running.pop(0)
-            _, err = proc.communicate()
-            if proc.returncode != 0:
-                for _, other in running:
-                    other.kill()
-                lines = [s for s in err.splitlines() if s.strip()]
-                raise FullWaveError(f"Meep runner failed (exit {proc.returncode}): {lines[-1] if lines else ''}")
-            part = folder / f".{keys[i]}.{os.getpid()}.part"
-            shutil.copyfile(Path(tmp) / f"{keys[i]}.npz", part)
-            os.replace(part, folder / f"{keys[i]}.npz")          # atomic: a reader never sees half a file
+    pending = _pending(decks, keys, cache)
+    total, done = len(pending), {}
+    if pending:
+        within.start()
+        with tempfile.TemporaryDirectory(prefix="fullwave-") as tmp, _sigterm_raises():
+            running: dict[int, tuple[subprocess.Popen, float]] = {}
+            try:
+                while (pending or running) and within.left() > 0:
+                    while pending and len(running) < max(1, jobs):
+                        i = pending.pop(0)
+                        running[i] = (_start(decks[i], keys[i], python, Path(tmp)), time.monotonic())
+                        within.heartbeat(f"{what} {total - len(pending)} of {total}", force=True)
+                    for i, (proc, t0) in list(running.items()):
+                        if proc.poll() is not None:
+                            del running[i]
+                            done[keys[i]] = _finish(proc, keys[i], Path(tmp), time.monotonic() - t0, decks[i], cache)
+                    within.heartbeat(f"{what} {total - len(pending)} of {total}")
+                    time.sleep(POLL_S)
+            finally:
+                for proc, _ in running.values():
+                    _end(proc)
+        within.heartbeat(f"{what}s: {len(done)} of {total} finished" + ("" if len(done) == total else
+                                                                          ", the rest cut at the budget"), force=True)
     results = []
     for k in keys:
-        with np.load(folder / f"{k}.npz") as data:
-            results.append({name: data[name] for name in data.files} | {"cached": k not in fresh, "key": k})
+        if k in done:
+            results.append(done[k])
+        elif cache and (folder / f"{k}.npz").exists():
+            with np.load(folder / f"{k}.npz") as data:
+                results.append({name: data[name] for name in data.files} | {"cached": True, "key": k, "wall_s": 0.0})
+        else:
+            results.append(None)
     return results
+
+
+def _start(deck: dict, key: str, python: str, tmp: Path) -> subprocess.Popen:
+    (tmp / f"{key}.json").write_text(json.dumps(deck, sort_keys=True), encoding="utf-8")
+    with open(tmp / f"{key}.err", "wb") as err:                 # a file: a full pipe would stall the run
+        return subprocess.Popen([python, str(RUNNER), f"{key}.json", f"{key}.npz"], cwd=tmp, env=_clean_env(),
+                                stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=err,
+                                start_new_session=True)
+
+
+def _finish(proc: subprocess.Popen, key: str, tmp: Path, wall_s: float, deck: dict, cache: bool) -> dict:
+    """The finished run's result (kept in the cache), its throughput recorded; FullWaveError if it failed."""
+    if proc.returncode != 0:
+        lines = [s for s in (tmp / f"{key}.err").read_text(errors="replace").splitlines() if s.strip()]
+        raise FullWaveError(f"Meep runner failed (exit {proc.returncode}): {lines[-1] if lines else ''}")
+    with np.load(tmp / f"{key}.npz") as data:
+        out = {name: data[name] for name in data.files}
+    budget.record(cache_dir(), runner.cell_updates(deck), float(out["seconds"]), wall_s)
+    if cache:
+        part = cache_dir() / f".{key}.{os.getpid()}.part"
+        shutil.copyfile(tmp / f"{key}.npz", part)
+        os.replace(part, cache_dir() / f"{key}.npz")          # atomic: a reader never sees half a file
+    return out | {"cached": False, "key": key, "wall_s": wall_s}
+
+
+def _end(proc: subprocess.Popen) -> None:
+    """Kill the run's whole process group and reap it."""
+    with suppress(ProcessLookupError, PermissionError):
+        os.killpg(proc.pid, signal.SIGKILL)
+    proc.wait()
+
+
+@contextmanager
+def _sigterm_raises() -> Iterator[None]:
+    """SIGTERM (when nobody else handles it) raises SystemExit(143) while runs are going, so that they
+    are ended and their folders removed as on Ctrl-C."""
+    if threading.current_thread() is not threading.main_thread() or signal.getsignal(signal.SIGTERM) != signal.SIG_DFL:
+        yield
+        return
+
+    def stop(signum, frame):
+        raise SystemExit(128 + signum)
+    signal.signal(signal.SIGTERM, stop)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)

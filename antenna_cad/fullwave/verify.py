@@ -1,9 +1,9 @@
 """The full-wave stage of the as-built check (issue 10) and the phase model the verdicts follow.
 
 :func:`full_wave_study` decides whether Meep runs (``verification.full_wave``: ``on``; ``auto`` when
-Meep is installed and the estimated time fits ``budget_s``; ``off``), runs the ideal lens, the stepped
-stack as cut and the stack as fabricated with the on-axis feed (in parallel processes, cached), and
-returns the manifest figures ``fullwave_<lens>_on_axis_*``, the report plots and the deck folder. Its
+Meep is installed and the estimate at the measured throughput fits ``budget_s``; ``off``), runs the
+ideal lens, the stepped stack as cut and the stack as fabricated with the on-axis feed (in parallel
+processes, cached, stopped at ``budget_s``: what did not finish keeps the fast model), and returns the manifest figures ``fullwave_<lens>_on_axis_*``, the report plots and the deck folder. Its
 :class:`PhaseModel` gives the phase the stack adds to the ideal lens (variant − ideal on the aperture
 plane): from Meep when it ran, else from the fast sub-wavelength model
 (:mod:`antenna_cad.fullwave.fastmodel`); the stock choice, the sanding check and the tolerance budget
@@ -16,12 +16,14 @@ from __future__ import annotations
 import json
 import os
 import shlex
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from antenna_cad.fullwave import solver
 from antenna_cad.fullwave.aperture import aperture_stats, difference_stats, phase_deg, window
+from antenna_cad.fullwave.budget import Budget, budget_for
 from antenna_cad.fullwave.lens import RevolvedLens
 from antenna_cad.synthesis.checks import Check, DesignError
 from antenna_cad.verification import Plot, Series
@@ -61,58 +63,125 @@ def on_axis_decks(lens: RevolvedLens, settings) -> list[dict]:
     return [lens.deck(v, settings) for v in ("ideal", *lens.sections)]
 
 
-def budget_decision(settings, decks: list[dict], jobs: int) -> tuple[str | None, str, float]:
-    """(interpreter, why, estimated s): the interpreter when the full-wave stage runs, else None."""
+@dataclass(frozen=True)
+class Decision:
+    """Whether a stage runs Meep: the interpreter (None: it does not), why, the estimate, the budget
+    it runs within, and the check status a stage that does not run gets (warn unless off in the spec)."""
+    python: str | None
+    why: str
+    estimate_s: float
+    budget: Budget
+    status: str = "pass"
+
+
+def budget_decision(settings, decks: list[dict], jobs: int) -> Decision:
+    """Run when ``on``, or ``auto`` with Meep and the estimate (at the throughput measured on this
+    machine, a probe run first when none is known) within what is left of ``budget_s``; either way
+    the runs stop at the budget (:func:`run_named`)."""
+    within = budget_for(settings)
     if settings.full_wave == "off":
-        return None, "off in the spec (verification.full_wave)", 0.0
+        return Decision(None, "not run: off in the spec (verification.full_wave)", 0.0, within)
     python = solver.meep_python()
     if python is None:
         if settings.full_wave == "on":
             raise DesignError("verification.full_wave", f"on, but {solver.MISSING}")
-        return None, f"skipped: {solver.MISSING}", 0.0
-    estimate = solver.estimate_s(decks, jobs)
-    if settings.full_wave == "auto" and estimate > settings.budget_s:
-        return None, (f"skipped: estimated {estimate:.0f} s > budget_s {settings.budget_s:g} s "
-                      "(raise it, or lower resolution_px_per_lambda)"), estimate
-    return python, f"ran (estimated {estimate:.0f} s)", estimate
+        return Decision(None, f"skipped: {solver.MISSING}", 0.0, within, "warn")
+    if solver.estimate_s(decks, jobs) > 0.0:
+        solver.calibrate(python, within)
+    estimate, left = solver.estimate_s(decks, jobs), within.left()
+    if settings.full_wave == "auto" and estimate > left:
+        spent = f"the {left:.0f} s left of " if left < settings.budget_s else ""
+        return Decision(None, f"skipped: estimated {estimate:.0f} s > {spent}budget_s {settings.budget_s:g} s (raise "
+                        "it, or lower resolution_px_per_lambda)", estimate, within, "warn")
+    return Decision(python, f"ran (estimated {estimate:.0f} s, at most budget_s {settings.budget_s:g} s)",
+                    estimate, within)
+
+
+@dataclass(frozen=True)
+class Ran:
+    """The runs of one stage: results by name (None: cut by the budget), seconds spent in this build,
+    the solver seconds of the results read from the cache."""
+    results: dict[str, dict | None]
+    seconds: float
+    cached_seconds: float
+    runs: int
+    cached: int
+    cut: tuple[str, ...]                  # the names whose run did not finish
+    cut_runs: int                         # the runs (identical decks run once)
+    budget_s: float
+
+    def figures(self, prefix: str = "fullwave") -> dict[str, float]:
+        return {f"{prefix}_seconds": self.seconds, f"{prefix}_cached_solver_seconds": self.cached_seconds,
+                f"{prefix}_runs_cut": float(self.cut_runs)}
+
+    def text(self) -> str:
+        done = self.runs - self.cut_runs
+        saved = f"{self.cached} from the cache, their solver {self.cached_seconds:.0f} s; " if self.cached else ""
+        text = f"{done} of {self.runs} runs ({saved}{self.seconds:.0f} s in this build)"
+        if self.cut:
+            text += f"; cut at budget_s {self.budget_s:g} s: {', '.join(self.cut)} did not finish"
+        return text
+
+    @property
+    def status(self) -> str:
+        return "warn" if self.cut else "pass"
+
+
+def run_named(names: list[str], decks: list[dict], decision: Decision, jobs: int, what: str = "run") -> Ran:
+    """Run the decks (by name) within the decision's budget."""
+    t0 = time.monotonic()
+    out = solver.run_decks(decks, decision.python, jobs, decision.budget, what)
+    spent = time.monotonic() - t0
+    unique = {o["key"]: o for o in out if o is not None}
+    keys = [solver.deck_key(d) for d in decks]
+    cached = [o for o in unique.values() if o["cached"]]
+    cut = [(n, k) for n, k, o in zip(names, keys, out) if o is None]
+    return Ran(dict(zip(names, out)), spent, float(sum(float(o["seconds"]) for o in cached)), len(set(keys)),
+               len(cached), tuple(n for n, _ in cut), len({k for _, k in cut}), decision.budget.seconds)
 
 
 def full_wave_study(lens: RevolvedLens, settings, go: dict[str, tuple[np.ndarray, np.ndarray]]) -> FullWave:
     """The full-wave stage; ``go``: variant → (y, phase deg) of the GO trace at the on-axis feed, drawn
-    under the full-wave curves."""
+    under the full-wave curves. Variants the budget cut keep the fast model."""
     variants = ["ideal", *lens.sections]
     decks = on_axis_decks(lens, settings)
     jobs = max(1, min(len(decks), os.cpu_count() or 1))
-    python, why, estimate = budget_decision(settings, decks, jobs)
+    decision = budget_decision(settings, decks, jobs)
     files = deck_files(variants, decks)
-    if python is None:
-        return FullWave(fast_model(lens, settings), checks=(_note(why, FAST, estimate, settings),), files=files)
-    results = dict(zip(variants, solver.run_decks(decks, python, jobs)))
-    unique = {o["key"]: o for o in results.values()}          # the stack as fabricated may equal the stack as cut
+    fast = fast_model(lens, settings)
+    if decision.python is None:
+        return FullWave(fast, checks=(_note(decision.why, FAST, decision, decision.status),), files=files)
+    ran = run_named(variants, decks, decision, jobs, "on-axis run")
+    results = {v: o for v, o in ran.results.items() if o is not None}
     lam, R = lens.wavelength_mm, lens.radius_mm
-    ideal = results["ideal"]
-    r = ideal["r_mm"]
     figures = {}
     for v, out in results.items():
-        figures |= {f"fullwave_{v}_on_axis_{k}": val for k, val in vars(aperture_stats(r, out["er"], lam, R)).items()}
-    if "stepped" in results:
-        p2p, rms = difference_stats(r, results["stepped"]["er"], ideal["er"], lam, R)
+        figures |= {f"fullwave_{v}_on_axis_{k}": val
+                    for k, val in vars(aperture_stats(out["r_mm"], out["er"], lam, R)).items()}
+    if "stepped" in results and "ideal" in results:
+        p2p, rms = difference_stats(results["ideal"]["r_mm"], results["stepped"]["er"], results["ideal"]["er"], lam, R)
         figures |= {"fullwave_stepped_minus_ideal_p2p_deg": p2p, "fullwave_stepped_minus_ideal_rms_deg": rms}
-    figures |= {"fullwave_resolution_px_per_lambda": settings.resolution_px_per_lambda,
-                "fullwave_seconds": float(sum(float(o["seconds"]) for o in unique.values()))}
-    name = f"full-wave (Meep {results['ideal']['meep_version']}, {settings.resolution_px_per_lambda:g} px/λ)"
-    sel = window(r, lam, R)
-    added = {v: phase_deg(r, results[v]["er"] / ideal["er"], lam, R)[sel] for v in lens.sections}
-    model = PhaseModel(name, r[sel], added)
-    cached = sum(bool(o["cached"]) for o in unique.values())
-    note = _note(f"{why}; {len(unique)} run{'s' * (len(unique) != 1)} ({cached} from the cache; solver {figures['fullwave_seconds']:.0f} s)",
-                 name, estimate, settings)
-    return FullWave(model, figures, (note,), _plots(lens, results, go, settings), files)
+    figures |= {"fullwave_resolution_px_per_lambda": settings.resolution_px_per_lambda} | ran.figures()
+    model = fast
+    if "ideal" in results and len(results) > 1:
+        ideal = results["ideal"]
+        r = ideal["r_mm"]
+        sel = window(r, lam, R)
+        meep = f"full-wave (Meep {ideal['meep_version']}, {settings.resolution_px_per_lambda:g} px/λ)"
+        added = {v: (phase_deg(r, results[v]["er"] / ideal["er"], lam, R)[sel] if v in results
+                     else np.interp(r[sel], fast.r_mm, fast.added_deg[v])) for v in lens.sections}
+        kept = [v for v in lens.sections if v not in results]
+        name = meep + (f"; the {FAST} for {', '.join(kept)} (cut by the budget)" if kept else "")
+        model = PhaseModel(name, r[sel], added)
+    elif ran.cut:
+        model = PhaseModel(f"{FAST} (the full-wave runs were cut by the budget)", fast.r_mm, fast.added_deg)
+    note = _note(f"{decision.why}; {ran.text()}", model.name, decision, ran.status)
+    return FullWave(model, figures, (note,), _plots(lens, results, go, settings) if results else (), files)
 
 
-def _note(why: str, model: str, estimate: float, settings) -> Check:
+def _note(why: str, model: str, decision: Decision, status: str) -> Check:
     """The stage's record: estimated time against budget_s, what ran and which model the verdicts use."""
-    return Check("full_wave", "pass", estimate, settings.budget_s, "s",
+    return Check("full_wave", status, decision.estimate_s, decision.budget.seconds, "s",
                  f"full-wave stage {why}; stair-step verdicts from the {model}")
 
 

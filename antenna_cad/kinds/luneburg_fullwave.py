@@ -29,12 +29,11 @@ import os
 
 import numpy as np
 
-from antenna_cad.fullwave import solver
 from antenna_cad.fullwave.aperture import aperture_stats, difference_stats, phase_deg
 from antenna_cad.fullwave.mie import shell_parts
 from antenna_cad.fullwave.sphere import (MIE_MAX_D_LAMBDA, aperture_gain_dbi, feed_deck, fine_shells, focal_gain_dbi,
                                          law_table, mie_focal_field, mie_focal_gain_dbi, plane_wave_decks)
-from antenna_cad.fullwave.verify import budget_decision, deck_files
+from antenna_cad.fullwave.verify import budget_decision, deck_files, run_named
 from antenna_cad.raytrace.media import Shells, Staircase
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.luneburg import LuneburgDesign, traced_law
@@ -73,7 +72,7 @@ def luneburg_full_wave(spec, design: LuneburgDesign, media: dict, go: dict) -> V
     settings = spec.verification
     R, lam, b = design.radius_mm, design.wavelength_mm, design.focal_distance_mm
     if design.shape != "sphere":
-        return Verification(checks=(Check("full_wave", "pass", 0.0, settings.budget_s, "s",
+        return Verification(checks=(Check("full_wave", "warn", 0.0, settings.budget_s, "s",
                                           "full-wave stage not run: the cylindrical (parallel-plate) lens is not a "
                                           "body of revolution about its feed axis (a 2-D run would be needed)"),))
     law = traced_law(design.law, design.focal_distance_ratio, design.outer_shell, R)
@@ -97,34 +96,34 @@ def luneburg_full_wave(spec, design: LuneburgDesign, media: dict, go: dict) -> V
     decks += plane_wave_decks(shell_parts(*shells), R, b, **common)
     names = [*VARIANTS, "plane_wave_shells", "plane_wave_empty"]
     jobs = max(1, min(len(decks), os.cpu_count() or 1))
-    python, why, estimate = budget_decision(settings, decks, jobs)
+    decision = budget_decision(settings, decks, jobs)
     files = deck_files(names, decks)
     model = (f"full-wave (Meep, body of revolution, point {pattern} feed at the focus, "
              f"{settings.resolution_px_per_lambda:g} px/λ)")
-    if python is None:
-        return Verification(figures, (_note(f"{why}; D/λ = {2 * R / lam:.3g}", estimate, settings, figures),),
-                            files=files)
-    out = dict(zip(names, solver.run_decks(decks, python, jobs)))
-    r = out["ideal"]["r_mm"]
-    for v in VARIANTS:
-        figures |= {f"fullwave_{v}_on_axis_{k}": x for k, x in vars(aperture_stats(r, out[v]["er"], lam, R)).items()}
-    for v in VARIANTS[1:]:
-        p2p, rms = difference_stats(r, out[v]["er"], out["ideal"]["er"], lam, R)
+    if decision.python is None:
+        return Verification(figures, (_note(f"{decision.why}; D/λ = {2 * R / lam:.3g}", decision.estimate_s, settings,
+                                            figures, decision.status),), files=files)
+    ran = run_named(names, decks, decision, jobs)
+    out = {v: o for v, o in ran.results.items() if o is not None}
+    for v in (v for v in VARIANTS if v in out):
+        figures |= {f"fullwave_{v}_on_axis_{k}": x
+                    for k, x in vars(aperture_stats(out[v]["r_mm"], out[v]["er"], lam, R)).items()}
+    for v in (v for v in VARIANTS[1:] if v in out and "ideal" in out):
+        p2p, rms = difference_stats(out["ideal"]["r_mm"], out[v]["er"], out["ideal"]["er"], lam, R)
         figures |= {f"fullwave_{v}_minus_ideal_p2p_deg": p2p, f"fullwave_{v}_minus_ideal_rms_deg": rms}
-    incident = out["plane_wave_empty"]["er"][0]
-    figures["fullwave_plane_wave_shells_focal_gain_dbi"] = focal_gain_dbi(out["plane_wave_shells"]["er"][0] / incident)
-    unique = {o["key"]: o for o in out.values()}
-    figures |= {"fullwave_resolution_px_per_lambda": settings.resolution_px_per_lambda,
-                "fullwave_seconds": float(sum(float(o["seconds"]) for o in unique.values()))}
-    cached = sum(bool(o["cached"]) for o in unique.values())
-    ran = (f"{why}; {len(unique)} runs ({cached} from the cache; solver {figures['fullwave_seconds']:.0f} s); "
-           f"{model}")
-    checks = [_note(ran, estimate, settings, figures)]
-    if mie:
+    plane_wave = "plane_wave_empty" in out and "plane_wave_shells" in out
+    if plane_wave:
+        incident = out["plane_wave_empty"]["er"][0]
+        figures["fullwave_plane_wave_shells_focal_gain_dbi"] = focal_gain_dbi(out["plane_wave_shells"]["er"][0]
+                                                                              / incident)
+    figures |= {"fullwave_resolution_px_per_lambda": settings.resolution_px_per_lambda} | ran.figures()
+    checks = [_note(f"{decision.why}; {ran.text()}; {model}", decision.estimate_s, settings, figures, ran.status)]
+    if mie and plane_wave:
         figures["fullwave_shells_focal_gain_minus_mie_db"] = (figures["fullwave_plane_wave_shells_focal_gain_dbi"]
                                                              - figures["mie_shells_focal_gain_dbi"])
         checks.append(_against_mie(figures))
-    return Verification(figures, tuple(checks), plots=_plots(design, out, go, mie, settings), files=files)
+    plots = _plots(design, out, go, mie, settings) if not ran.cut else ()
+    return Verification(figures, tuple(checks), plots=plots, files=files)
 
 
 def _against_mie(figures: dict) -> Check:
@@ -138,12 +137,12 @@ def _against_mie(figures: dict) -> Check:
                  + ("; raise verification.resolution_px_per_lambda" if bad else ""))
 
 
-def _note(why: str, estimate: float, settings, figures: dict) -> Check:
+def _note(why: str, estimate: float, settings, figures: dict, status: str) -> Check:
     gains = ", ".join(f"{k[4:-15]} {v:.2f}" for k, v in figures.items() if k.startswith("mie_"))
     mie = (f"Exact Mie series, gain of a dipole-fed lens by reciprocity (dBi): {gains}; uniform aperture "
            f"{figures['aperture_gain_limit_dbi']:.2f}" if gains else
            f"Mie series not evaluated above D/λ = {MIE_MAX_D_LAMBDA:g}")
-    return Check("full_wave", "pass", estimate, settings.budget_s, "s", f"full-wave stage {why}. {mie}")
+    return Check("full_wave", status, estimate, settings.budget_s, "s", f"full-wave stage {why}. {mie}")
 
 
 def _plots(design: LuneburgDesign, out: dict, go: dict, mie: dict, settings) -> tuple[Plot, ...]:

@@ -27,11 +27,10 @@ import os
 import numpy as np
 from scipy.interpolate import CubicHermiteSpline
 
-from antenna_cad.fullwave import solver
 from antenna_cad.fullwave.aperture import aperture_stats, difference_stats, phase_deg, phase_stats, window
 from antenna_cad.fullwave.deck import DECIMALS, PROFILE_POINTS, make_deck
 from antenna_cad.fullwave.runner import feed_pattern
-from antenna_cad.fullwave.verify import budget_decision, deck_files
+from antenna_cad.fullwave.verify import budget_decision, deck_files, run_named
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.verification import Plot, Series, Table, Verification
 
@@ -97,16 +96,19 @@ def full_wave_verification(design, settings, parts: dict[str, list[dict]], go) -
     all_decks = decks(design, settings, parts)
     names, deck_list = list(all_decks), list(all_decks.values())
     jobs = max(1, min(len(deck_list), os.cpu_count() or 1))
-    python, why, estimate = budget_decision(settings, deck_list, jobs)
+    decision = budget_decision(settings, deck_list, jobs)
     files = deck_files(names, deck_list)
-    if python is None:
-        return Verification(checks=(_note(why, estimate, settings),), files=files)
-    results = dict(zip(names, solver.run_decks(deck_list, python, jobs)))
-    unique = {o["key"]: o for o in results.values()}
+    if decision.python is None:
+        return Verification(checks=(_note(decision.why, decision.estimate_s, settings, decision.status),), files=files)
+    ran = run_named(names, deck_list, decision, jobs)
+    results = {v: o for v, o in ran.results.items() if o is not None}
+    if "free" not in results or "ideal" not in results:      # every figure needs the back lobe and the ideal body
+        note = _note(f"{decision.why}; {ran.text()}; no full-wave figures", decision.estimate_s, settings, ran.status)
+        return Verification(ran.figures(), (note,), files=files)
     lam, R = design.wavelength_mm, design.diameter_mm / 2
     r = results["free"]["r_mm"]
     back = _co(results["free"])
-    fields = {v: _co(results[v]) - back for v in parts}
+    fields = {v: _co(results[v]) - back for v in parts if v in results}
     figures = {}
     for v, e in fields.items():
         figures |= {f"fullwave_{v}_on_axis_{k}": val for k, val in vars(aperture_stats(r, e, lam, R)).items()}
@@ -117,17 +119,15 @@ def full_wave_verification(design, settings, parts: dict[str, list[dict]], go) -
     point = all_decks["free"]["feed"].get("kind") == "point"
     feed_back = np.abs(back[sel]).mean() / np.abs(fields["ideal"][sel]).mean()
     figures |= {"fullwave_resolution_px_per_lambda": settings.resolution_px_per_lambda,
-                "fullwave_seconds": float(sum(float(o["seconds"]) for o in unique.values())),
                 f"fullwave_{'feed' if point else 'sheet'}_back_lobe_db": float(20 * np.log10(feed_back))}
+    figures |= ran.figures()
     go_r, go_phase, go_amp = _go_curves(go, settings, point)
     go_p2p, go_rms = phase_stats(go_r, _centred(go_r, go_phase, lam, R), lam, R)
     figures |= {"fullwave_go_on_axis_p2p_deg": go_p2p, "fullwave_go_on_axis_rms_deg": go_rms}
     name = f"Meep {results['free']['meep_version']}, {settings.resolution_px_per_lambda:g} px/λ"
     feed = (f"point {all_decks['free']['feed']['pattern']} feed on the front vertex" if point
             else "the feed's Huygens sheet")
-    cached = sum(bool(o["cached"]) for o in unique.values())
-    note = _note(f"{why}; {len(unique)} runs ({cached} from the cache; solver {figures['fullwave_seconds']:.0f} s, "
-                 f"{name})", estimate, settings)
+    note = _note(f"{decision.why}; {ran.text()}, {name}", decision.estimate_s, settings, ran.status)
     rows = [(v, *(round(figures[f"fullwave_{v}_on_axis_{k}"], 3)
                   for k in ("p2p_deg", "rms_deg", "taper_db", "phase_efficiency_db"))) for v in fields]
     rows.append(("GO (3-D trace, as fabricated)", round(go_p2p, 3), round(go_rms, 3),
@@ -148,9 +148,9 @@ def _co(result: dict) -> np.ndarray:
     return (result["er"] - 1j * result["ep"]) / 2
 
 
-def _note(why: str, estimate: float, settings) -> Check:
+def _note(why: str, estimate: float, settings, status: str) -> Check:
     """The stage's record: estimated time against budget_s and what ran; the verdicts stay GO's."""
-    return Check("full_wave", "pass", estimate, settings.budget_s, "s",
+    return Check("full_wave", status, estimate, settings.budget_s, "s",
                  f"full-wave stage {why}; verdicts from the 3-D GO trace, the full-wave figures beside them")
 
 

@@ -12,7 +12,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from typing import NamedTuple
 
 import numpy as np
 import shapely
@@ -21,47 +22,74 @@ from antenna_cad.fabrication.templates import OVERLAP_MM, WINDOW_MM, Drawing, te
 
 MARGIN_MM = 5.0                                  # content to window frame, and to a nested neighbour
 SHIFTS = (0.5, 0.0, 1.0)                         # grid shifts tried (share of the slack), best first on ties
+ALONE = 0.5                                      # a part above this share of the window gets a page of its own
 Box = tuple[float, float, float, float]
+Text = tuple[str, float, float, float]
+
+
+class Tile(NamedTuple):
+    """A tile of a tiled drawing: grid row and column, its number k of count, and the grid's
+    upper left corner (drawing mm; the registration crosses sit at the overlap strips' centres)."""
+    row: int
+    col: int
+    k: int
+    count: int
+    x0: float
+    y1: float
 
 
 @dataclass(frozen=True)
 class Placement:
     """Part of a drawing on a page: ``window`` (x0, y0, x1, y1 mm in the drawing) shown with its
-    lower left ``at`` (mm from the page window's lower left); ``tile`` (row, col, k, count) for a
-    tiled drawing, None for a nested one (whole); ``index`` the drawing's place in the input;
-    ``texts`` (text, x, y, cap height) mm from the window's lower left, each whole inside it."""
+    lower left ``at`` (mm from the page window's lower left); ``tile`` for a tiled drawing, None
+    for a nested one (whole); ``index`` the drawing's place in the input; ``texts`` (text, x, y,
+    cap height) mm from the window's lower left, each whole inside it."""
     drawing: Drawing
     index: int
     window: Box
     at: tuple[float, float]
-    tile: tuple[int, int, int, int] | None
-    texts: tuple[tuple[str, float, float, float], ...]
+    tile: Tile | None
+    texts: tuple[Text, ...]
+
+    @property
+    def name(self) -> str:
+        t = self.tile
+        return self.drawing.label + (f" tile {t.k}/{t.count} (row {t.row + 1} col {t.col + 1})" if t else "")
 
 
 def layout(drawings: Iterable[Drawing]) -> Iterator[list[Placement]]:
-    """The pages, each a list of placements: a tiled drawing's tiles a page each, as they come;
-    nested drawings on the open shared page, which is given out when the next one no longer fits
-    (and at the end)."""
+    """The pages, each a list of placements, as the drawings come: a drawing that fits the window
+    whole, or each tile of a larger one (cut to the drawing's box: a long narrow strip makes narrow
+    tiles), goes on the open shared page (shelf packing); when it no longer fits, the page is
+    given out and a new one opened — except for a part filling more than :data:`ALONE` of the
+    window, which gets a page of its own and leaves the shared page open."""
     page: list[Placement] = []
     shelves: list[list[float]] = []              # per row: [depth of its top below the window top, height, x used]
     for index, d in enumerate(drawings):
-        x0, y0, x1, y1 = box = _grown(d.page_extents(), MARGIN_MM)
-        w, h = x1 - x0, y1 - y0
-        if w > WINDOW_MM[0] or h > WINDOW_MM[1]:
-            tiles = tile_windows(d, box)
-            for (r, c, wx, wy, k, n), texts in zip(tiles, texts_by_tile(d, tiles)):
-                yield [Placement(d, index, (wx, wy, wx + WINDOW_MM[0], wy + WINDOW_MM[1]), (0.0, 0.0), (r, c, k, n),
-                                 tuple(texts))]
-            continue
-        spot = _shelf_spot(shelves, w, h)
-        if spot is None:
-            yield page
-            page, shelves = [], []
+        for part in _parts(d, index):
+            w, h = part.window[2] - part.window[0], part.window[3] - part.window[1]
             spot = _shelf_spot(shelves, w, h)
-        texts = tuple((t, tx - x0, ty - y0, size) for _, (t, tx, ty, size) in d.page_items()[1])
-        page.append(Placement(d, index, box, spot, None, texts))
+            if spot is None and w * h > ALONE * WINDOW_MM[0] * WINDOW_MM[1]:
+                yield [part]
+                continue
+            if spot is None:
+                yield page
+                page, shelves = [], []
+                spot = _shelf_spot(shelves, w, h)
+            page.append(replace(part, at=spot))
     if page:
         yield page
+
+
+def _parts(d: Drawing, index: int) -> list[Placement]:
+    """The drawing whole (its extents grown by the margin) if that fits the window, else its tiles."""
+    x0, y0, x1, y1 = box = _grown(d.page_extents(), MARGIN_MM)
+    if x1 - x0 <= WINDOW_MM[0] and y1 - y0 <= WINDOW_MM[1]:
+        texts = tuple((t, tx - x0, ty - y0, size) for _, (t, tx, ty, size) in d.page_items()[1])
+        return [Placement(d, index, box, (0.0, 0.0), None, texts)]
+    tiles = tile_windows(d, box)
+    return [Placement(d, index, window, (0.0, 0.0), tile, tuple(texts))
+            for (tile, window), texts in zip(tiles, texts_by_tile(d, [w for _, w in tiles]))]
 
 
 def _shelf_spot(shelves: list[list[float]], w: float, h: float) -> tuple[float, float] | None:
@@ -81,60 +109,64 @@ def _shelf_spot(shelves: list[list[float]], w: float, h: float) -> tuple[float, 
     return 0.0, win_h - top - h
 
 
-def tile_windows(drawing: Drawing, box: Box | None = None) -> list[tuple[int, int, float, float, int, int]]:
-    """Tiles (row, col, x, y of the window's lower left, k, count) over ``box`` (the drawing's
-    PDF extents grown by the margin): the grid of fewest windows that hold a cut path or a text
-    among a few shifts of it within its slack (a window holding neither is not printed)."""
+def tile_windows(drawing: Drawing, box: Box | None = None) -> list[tuple[Tile, Box]]:
+    """Tiles over ``box`` (the drawing's PDF extents grown by the margin), each a window of the
+    grid cut to the box: the grid, among a few shifts within its slack, of the fewest windows (then
+    the least paper) that hold a cut path, a mark or a text (a window holding none is dropped)."""
     x0, y0, x1, y1 = box or _grown(drawing.page_extents(), MARGIN_MM)
     win_w, win_h = WINDOW_MM
     step_w, step_h = win_w - OVERLAP_MM, win_h - OVERLAP_MM
     cols = max(1, math.ceil((x1 - x0 - OVERLAP_MM) / step_w))
     rows = max(1, math.ceil((y1 - y0 - OVERLAP_MM) / step_h))
     slack_w, slack_h = cols * step_w + OVERLAP_MM - (x1 - x0), rows * step_h + OVERLAP_MM - (y1 - y0)
-    grids = [[(r, c, x0 - fx * slack_w + c * step_w, y1 + fy * slack_h - win_h - r * step_h)
-              for r in range(rows) for c in range(cols)] for fy in SHIFTS for fx in SHIFTS]
-    holds = _holding(drawing, [o for grid in grids for o in grid]).reshape(len(grids), -1)
-    best = int(np.argmin(holds.sum(axis=1)))
-    kept = [o for o, keep in zip(grids[best], holds[best]) if keep]
-    return [(*o, k, len(kept)) for k, o in enumerate(kept, start=1)]
+    grids = []
+    for fy in SHIFTS:
+        for fx in SHIFTS:
+            gx, gy = x0 - fx * slack_w, y1 + fy * slack_h
+            grids.append([((r, c, gx, gy), (max(x0, gx + c * step_w), max(y0, gy - win_h - r * step_h),
+                                            min(x1, gx + c * step_w + win_w), min(y1, gy - r * step_h)))
+                          for r in range(rows) for c in range(cols)])
+    holds = _holding(drawing, [w for grid in grids for _, w in grid]).reshape(len(grids), -1)
+    areas = [sum((w[2] - w[0]) * (w[3] - w[1]) for (_, w), keep in zip(grid, held) if keep)
+             for grid, held in zip(grids, holds)]
+    best = min(range(len(grids)), key=lambda g: (int(holds[g].sum()), round(areas[g], 3)))
+    kept = [t for t, keep in zip(grids[best], holds[best]) if keep]
+    return [(Tile(r, c, k, len(kept), gx, gy), w) for k, ((r, c, gx, gy), w) in enumerate(kept, start=1)]
 
 
-def _holding(drawing: Drawing, origins) -> np.ndarray:
-    """Per window origin (.., .., x, y): does it hold part of a cut path, a mark or a text the PDF
-    prints (a window lying wholly inside a piece, blank, is not printed)."""
+def _holding(drawing: Drawing, windows: list[Box]) -> np.ndarray:
+    """Per window: does it hold part of a cut path, a mark or a text the PDF prints (a window
+    lying wholly inside a piece, blank, is not printed)."""
     cut, _, _ = drawing.paths()
     marks, texts = drawing.page_items()
-    win_w, win_h = WINDOW_MM
-    windows = shapely.box(*np.array([(wx, wy, wx + win_w, wy + win_h) for *_, wx, wy in origins]).T)
+    boxes = shapely.box(*np.array(windows).T)
     lines = [shapely.linearrings(np.asarray(r, dtype=float)[:, :2]) for r in cut if len(r) >= 3]
     lines += [shapely.linestrings(np.asarray(m, dtype=float)[:, :2]) for m in marks if len(m) >= 2]
     lines += [shapely.box(x, y, x + w, y + h) for _, (text, x, y, size) in texts for w, h in [text_box(text, size)]]
     if not lines:
-        return np.ones(len(origins), dtype=bool)
+        return np.ones(len(windows), dtype=bool)
     tree = shapely.STRtree(lines)
-    holds = np.zeros(len(origins), dtype=bool)
-    holds[np.unique(tree.query(windows, predicate="intersects")[0])] = True
+    holds = np.zeros(len(windows), dtype=bool)
+    holds[np.unique(tree.query(boxes, predicate="intersects")[0])] = True
     return holds
 
 
-def texts_by_tile(drawing: Drawing, tiles) -> list[list[tuple[str, float, float, float]]]:
-    """Per tile, the drawing's printed texts at window positions (mm from the window's lower
-    left): each on every tile whose window holds its whole box, at its true place; a text no
-    window holds whole goes on the one tile needing the least shift to hold it (ties: the first),
-    shifted inside — never on a tile where the shift would move it onto other lines."""
-    win_w, win_h = WINDOW_MM
-    placed: list[list[tuple[str, float, float, float]]] = [[] for _ in tiles]
-    wxs = np.array([t[2] for t in tiles], dtype=float)
-    wys = np.array([t[3] for t in tiles], dtype=float)
+def texts_by_tile(drawing: Drawing, windows: list[Box]) -> list[list[Text]]:
+    """Per window, the drawing's printed texts at window positions (mm from the window's lower
+    left): each on every window that holds its whole box, at its true place; a text no window
+    holds whole goes on the one needing the least shift to hold it (ties: the first), shifted
+    inside — never on one where the shift would move it onto other lines."""
+    placed: list[list[Text]] = [[] for _ in windows]
+    wx0, wy0, wx1, wy1 = np.array(windows, dtype=float).T
     for _, (text, x, y, size) in drawing.page_items()[1]:
         w, h = text_box(text, size)
-        dx, dy = x - wxs, y - wys                        # all tiles at once (the same float operations)
-        px = np.minimum(np.maximum(dx, 0.5), win_w - w - 0.5)
-        py = np.minimum(np.maximum(dy, 0.5), win_h - h - 0.5)
+        dx, dy = x - wx0, y - wy0                        # all windows at once (the same float operations)
+        px = np.minimum(np.maximum(dx, 0.5), wx1 - wx0 - w - 0.5)
+        py = np.minimum(np.maximum(dy, 0.5), wy1 - wy0 - h - 0.5)
         whole = np.flatnonzero((px == dx) & (py == dy)).tolist()
         if not whole:
             shifts = [math.hypot(a - b, c - d) for a, b, c, d in zip(px.tolist(), dx.tolist(), py.tolist(), dy.tolist())]
-            whole = [min(range(len(tiles)), key=shifts.__getitem__)]
+            whole = [min(range(len(windows)), key=shifts.__getitem__)]
         for k in whole:
             placed[k].append((text, float(px[k]), float(py[k]), size))
     return placed

@@ -36,7 +36,7 @@ CHECK_BAR_MM = 100.0
 TEXT_HEIGHT_MM = 6.0
 MIN_TEXT_MM = 2.5                                # no text smaller (cap height), on drawings and pages
 TITLE_HEIGHT_MM = 3.0
-TITLE_WIDTH_MM = (120.0, 180.0)                  # a title block's width: the drawing's, within these
+TITLE_WIDTH_MM = (60.0, 180.0)                   # a title block's width: the drawing's, within these
 MIN_VERTEX_STEP_MM = 0.01                        # closer vertices are one (plotters read them as moves)
 LAYERS = {"CUT": 1, "MARK": 5, "TEXT": 7}      # DXF colour indices: red, blue, black/white
 SVG_COLOURS = {"CUT": "red", "MARK": "blue"}
@@ -347,32 +347,28 @@ def write_tiled_pdf(drawings: Iterable[Drawing], path: Path, title: str) -> int:
     from antenna_cad.fabrication.page_layout import layout
     with VectorPdf(path, A4_MM, title) as pdf:
         furniture = pdf.add_form(_furniture(), (0.0, 0.0, A4_MM[0] * PT_PER_MM, A4_MM[1] * PT_PER_MM))
-        shared: tuple[int, int] = (-1, 0)               # the tiled drawing whose form is written: index, form
+        tiled: dict[int, int] = {}                      # a tiled drawing's form, by drawing index
         for placements in layout(drawings):
             forms = []
             for p in placements:
                 if p.tile is None:
                     forms.append(pdf.add_form(_form_content(p.drawing, None), _padded(p.window, 1.0)))
                     continue
-                if shared[0] != p.index:
-                    shared = (p.index, pdf.add_form(_form_content(p.drawing, p),
-                                                    _padded(p.drawing.page_extents(), 10.0)))
-                forms.append(shared[1])
+                if p.index not in tiled:
+                    tiled[p.index] = pdf.add_form(_form_content(p.drawing, p), _padded(p.drawing.page_extents(), 10.0))
+                forms.append(tiled[p.index])
             line = _page_line(title, placements, pdf.page_count + 1)
             pdf.add_page(_page_content(placements, forms, furniture, line), (furniture, *sorted(set(forms))))
         return pdf.page_count
 
 
 def _page_line(title: str, placements, page: int) -> str:
-    first = placements[0]
-    if first.tile is not None:
-        r, c, k, n = first.tile
-        what = f"{first.drawing.label} · tile row {r + 1} col {c + 1}, {k} of {n}"
-    elif len(placements) == 1:
-        what = first.drawing.label
-    else:
-        what = f"{len(placements)} drawings, each named inside its outline"
-    return f"{title} · page {page} · {what} · print at 100 % (actual size)"
+    """The header: title, page number, what the page holds; parts listed while two rows hold them."""
+    names = "; ".join(p.name for p in placements)
+    line = f"{title} · page {page} · {names} · print at 100 % (actual size)"
+    if len(placements) > 1 and len(wrap_text(line, WINDOW_MM[0] * PT_PER_MM, PAGE_LINE_PT)) > 2:
+        line = f"{title} · page {page} · {len(placements)} parts, each named inside its outline · print at 100 %"
+    return line
 
 
 def _form_content(drawing: Drawing, tile) -> bytes:
@@ -384,15 +380,22 @@ def _form_content(drawing: Drawing, tile) -> bytes:
     ops = [f"1 J 1 j {num(LINE_WIDTH_MM['CUT'])} w 1 0 0 RG\n", polylines_ops(cut, closed=True),
            f"{num(LINE_WIDTH_MM['MARK'])} w 0 0 1 RG\n", polylines_ops(marks, closed=False)]
     if tile is not None:
-        r, c, _, _ = tile.tile
-        step_w, step_h = WINDOW_MM[0] - OVERLAP_MM, WINDOW_MM[1] - OVERLAP_MM
-        x0, y1 = tile.window[0] - c * step_w + OVERLAP_MM / 2, tile.window[3] + r * step_h - OVERLAP_MM / 2
-        _, ey0, ex1, _ = drawing.page_extents()
-        xs = x0 + step_w * np.arange(1, math.ceil((ex1 - x0) / step_w) + 1)
-        ys = y1 - step_h * np.arange(1, math.ceil((y1 - ey0) / step_h) + 1)
-        crosses = [seg for x in xs for y in ys for seg in ([(x - 4, y), (x + 4, y)], [(x, y - 4), (x, y + 4)])]
-        ops += ["0 0 0 RG\n", polylines_ops(crosses, closed=False)]
+        ops += ["0 0 0 RG\n", polylines_ops(_crosses(drawing.page_extents(), tile.tile), closed=False)]
     return "".join(ops).encode()
+
+
+def _crosses(extents: tuple[float, float, float, float], tile) -> list[list[tuple[float, float]]]:
+    """Registration crosses of a tiled drawing: on the centre lines of its grid's overlap strips,
+    where they cross each other and the middle of each tile (cut to ``extents``) they border."""
+    step_w, step_h = WINDOW_MM[0] - OVERLAP_MM, WINDOW_MM[1] - OVERLAP_MM
+    x0, y0, x1, y1 = extents
+    cols, rows = math.ceil((x1 - tile.x0) / step_w), math.ceil((tile.y1 - y0) / step_h)
+    strip_x = [tile.x0 + c * step_w + OVERLAP_MM / 2 for c in range(1, cols)]
+    strip_y = [tile.y1 - r * step_h - OVERLAP_MM / 2 for r in range(1, rows)]
+    mid_x = [(max(x0, tile.x0 + c * step_w) + min(x1, tile.x0 + c * step_w + WINDOW_MM[0])) / 2 for c in range(cols)]
+    mid_y = [(max(y0, tile.y1 - r * step_h - WINDOW_MM[1]) + min(y1, tile.y1 - r * step_h)) / 2 for r in range(rows)]
+    points = sorted({(x, y) for x in strip_x for y in strip_y + mid_y} | {(x, y) for x in mid_x for y in strip_y})
+    return [seg for x, y in points for seg in ([(x - 4, y), (x + 4, y)], [(x, y - 4), (x, y + 4)])]
 
 
 def _page_content(placements, forms: list[int], furniture: int, line: str) -> bytes:

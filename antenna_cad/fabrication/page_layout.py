@@ -2,10 +2,10 @@
 
 A drawing that fits one page window with :data:`MARGIN_MM` all round is *nested*: put whole,
 beside others, on a shared page (shelf packing in drawing order: the rows of a page are filled
-left to right, top to bottom, a row as tall as its tallest drawing). A larger drawing is *tiled*
-over pages with :data:`OVERLAP_MM` overlap and registration crosses, its grid placed (among a
-few shifts) to need the fewest tiles while keeping its content :data:`MARGIN_MM` inside. Pages
-come as the drawings do (a generator), so a 10⁵-page layup is never held at once.
+left to right, top to bottom, a row as tall as its tallest part). A larger drawing is *tiled*:
+cut into windows with :data:`OVERLAP_MM` overlap and registration crosses, its last column and
+row cut to its extents, so a narrow edge tile shares a page like a small drawing. Pages come as
+the drawings do (a generator), so a 10⁵-page layup is never held at once.
 """
 
 from __future__ import annotations
@@ -21,7 +21,6 @@ import shapely
 from antenna_cad.fabrication.templates import OVERLAP_MM, WINDOW_MM, Drawing, text_box
 
 MARGIN_MM = 5.0                                  # content to window frame, and to a nested neighbour
-SHIFTS = (0.5, 0.0, 1.0)                         # grid shifts tried (share of the slack), best first on ties
 ALONE = 0.5                                      # a part above this share of the window gets a page of its own
 Box = tuple[float, float, float, float]
 Text = tuple[str, float, float, float]
@@ -110,44 +109,34 @@ def _shelf_spot(shelves: list[list[float]], w: float, h: float) -> tuple[float, 
 
 
 def tile_windows(drawing: Drawing, box: Box | None = None) -> list[tuple[Tile, Box]]:
-    """Tiles over ``box`` (the drawing's PDF extents grown by the margin), each a window of the
-    grid cut to the box: the grid, among a few shifts within its slack, of the fewest windows (then
-    the least paper) that hold a cut path, a mark or a text (a window holding none is dropped)."""
+    """Tiles over ``box`` (the drawing's PDF extents grown by the margin): the windows of a grid
+    from its upper left corner, the last column and row cut to the box, that hold a cut path, a
+    mark or a text (a window holding none is dropped). The first column and row are whole
+    windows, so a text as wide as a title block fits whole on some tile."""
     x0, y0, x1, y1 = box or _grown(drawing.page_extents(), MARGIN_MM)
     win_w, win_h = WINDOW_MM
     step_w, step_h = win_w - OVERLAP_MM, win_h - OVERLAP_MM
     cols = max(1, math.ceil((x1 - x0 - OVERLAP_MM) / step_w))
     rows = max(1, math.ceil((y1 - y0 - OVERLAP_MM) / step_h))
-    slack_w, slack_h = cols * step_w + OVERLAP_MM - (x1 - x0), rows * step_h + OVERLAP_MM - (y1 - y0)
-    grids = []
-    for fy in SHIFTS:
-        for fx in SHIFTS:
-            gx, gy = x0 - fx * slack_w, y1 + fy * slack_h
-            grids.append([((r, c, gx, gy), (max(x0, gx + c * step_w), max(y0, gy - win_h - r * step_h),
-                                            min(x1, gx + c * step_w + win_w), min(y1, gy - r * step_h)))
-                          for r in range(rows) for c in range(cols)])
-    holds = _holding(drawing, [w for grid in grids for _, w in grid]).reshape(len(grids), -1)
-    areas = [sum((w[2] - w[0]) * (w[3] - w[1]) for (_, w), keep in zip(grid, held) if keep)
-             for grid, held in zip(grids, holds)]
-    best = min(range(len(grids)), key=lambda g: (int(holds[g].sum()), round(areas[g], 3)))
-    kept = [t for t, keep in zip(grids[best], holds[best]) if keep]
-    return [(Tile(r, c, k, len(kept), gx, gy), w) for k, ((r, c, gx, gy), w) in enumerate(kept, start=1)]
+    grid = [((r, c), (x0 + c * step_w, max(y0, y1 - win_h - r * step_h), min(x1, x0 + c * step_w + win_w),
+                      y1 - r * step_h)) for r in range(rows) for c in range(cols)]
+    kept = [t for t, keep in zip(grid, _holding(drawing, [w for _, w in grid])) if keep]
+    return [(Tile(r, c, k, len(kept), x0, y1), w) for k, ((r, c), w) in enumerate(kept, start=1)]
 
 
 def _holding(drawing: Drawing, windows: list[Box]) -> np.ndarray:
-    """Per window: does it hold part of a cut path, a mark or a text the PDF prints (a window
-    lying wholly inside a piece, blank, is not printed)."""
+    """Per window: does it hold part of a cut path or a mark, or the first place of a text the PDF
+    prints (:func:`texts_by_tile`; a window lying wholly inside a piece, blank, is not printed)."""
     cut, _, _ = drawing.paths()
-    marks, texts = drawing.page_items()
-    boxes = shapely.box(*np.array(windows).T)
+    marks, _ = drawing.page_items()
     lines = [shapely.linearrings(np.asarray(r, dtype=float)[:, :2]) for r in cut if len(r) >= 3]
     lines += [shapely.linestrings(np.asarray(m, dtype=float)[:, :2]) for m in marks if len(m) >= 2]
-    lines += [shapely.box(x, y, x + w, y + h) for _, (text, x, y, size) in texts for w, h in [text_box(text, size)]]
-    if not lines:
-        return np.ones(len(windows), dtype=bool)
-    tree = shapely.STRtree(lines)
     holds = np.zeros(len(windows), dtype=bool)
-    holds[np.unique(tree.query(boxes, predicate="intersects")[0])] = True
+    if lines:
+        tree = shapely.STRtree(lines)
+        holds[np.unique(tree.query(shapely.box(*np.array(windows).T), predicate="intersects")[0])] = True
+    for spots in _text_spots(drawing, windows):
+        holds[spots[0][0]] = True
     return holds
 
 
@@ -157,19 +146,27 @@ def texts_by_tile(drawing: Drawing, windows: list[Box]) -> list[list[Text]]:
     holds whole goes on the one needing the least shift to hold it (ties: the first), shifted
     inside — never on one where the shift would move it onto other lines."""
     placed: list[list[Text]] = [[] for _ in windows]
-    wx0, wy0, wx1, wy1 = np.array(windows, dtype=float).T
+    for (_, (text, _, _, size)), spots in zip(drawing.page_items()[1], _text_spots(drawing, windows)):
+        for k, x, y in spots:
+            placed[k].append((text, x, y, size))
+    return placed
+
+
+def _text_spots(drawing: Drawing, windows: list[Box]) -> list[list[tuple[int, float, float]]]:
+    """Per printed text, its (window, x, y) places as :func:`texts_by_tile` sets them."""
+    wx0, wy0, wx1, wy1 = np.array(windows, dtype=float).reshape(-1, 4).T
+    out = []
     for _, (text, x, y, size) in drawing.page_items()[1]:
         w, h = text_box(text, size)
         dx, dy = x - wx0, y - wy0                        # all windows at once (the same float operations)
         px = np.minimum(np.maximum(dx, 0.5), wx1 - wx0 - w - 0.5)
         py = np.minimum(np.maximum(dy, 0.5), wy1 - wy0 - h - 0.5)
         whole = np.flatnonzero((px == dx) & (py == dy)).tolist()
-        if not whole:
-            shifts = [math.hypot(a - b, c - d) for a, b, c, d in zip(px.tolist(), dx.tolist(), py.tolist(), dy.tolist())]
-            whole = [min(range(len(windows)), key=shifts.__getitem__)]
-        for k in whole:
-            placed[k].append((text, float(px[k]), float(py[k]), size))
-    return placed
+        if not whole:                                    # the least shift into a window it fits in
+            room = (wx1 - wx0 >= w + 1.0) & (wy1 - wy0 >= h + 1.0)
+            whole = [int(np.argmin(np.hypot(px - dx, py - dy) + np.where(room, 0.0, np.inf)))]
+        out.append([(k, float(px[k]), float(py[k])) for k in whole])
+    return out
 
 
 def _grown(box: Box, pad: float) -> Box:

@@ -57,18 +57,18 @@ Label = tuple[tuple[str, ...], Polygon, tuple[float, float] | None]
 
 def place_labels(drawing: Drawing, labels: list[Label]) -> list[bool]:
     """Per (texts, piece, spot) of ``labels`` add the first of ``texts`` that fits inside ``piece``
-    with its box (grown by :data:`CLEARANCE_MM`) crossing no line or text of the drawing: at the
-    largest of :data:`HEIGHTS` that fits, centred at ``spot`` if it fits there, else at the spot of
-    a grid over the piece nearest its centroid. Per label: was one added. The pieces are disjoint,
-    so their labels are too."""
+    with its box (grown by :data:`CLEARANCE_MM`) crossing no line or text of the drawing (where
+    none fits so, no cut path or text: across a mark): at the largest of :data:`HEIGHTS` that
+    fits, centred at ``spot`` if it fits there, else at the spot of a grid over the piece nearest
+    its centroid. Per label: was one added. The pieces are disjoint, so their labels are too."""
     if not labels:
         return []
-    lines = [shapely.linearrings(np.asarray(r, dtype=float)[:, :2]) for r in drawing.cut if len(r) >= 3]
-    lines += [shapely.linestrings(np.asarray(m, dtype=float)[:, :2]) for m in drawing.page_items()[0] if len(m) >= 2]
-    lines += [shapely.box(x, y, x + w, y + h) for _, (t, x, y, size) in drawing.page_items()[1]
-              for w, h in [text_box(t, size)]]
-    tree = shapely.STRtree(lines)
-    return [_place(drawing, tree, *label) for label in labels]
+    cuts = [shapely.linearrings(np.asarray(r, dtype=float)[:, :2]) for r in drawing.cut if len(r) >= 3]
+    cuts += [shapely.box(x, y, x + w, y + h) for _, (t, x, y, size) in drawing.page_items()[1]
+             for w, h in [text_box(t, size)]]
+    marks = [shapely.linestrings(np.asarray(m, dtype=float)[:, :2]) for m in drawing.page_items()[0] if len(m) >= 2]
+    trees = (shapely.STRtree(cuts + marks), shapely.STRtree(cuts))
+    return [_place(drawing, trees[0], *label) or _place(drawing, trees[1], *label) for label in labels]
 
 
 def _place(drawing: Drawing, tree, texts: tuple[str, ...], piece: Polygon, spot) -> bool:

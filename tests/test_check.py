@@ -19,8 +19,8 @@ from antenna_cad.export.manifest import write_manifest
 from antenna_cad.export.mesh import write_stl
 from antenna_cad.export.report_pdf import A4_INCH, COURIER_ADVANCE_EM, MARGIN, text_layout
 from antenna_cad.fabrication.outline import Circle, arc_paths, circle_polygon
-from antenna_cad.fabrication.templates import (A4_MM, WINDOW_MM, Drawing, _texts_by_tile, tile_windows,
-                                               write_dxf, write_tiled_pdf)
+from antenna_cad.fabrication.page_layout import texts_by_tile, tile_windows
+from antenna_cad.fabrication.templates import A4_MM, WINDOW_MM, Drawing, write_dxf, write_tiled_pdf
 from antenna_cad.fabrication.vector_pdf import PT_PER_MM, VectorPdf, text_ops
 from antenna_cad.geometry import kernel
 
@@ -86,14 +86,15 @@ def _drawing() -> Drawing:
     return d
 
 
-def test_tiled_pdf_text_whole_and_title_on_every_tile(tmp_path):
+def test_tiled_pdf_text_whole_and_drawing_named_on_every_tile(tmp_path):
     pages = write_tiled_pdf([_drawing()], tmp_path / "t.pdf", "demo")
     assert pages >= 4
     findings = {f.check: f for f in readers.pdf_findings(tmp_path / "t.pdf", "t.pdf", templates=True)}
     assert all(f.ok for f in findings.values()), findings
     pdf = pypdfium2.PdfDocument(tmp_path / "t.pdf")
     texts = [pdf[k].get_textpage().get_text_range() for k in range(len(pdf))]
-    assert all("sheet-01 of 7" in t and "second title line" in t for t in texts)
+    assert all("sheet-01 tile" in t for t in texts)                          # the page line names it
+    assert any("sheet-01 of 7" in t for t in texts) and any("second title line" in t for t in texts)
     whole = "a label that crosses the edge of the first tile window"
     assert any(whole in t.replace("\r\n", " ") for t in texts)
     assert any("+X far away" in t for t in texts)
@@ -107,21 +108,20 @@ def test_text_beyond_the_outline_gets_its_own_tile_unmoved():
     d = Drawing("gauge")
     d.add_polygon(circle_polygon(0, 0, 60))
     d.texts += [(f"row {k}: z 12.5 mm  y 40.0 mm", -50.0, -400.0 - 8 * k, 4.0) for k in range(3)]
-    tiles = tile_windows(d, d.bounds())
-    placed = _texts_by_tile(d, tiles)
-    rows = [(text, wx + px, wy + py) for (_, _, wx, wy), texts in zip(tiles, placed)
+    tiles = [w for _, w in tile_windows(d)]
+    placed = texts_by_tile(d, tiles)
+    rows = [(text, wx + px, wy + py) for (wx, wy, _, _), texts in zip(tiles, placed)
             for text, px, py, _ in texts]
     assert len(tiles) == 2 and len(rows) == 3
     assert all((x, y) == pytest.approx((-50.0, -400.0 - 8 * k)) for k, (_, x, y) in enumerate(rows))
     outline = circle_polygon(0, 0, 60)
     table_tile = next(t for t, texts in zip(tiles, placed) if texts)
-    assert not box(table_tile[2], table_tile[3], table_tile[2] + WINDOW_MM[0],
-                   table_tile[3] + WINDOW_MM[1]).intersects(outline)
+    assert not box(*table_tile).intersects(outline)
     # a row starting inside the first window but running out of it: printed only where it fits
     # whole, unmoved (shifting it back into the first window would lay it over the outline)
     d.texts.append(("y mm   z_ill mm   z_sh mm   (a long gauge row)", 125.0, 0.0, 4.0))
-    tiles = tile_windows(d, d.bounds())
-    spots = [(wx + px, wy + py) for (_, _, wx, wy), texts in zip(tiles, _texts_by_tile(d, tiles))
+    tiles = [w for _, w in tile_windows(d)]
+    spots = [(wx + px, wy + py) for (wx, wy, _, _), texts in zip(tiles, texts_by_tile(d, tiles))
              for text, px, py, _ in texts if text.startswith("y mm")]
     assert spots == [pytest.approx((125.0, 0.0))]
 

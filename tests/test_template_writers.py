@@ -7,8 +7,9 @@ import re
 
 import numpy as np
 import pytest
+from shapely.geometry import box
 
-from antenna_cad.fabrication.templates import Drawing, dxf_text, write_dxf
+from antenna_cad.fabrication.templates import MIN_TEXT_MM, Drawing, dxf_text, text_box, write_dxf
 from antenna_cad.fabrication.vector_pdf import _helvetica, num, nums, wrap_text
 from tests.ring_cases import two_grade_sphere
 
@@ -76,9 +77,12 @@ def test_luneburg_templates_one_per_ring_hold_every_sector():
     for ring in sectored:
         d = drawings[ring.label]
         assert len(d.cut) == ring.sectors and len(d.arcs) == ring.sectors              # one outline a sector
-        letters = {t for t, *_ in d.texts}
         pieces = [p for p in fab.pieces if getattr(p, "ring", None) is ring]
-        assert len(pieces) == ring.sectors and all(p.label.rsplit("-", 1)[1] in letters for p in pieces)
+        assert len(pieces) == ring.sectors
+        for p in pieces:                                   # its name (or letter) inside its own outline
+            outline = p.cut_path(plan.kerf_mm)
+            assert any(t in (p.label, p.label.rsplit("-", 1)[1]) and h >= MIN_TEXT_MM
+                       and outline.contains(box(x, y, x + text_box(t, h)[0], y + h)) for t, x, y, h in d.texts)
         holes = sum(1 for t, *_ in d.texts if t in ("T", "B"))
         assert holes == sum(h.face != "through" for h in ring.holes)
     for row in fab.rows:                                                  # every cut-list line has its template

@@ -68,10 +68,12 @@ def _write_sheets(spec, fab, folder: Path, sheets: list[int]) -> dict[int, list[
 
 
 def _written(drawings, folder: Path, entries: list[dict]):
-    """The drawings, each after its DXF and SVG are written (its entry appended): one pass, so a
-    lazily built plan draws each sheet once."""
+    """The drawings, each after its pieces are named (``piece_labels``) and its DXF and SVG
+    written (its entry appended): one pass, so a lazily built plan draws each sheet once."""
+    from antenna_cad.fabrication.piece_labels import name_pieces
     from antenna_cad.fabrication.templates import write_dxf, write_svg
     for drawing in drawings:
+        name_pieces(drawing)
         write_dxf(drawing, folder / f"{drawing.label}.dxf")
         svg_mm = write_svg(drawing, folder / f"{drawing.label}.svg")
         entries.append({"label": drawing.label, "dxf": f"templates/{drawing.label}.dxf",

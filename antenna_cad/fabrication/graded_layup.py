@@ -23,8 +23,9 @@ from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.graded import slab_material, slab_pieces, slabs_csv
 from antenna_cad.fabrication.nesting import nest
 from antenna_cad.fabrication.outline import Piece, split_for_board
+from antenna_cad.fabrication.piece_labels import place_labels
 from antenna_cad.fabrication.sheets import FabPlan
-from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
+from antenna_cad.fabrication.templates import Drawing
 from antenna_cad.materials import Material
 from antenna_cad.synthesis.graded_design import GradedDesign
 
@@ -142,12 +143,11 @@ def _sheet_drawing(layup: GradedLayup, sheet: GradedSheet, pieces: list[Piece], 
     drawing = Drawing(sheet.label)
     for p in pieces:
         drawing.add_polygon(p.cut_path(layup.kerf_mm))
-        if len(pieces) > 1:
-            pt = p.polygon.representative_point()
-            drawing.texts.append((p.label, pt.x, pt.y, TEXT_HEIGHT_MM))
     if sheet.slab == 0:                                                  # the lens axis
         bx0, _, bx1, _ = sheet.outline.bounds
         drawing.marks.append([(bx0 - 10.0, 0.0), (bx1 + 10.0, 0.0)])
+    if len(pieces) > 1:                                                  # names inside, off the axis
+        place_labels(drawing, [((p.label,), p.cut_path(layup.kerf_mm), None) for p in pieces])
     x0, y0, _, y1 = drawing.bounds()
     drawing.add_title([f"{title}: {sheet.label} 1:1 (sheet {sheet.index} of {layup.count}), foam grade "
                        f"{sheet.material.name}, sheet {layup.sheet_thickness_mm:g} mm, layer {sheet.layer} of "

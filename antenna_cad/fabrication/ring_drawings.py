@@ -13,7 +13,8 @@ from collections.abc import Callable, Iterator, Sequence
 from antenna_cad.fabrication.outline import CHORD_TOL_MM, Circle, arc_paths
 from antenna_cad.fabrication.ring_pieces import FootPiece, RingPiece, _arc, _suffix
 from antenna_cad.fabrication.ring_plan import RingLayupPlan, RingSheet
-from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
+from antenna_cad.fabrication.piece_labels import place_labels
+from antenna_cad.fabrication.templates import Drawing
 
 
 # ---------------------------------------------------------------- templates
@@ -108,22 +109,22 @@ def _ring_drawing(plan: RingLayupPlan, sheet: RingSheet, pieces: list[RingPiece]
     sectors of a ring differ only in their holes, all marked here."""
     ring = pieces[0].ring
     d = Drawing(ring.label)
-    for piece in pieces:
-        d.add_polygon(piece.cut_path(plan.kerf_mm), piece.cut_arcs(plan.kerf_mm))
+    paths = [piece.cut_path(plan.kerf_mm) for piece in pieces]
+    for piece, path in zip(pieces, paths):
+        d.add_polygon(path, piece.cut_arcs(plan.kerf_mm))
     rm = 0.5 * (ring.r_inner_mm + ring.r_outer_mm)
     if ring.sectors > 1:
-        for piece in pieces:
-            mid = 0.5 * (piece.a0_rad + piece.a1_rad)
-            d.texts.append((piece.label.rsplit("-", 1)[1], rm * math.cos(mid) - 2.0, rm * math.sin(mid) - 2.0,
-                            TEXT_HEIGHT_MM))
         where = (f"{ring.sectors} sectors {pieces[0].label} to {pieces[-1].label}, counter-clockwise from "
                  f"{math.degrees(ring.sector_start_rad) % 360:.2f}° of the sheet frame, "
-                 f"{360 / ring.sectors:.4g}° each: each outline is one piece (its letter inside); "
+                 f"{360 / ring.sectors:.4g}° each: each outline is one piece (its name or letter inside); "
                  "cut them apart and butt-joint them radially")
     else:
         where = "one piece"
     _frame_marks(d, max(ring.r_outer_mm, 20.0))
     _mark_holes(d, ring.holes)
+    spots = [0.5 * (p.a0_rad + p.a1_rad) if ring.sectors > 1 else math.pi / 2 for p in pieces]
+    place_labels(d, [((p.label, p.label.rsplit("-", 1)[1]) if ring.sectors > 1 else (p.label,), path,
+                      (rm * math.cos(a), rm * math.sin(a))) for p, path, a in zip(pieces, paths, spots)])
     holes = _holes_text(ring.holes) if ring.holes else "no dowel holes"
     _title(d, [f"{title}  {ring.label}: sheet {sheet.label} (z {sheet.z_min_mm:g} to {sheet.z_max_mm:g} mm), "
                f"ring of shell {ring.shell_index:02d}; {where}",

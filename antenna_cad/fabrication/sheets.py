@@ -14,7 +14,8 @@ from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.layup import LayupPlan
 from antenna_cad.fabrication.nesting import Placement, nest
 from antenna_cad.fabrication.outline import Joint, Piece, arc_paths, sheet_circles, sheet_pieces, split_for_board
-from antenna_cad.fabrication.templates import TEXT_HEIGHT_MM, Drawing
+from antenna_cad.fabrication.piece_labels import place_labels
+from antenna_cad.fabrication.templates import Drawing
 from antenna_cad.materials import Material
 from antenna_cad.synthesis.checks import Check
 
@@ -103,11 +104,9 @@ def _sheet_drawing(plan: LayupPlan, index: int, pieces: list[Piece], joints: tup
     sheet = plan.sheets[index - 1]
     drawing = Drawing(sheet.label)
     circles = sheet_circles(plan, sheet, plan.kerf_mm)
-    for p in pieces:
-        path = p.cut_path(plan.kerf_mm)
+    paths = [p.cut_path(plan.kerf_mm) for p in pieces]
+    for path in paths:
         drawing.add_polygon(path, arc_paths(path, circles))
-        pt = p.polygon.representative_point()
-        drawing.texts.append((p.label, pt.x - 20, pt.y, TEXT_HEIGHT_MM))
     r = sheet.radius_mm
     drawing.add_cross(0.0, 0.0, 20.0)                                   # lens axis
     for x, y in ((r, 0), (-r, 0), (0, r), (0, -r)):                      # axis marks at the rim
@@ -118,6 +117,7 @@ def _sheet_drawing(plan: LayupPlan, index: int, pieces: list[Piece], joints: tup
     x_hi = max(plan.lens_radius_mm, plan.pedestal_width_mm / 2) + 15
     for j in joints:
         drawing.marks.append([(j.at_mm, y_lo), (j.at_mm, y_hi)] if j.axis == "x" else [(-x_hi, j.at_mm), (x_hi, j.at_mm)])
+    place_labels(drawing, [((p.label,), path, None) for p, path in zip(pieces, paths)])   # names inside, off the marks
     x0, y0, _, y1 = drawing.bounds()
     lines = [f"{title}  {sheet.label} of {plan.count}: {foam.name}, thickness {sheet.thickness_mm:g} mm, "
              f"z {sheet.z_min_mm:g}-{sheet.z_max_mm:g} mm",

@@ -12,7 +12,7 @@ from shapely.geometry import Polygon
 
 from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.sheets import FabPlan
-from antenna_cad.fabrication.templates import Drawing
+from antenna_cad.fabrication.templates import MIN_TEXT_MM, Drawing, text_box
 from antenna_cad.geometry.slot_layout import (GuideExtent, PartSizes, band_ring, core_and_load_rings, coupling_edge,
                                               guide_extent, horn_outlines, layer_indices, mirror_back_sign,
                                               plate_polygon, slot_bulges, slot_outline)
@@ -63,7 +63,6 @@ def _guide_pieces(design: SlotArrayDesign, g: int, ext: GuideExtent, t: float, m
     gx, y0, half = float(s.guide_x_mm[g]), float(ext.y0[g]), ext.half
     L = float(ext.y_end[g] - y0)
     sel = np.flatnonzero(s.guide_index == g)
-    text_h = float(min(1.0, max(0.4, 0.8 * s.period_mm / 4)))
     d = Drawing(f"top-{g:02d}")
     d.cut.append(_ring([(-half, 0), (half, 0), (half, L), (-half, L)]))
     for i in sel:
@@ -71,8 +70,8 @@ def _guide_pieces(design: SlotArrayDesign, g: int, ext: GuideExtent, t: float, m
                 float(s.angle_rad[i]))
         d.arcs[len(d.cut)] = slot_bulges(*slot)                         # DXF: true round ends
         d.cut.append(_ring(slot_outline(*slot)))
-        d.texts.append((f"{int(s.cell_index[i]):02d}.{int(s.slot_in_cell[i])}", half + 1.0,
-                        float(s.y_mm[i]) - y0 - text_h / 2, text_h))
+    _slot_ids(d, [f"{int(s.cell_index[i]):02d}.{int(s.slot_in_cell[i])}" for i in sel],
+              [float(s.y_mm[i]) - y0 for i in sel], half + 1.0)
     d.marks.append([(0.0, -3.0), (0.0, L + 3.0)])                      # guide axis
     d.marks.append([(-half, float(ext.y_slots_end[g]) - y0), (half, float(ext.y_slots_end[g]) - y0)])
     load = design.termination == "matched_load"
@@ -96,6 +95,18 @@ def _guide_pieces(design: SlotArrayDesign, g: int, ext: GuideExtent, t: float, m
         rows.append(_row(f"load-{g:02d}", "load-wedge", absorber, a, design.load_length_mm, h, Polygon(wedge).area,
                          Polygon(wedge).area * h, 2, "matched load: absorber wedge against the end wall"))
     return d, rows
+
+
+def _slot_ids(d: Drawing, ids: list[str], ys: list[float], x: float) -> None:
+    """Slot ids beside the lid at their slots' y, ``MIN_TEXT_MM`` high: in as many columns as
+    it takes for the ids of one column to stand a line apart."""
+    h = MIN_TEXT_MM
+    width = max((text_box(i, h)[0] for i in ids), default=0.0) + 2.0
+    last: list[float] = []                                             # per column: y of its last id
+    for k in sorted(range(len(ids)), key=lambda k: ys[k]):
+        col = next((c for c, y in enumerate(last) if ys[k] - y >= 1.5 * h), len(last))
+        last[col:col + 1] = [ys[k]]
+        d.texts.append((ids[k], x + col * width, ys[k] - h / 2, h))
 
 
 def fabricate_slot_array(design: SlotArrayDesign, dielectric: Material, metal: Material, absorber: Material,

@@ -16,7 +16,7 @@ import math
 import re
 from collections.abc import Iterable
 from dataclasses import dataclass, field
-from functools import cache, lru_cache
+from functools import cache
 from pathlib import Path
 
 import numpy as np
@@ -29,22 +29,25 @@ from antenna_cad.fabrication.vector_pdf import (PT_PER_MM, VectorPdf, num, nums,
 _EZDXF_MARKER = re.compile(r"(\d+\.\d+\.\d+) @ \d{4}-\d\d-\d\dT[\d:.]+\+00:00")
 A4_MM = (210.0, 297.0)
 PAGE_MARGIN_MM = 10.0
-HEADER_MM, FOOTER_MM = 26.0, 18.0              # header: page line + the drawing's title block
+HEADER_MM, FOOTER_MM = 12.0, 18.0              # header: the page line (two rows at most)
 WINDOW_MM = (A4_MM[0] - 2 * PAGE_MARGIN_MM, A4_MM[1] - 2 * PAGE_MARGIN_MM - HEADER_MM - FOOTER_MM)  # per tile
 OVERLAP_MM = 10.0
 CHECK_BAR_MM = 100.0
 TEXT_HEIGHT_MM = 6.0
+MIN_TEXT_MM = 2.5                                # no text smaller (cap height), on drawings and pages
+TITLE_HEIGHT_MM = 3.0
+TITLE_WIDTH_MM = (60.0, 180.0)                   # a title block's width: the drawing's, within these
+MIN_VERTEX_STEP_MM = 0.01                        # closer vertices are one (plotters read them as moves)
 LAYERS = {"CUT": 1, "MARK": 5, "TEXT": 7}      # DXF colour indices: red, blue, black/white
 SVG_COLOURS = {"CUT": "red", "MARK": "blue"}
 LINE_WIDTH_MM = {"CUT": 0.18, "MARK": 0.14}
 CAP_HEIGHT_EM = 0.72                             # Helvetica: DXF text height is the cap height
-HEADER_PT = (7.0, 6.0, 4.0)                      # page line; title block preferred and smallest size
+PAGE_LINE_PT = MIN_TEXT_MM / CAP_HEIGHT_EM * PT_PER_MM     # header and footer text: MIN_TEXT_MM caps
 TITLE_LEADING = 1.5                              # title lines: baseline step / cap height
 
 
 BulgePath = list[tuple[float, float, float]]     # closed path: vertex x, y and the DXF bulge to the next
 Points = list[tuple[float, float]] | np.ndarray      # a polyline's vertices
-HeaderRow = tuple[str, float, float]             # text, baseline depth below the top margin pt, size pt
 
 
 @dataclass
@@ -52,9 +55,10 @@ class Drawing:
     """A template in drawing coordinates (mm). ``cut`` rings are tool paths (polylines within the
     template chord tolerance, drawn in SVG and PDF); ``arcs`` maps a ``cut`` index to the same
     path with true circular arcs (DXF bulges), written to the DXF instead when present;
-    ``marks`` are open polylines; ``title`` the title block (also among ``texts``, wrapped; the
-    PDF repeats it in the header of every tile instead). A polyline is a list of (x, y) or an
-    (n, 2) array (large drawings: the writers format arrays in bulk)."""
+    ``marks`` are open polylines; ``title`` the title block (also among ``texts``, wrapped);
+    ``bar`` the check bar's marks (a slice) and text index: the PDF prints its own on every page
+    instead. A polyline is a list of (x, y) or an (n, 2) array (large drawings: the writers
+    format arrays in bulk); the writers drop near-duplicate vertices (:meth:`paths`)."""
     label: str
     cut: list[Points] = field(default_factory=list)
     arcs: dict[int, BulgePath] = field(default_factory=dict)
@@ -62,12 +66,14 @@ class Drawing:
     texts: list[tuple[str, float, float, float]] = field(default_factory=list)   # text, x, y, cap height
     title: list[str] = field(default_factory=list)
     title_texts: set[int] = field(default_factory=set)                         # their indices in texts
+    bar: tuple[slice, int] | None = None
+    _paths: tuple | None = field(default=None, repr=False, compare=False)
 
-    def add_title(self, lines: list[str], x: float, y: float, height: float = TEXT_HEIGHT_MM) -> None:
+    def add_title(self, lines: list[str], x: float, y: float, height: float = TITLE_HEIGHT_MM) -> None:
         """Title block above (x, y), the baseline of its last row; each line wrapped to the
-        drawing's width (at least one tile's) so it stays on the drawing."""
+        drawing's width (within :data:`TITLE_WIDTH_MM`: a block fits one tile, nested or tiled)."""
         x0, _, x1, _ = self.bounds()
-        width = max(x1 - x, WINDOW_MM[0])
+        width = min(max(x1 - x, TITLE_WIDTH_MM[0]), TITLE_WIDTH_MM[1])
         rows = [row for line in lines for row in wrap_text(line, width, height / CAP_HEIGHT_EM)]
         self.title += lines
         for k, row in enumerate(rows):
@@ -98,8 +104,8 @@ class Drawing:
     def cut_bounds(self) -> tuple[float, float, float, float]:
         """Bounding box of the CUT paths: of their true arcs where the DXF has them (bulge arcs
         reach past their chords), else of the polylines."""
-        boxes = [bulge_bounds(self.arcs[k]) if k in self.arcs else _points_box(ring)
-                 for k, ring in enumerate(self.cut)]
+        cut, arcs, _ = self.paths()
+        boxes = [bulge_bounds(arcs[k]) if k in arcs else _points_box(ring) for k, ring in enumerate(cut)]
         return (min(b[0] for b in boxes), min(b[1] for b in boxes), max(b[2] for b in boxes),
                 max(b[3] for b in boxes))
 
@@ -113,12 +119,83 @@ class Drawing:
         return x0, y0, x1, y1
 
     def add_check_bar(self, x: float, y: float) -> None:
-        """A 100 mm bar with 10 mm ticks: measure it on the print to confirm 1:1."""
+        """A 100 mm bar with 10 mm ticks: measure it on the print to confirm 1:1 (DXF and SVG;
+        the PDF has one on every page)."""
+        first = len(self.marks)
         self.marks.append([(x, y), (x + CHECK_BAR_MM, y)])
         for k in range(11):
             tick = 6.0 if k in (0, 5, 10) else 3.0
             self.marks.append([(x + 10 * k, y), (x + 10 * k, y + tick)])
+        self.bar = (slice(first, len(self.marks)), len(self.texts))
         self.texts.append(("100 mm check bar", x, y - 8.0, 4.0))
+
+    def paths(self) -> tuple[list[Points], dict[int, BulgePath], list[Points]]:
+        """(cut, arcs, marks) as the writers draw them: without vertices nearer than
+        :data:`MIN_VERTEX_STEP_MM` to the one before (remembered while no path is added)."""
+        key = (len(self.cut), len(self.arcs), len(self.marks))
+        if self._paths is None or self._paths[0] != key:
+            self._paths = (key, ([thinned(r, True) for r in self.cut],
+                                 {k: thinned_bulges(p) for k, p in self.arcs.items()},
+                                 [thinned(m, False) for m in self.marks]))
+        return self._paths[1]
+
+    def page_items(self) -> tuple[list[Points], list[tuple[int, tuple[str, float, float, float]]]]:
+        """The marks and (index, text) the PDF draws: all but the check bar."""
+        _, _, marks = self.paths()
+        if self.bar is None:
+            return marks, list(enumerate(self.texts))
+        cut, i = self.bar
+        return marks[:cut.start] + marks[cut.stop:], [(k, t) for k, t in enumerate(self.texts) if k != i]
+
+    def page_extents(self) -> tuple[float, float, float, float]:
+        """Extents of what the PDF draws (cut paths, marks, texts; no check bar)."""
+        cut, _, _ = self.paths()
+        marks, texts = self.page_items()
+        boxes = [_points_box(ring) for ring in cut + marks if len(ring)]
+        boxes += [(x, y, x + text_box(t, h)[0], y + h) for _, (t, x, y, h) in texts]
+        return (min(b[0] for b in boxes), min(b[1] for b in boxes), max(b[2] for b in boxes),
+                max(b[3] for b in boxes))
+
+
+def thinned(points: Points, closed: bool, tol: float = MIN_VERTEX_STEP_MM) -> Points:
+    """``points`` without the vertices nearer than ``tol`` to the last one kept (a closed path:
+    nor its last vertices near the first; an open one keeps its end); unchanged when none is."""
+    a = np.asarray(points, dtype=float)[:, :2] if len(points) else np.zeros((0, 2))
+    if len(a) < 2:
+        return points
+    near = np.hypot(*np.diff(a, axis=0).T) < tol
+    if not near.any() and not (closed and math.dist(a[-1], a[0]) < tol):
+        return points
+    kept = _kept(a, closed, tol)
+    return points[kept] if isinstance(points, np.ndarray) else [points[k] for k in kept]
+
+
+def thinned_bulges(path: BulgePath, tol: float = MIN_VERTEX_STEP_MM) -> BulgePath:
+    """A closed bulge path thinned as :func:`thinned`; the segment joining two kept vertices
+    takes the bulge of the longest of the segments it replaces (the others are the tiny ones)."""
+    a = np.array([(x, y) for x, y, _ in path])
+    if len(a) < 2 or thinned(a, True, tol) is a:
+        return path
+    kept = _kept(a, True, tol)
+    out = []
+    for j, k in zip(kept, kept[1:] + [len(path)]):
+        longest = max(range(j, k), key=lambda i: math.dist(a[i], a[(i + 1) % len(a)]))
+        out.append((path[j][0], path[j][1], path[longest][2]))
+    return out
+
+
+def _kept(a: np.ndarray, closed: bool, tol: float) -> list[int]:
+    """Indices of the vertices kept by :func:`thinned`."""
+    kept = [0]
+    for k in range(1, len(a)):
+        if math.dist(a[k], a[kept[-1]]) >= tol:
+            kept.append(k)
+    if closed:
+        while len(kept) > 2 and math.dist(a[kept[-1]], a[0]) < tol:
+            kept.pop()
+    elif kept[-1] != len(a) - 1:                      # an open line keeps its end point
+        kept[-1:] = [kept[-1], len(a) - 1] if len(kept) == 1 else [len(a) - 1]
+    return kept
 
 
 def _points_box(points) -> tuple[float, float, float, float]:
@@ -182,9 +259,10 @@ def dxf_text(drawing: Drawing) -> str:
         for x, y, *bulge in np.asarray(points, dtype=float).tolist():
             out.append(f" 10\n{x}\n 20\n{y}\n" + (f" 42\n{bulge[0]}\n" if bulge and bulge[0] else ""))
 
-    for k, ring in enumerate(drawing.cut):
-        lwpolyline("CUT", drawing.arcs.get(k, ring), True)
-    for line in drawing.marks:
+    cut, arcs, marks = drawing.paths()
+    for k, ring in enumerate(cut):
+        lwpolyline("CUT", arcs.get(k, ring), True)
+    for line in marks:
         lwpolyline("MARK", line, False)
     for text, x, y, h in drawing.texts:
         x, y, h = float(x), float(y), float(h)
@@ -237,7 +315,8 @@ def write_svg(drawing: Drawing, path: Path) -> tuple[float, float]:
            f'viewBox="{num(x0 - m)} {num(-y1 - m)} {num(w)} {num(h)}">',
            f"<title>{html.escape(drawing.label)}</title>",
            '<g fill="none" stroke-linejoin="round" transform="scale(1 -1)">']
-    for layer, closed, lines in (("CUT", True, drawing.cut), ("MARK", False, drawing.marks)):
+    cut, _, marks = drawing.paths()
+    for layer, closed, lines in (("CUT", True, cut), ("MARK", False, marks)):
         tag = "polygon" if closed else "polyline"
         out.append(f'<g id="{layer}" stroke="{SVG_COLOURS[layer]}" stroke-width="{LINE_WIDTH_MM[layer]}">')
         lines = [line for line in lines if len(line)]
@@ -256,119 +335,87 @@ def write_svg(drawing: Drawing, path: Path) -> tuple[float, float]:
     return float(num(w)), float(num(h))
 
 
-def tile_windows(drawing: Drawing, bounds: tuple[float, float, float, float]) -> list[tuple[int, int, float, float]]:
-    """Tile origins (row, col, x, y) over the drawing's extents (``bounds`` grown by the text
-    boxes); only tiles that hold a cut path or a text other than the title block (repeated in
-    every header), so a table set beside or below the outline gets its own page instead of
-    being pushed onto the outline."""
-    x0, y0, x1, y1 = drawing.extents(bounds)
-    win_w, win_h = WINDOW_MM
-    step_w, step_h = win_w - OVERLAP_MM, win_h - OVERLAP_MM
-    cols = max(1, math.ceil((x1 - x0 - OVERLAP_MM) / step_w))
-    rows = max(1, math.ceil((y1 - y0 - OVERLAP_MM) / step_h))
-    geometry = [Polygon(r) for r in drawing.cut if len(r) >= 3]
-    texts = [(x, y, x + w, y + h) for i, (text, x, y, size) in enumerate(drawing.texts)
-             if i not in drawing.title_texts for w, h in [text_box(text, size)]]
-    origins = [(r, c, x0 + c * step_w, y1 - win_h - r * step_h) for r in range(rows) for c in range(cols)]
-    if not (geometry or texts):
-        return origins
-    windows = shapely.box(*np.array([(wx, wy, wx + win_w, wy + win_h) for _, _, wx, wy in origins]).T)
-    holds = np.zeros(len(origins), dtype=bool)
-    if geometry:
-        outlines = np.array([g.exterior for g in geometry], dtype=object)
-        polygons = np.array(geometry, dtype=object)
-        shapely.prepare(outlines)
-        shapely.prepare(polygons)
-        holds |= (shapely.intersects(outlines[None, :], windows[:, None])
-                  | shapely.contains(polygons[None, :], windows[:, None])).any(axis=1)
-    if texts:
-        holds |= shapely.intersects(shapely.box(*np.array(texts).T)[None, :], windows[:, None]).any(axis=1)
-    return [o for o, keep in zip(origins, holds) if keep]
-
-
 def write_tiled_pdf(drawings: Iterable[Drawing], path: Path, title: str) -> int:
-    """All drawings at 1:1 on A4 portrait pages with overlap; returns the page count. Each
-    drawing's lines are one Form XObject (with registration crosses at the centres of the overlap
-    strips, the same model points on neighbouring pages); a page clips it to its window and scales
-    it by exactly 72/25.4 pt per mm. Texts are set in page space, never clipped: the header and
-    the drawing's title block on every tile, each other text whole on the tile that holds its
-    start (or the nearest), moved inside the window where it would cross its edge. What repeats
-    is written once and placed on every page: the window frame and the check bar (one form for
-    the file) and each drawing's title block (a form per drawing), so a page is a few hundred
-    bytes (a 3 m Luneburg layup has 10⁵ pages, issue 16)."""
+    """All drawings at 1:1 on A4 portrait pages; returns the page count. Small drawings are nested
+    several to a page, larger ones tiled with overlap (:mod:`page_layout`). Each drawing's lines
+    are one Form XObject (a tiled one's with registration crosses at the centres of the overlap
+    strips, the same model points on neighbouring pages) that a page clips to the drawing's
+    window and scales by exactly 72/25.4 pt per mm. Texts are set in page space, never clipped,
+    each whole inside its window. What repeats is written once: the window frame, the check bar
+    and their labels are one form placed on every page, so a page is a few hundred bytes (a 3 m
+    Luneburg layup has 10⁵ pages)."""
+    from antenna_cad.fabrication.page_layout import layout
     with VectorPdf(path, A4_MM, title) as pdf:
-        page = (0.0, 0.0, A4_MM[0] * PT_PER_MM, A4_MM[1] * PT_PER_MM)
-        furniture = pdf.add_form(_furniture(), page)
-        for drawing in drawings:
-            bounds = drawing.bounds()
-            tiles = tile_windows(drawing, bounds)
-            form = pdf.add_form(_form_content(drawing, bounds), _padded(drawing.extents(bounds), 10.0))
-            placed = _texts_by_tile(drawing, tiles)
-            blocks: dict[tuple, int] = {}
-            for k, (r, c, wx, wy) in enumerate(tiles, start=1):
-                header = (f"{title} · {drawing.label} · tile row {r + 1} col {c + 1} · page {k}/{len(tiles)}"
-                          " · print at 100 % (actual size)")
-                first, rows = header_lines([header] + drawing.title)
-                if rows not in blocks:
-                    blocks[rows] = pdf.add_form(_header_ops(rows), page)
-                pdf.add_page(_page_content(form, furniture, blocks[rows], wx, wy, first, placed[k - 1]),
-                             (form, furniture, blocks[rows]))
+        furniture = pdf.add_form(_furniture(), (0.0, 0.0, A4_MM[0] * PT_PER_MM, A4_MM[1] * PT_PER_MM))
+        tiled: dict[int, int] = {}                      # a tiled drawing's form, by drawing index
+        for placements in layout(drawings):
+            forms = []
+            for p in placements:
+                if p.tile is None:
+                    forms.append(pdf.add_form(_form_content(p.drawing, None), _padded(p.window, 1.0)))
+                    continue
+                if p.index not in tiled:
+                    tiled[p.index] = pdf.add_form(_form_content(p.drawing, p), _padded(p.drawing.page_extents(), 10.0))
+                forms.append(tiled[p.index])
+            line = _page_line(title, placements, pdf.page_count + 1)
+            pdf.add_page(_page_content(placements, forms, furniture, line), (furniture, *sorted(set(forms))))
         return pdf.page_count
 
 
-def _texts_by_tile(drawing: Drawing, tiles) -> list[list[tuple[str, float, float, float]]]:
-    """Per tile, the drawing's non-title texts at window positions (mm from the window's lower
-    left): each on every tile whose window holds its whole box, at its true place; a text no
-    window holds whole goes on the one tile needing the least shift to hold it (ties: the first),
-    shifted inside — never on a tile where the shift would move it onto other lines."""
-    win_w, win_h = WINDOW_MM
-    placed: list[list[tuple[str, float, float, float]]] = [[] for _ in tiles]
-    wxs = np.array([t[2] for t in tiles], dtype=float)
-    wys = np.array([t[3] for t in tiles], dtype=float)
-    for i, (text, x, y, size) in enumerate(drawing.texts):
-        if i in drawing.title_texts:
-            continue
-        w, h = text_box(text, size)
-        dx, dy = x - wxs, y - wys                        # all tiles at once (the same float operations)
-        px = np.minimum(np.maximum(dx, 0.5), win_w - w - 0.5)
-        py = np.minimum(np.maximum(dy, 0.5), win_h - h - 0.5)
-        whole = np.flatnonzero((px == dx) & (py == dy)).tolist()
-        if not whole:
-            shifts = [math.hypot(a - b, c - d) for a, b, c, d in zip(px.tolist(), dx.tolist(), py.tolist(), dy.tolist())]
-            whole = [min(range(len(tiles)), key=shifts.__getitem__)]
-        for k in whole:
-            placed[k].append((text, float(px[k]), float(py[k]), size))
-    return placed
+def _page_line(title: str, placements, page: int) -> str:
+    """The header: title, page number, what the page holds; parts listed while two rows hold them."""
+    names = "; ".join(p.name for p in placements)
+    line = f"{title} · page {page} · {names} · print at 100 % (actual size)"
+    if len(placements) > 1 and len(wrap_text(line, WINDOW_MM[0] * PT_PER_MM, PAGE_LINE_PT)) > 2:
+        line = f"{title} · page {page} · {len(placements)} parts, each named inside its outline · print at 100 %"
+    return line
 
 
-def _form_content(drawing: Drawing, bounds: tuple[float, float, float, float]) -> bytes:
-    x0, y0, x1, y1 = bounds
-    step_w, step_h = WINDOW_MM[0] - OVERLAP_MM, WINDOW_MM[1] - OVERLAP_MM
-    half = OVERLAP_MM / 2
-    xs = x0 + half + step_w * np.arange(-1, math.ceil((x1 - x0) / step_w) + 2)
-    ys = y1 - half - step_h * np.arange(-1, math.ceil((y1 - y0) / step_h) + 2)
-    crosses = [seg for x in xs for y in ys for seg in ([(x - 4, y), (x + 4, y)], [(x, y - 4), (x, y + 4)])]
-    ops = [f"1 J 1 j {num(LINE_WIDTH_MM['CUT'])} w 1 0 0 RG\n"]
-    ops.append(polylines_ops(drawing.cut, closed=True))
-    ops.append(f"{num(LINE_WIDTH_MM['MARK'])} w 0 0 1 RG\n")
-    ops.append(polylines_ops(drawing.marks, closed=False))
-    ops.append("0 0 0 RG\n")
-    ops.append(polylines_ops(crosses, closed=False))
+def _form_content(drawing: Drawing, tile) -> bytes:
+    """The drawing's cut paths (red) and marks (blue), without its check bar; a tiled drawing's
+    (``tile``: any of its placements) also black registration crosses at the centres of its
+    grid's overlap strips."""
+    cut, _, _ = drawing.paths()
+    marks, _ = drawing.page_items()
+    ops = [f"1 J 1 j {num(LINE_WIDTH_MM['CUT'])} w 1 0 0 RG\n", polylines_ops(cut, closed=True),
+           f"{num(LINE_WIDTH_MM['MARK'])} w 0 0 1 RG\n", polylines_ops(marks, closed=False)]
+    if tile is not None:
+        ops += ["0 0 0 RG\n", polylines_ops(_crosses(drawing.page_extents(), tile.tile), closed=False)]
     return "".join(ops).encode()
 
 
-def _page_content(form: int, furniture: int, block: int, wx: float, wy: float, first, texts) -> bytes:
-    """Page-space operators in points: clipped window holding the drawing's form at 1:1, the
-    frame and check bar (``furniture``), the title block (``block``), the page line ``first``
-    and the tile's texts."""
+def _crosses(extents: tuple[float, float, float, float], tile) -> list[list[tuple[float, float]]]:
+    """Registration crosses of a tiled drawing: on the centre lines of its grid's overlap strips,
+    where they cross each other and the middle of each tile (cut to ``extents``) they border."""
+    step_w, step_h = WINDOW_MM[0] - OVERLAP_MM, WINDOW_MM[1] - OVERLAP_MM
+    x0, y0, x1, y1 = extents
+    cols, rows = math.ceil((x1 - tile.x0) / step_w), math.ceil((tile.y1 - y0) / step_h)
+    strip_x = [tile.x0 + c * step_w + OVERLAP_MM / 2 for c in range(1, cols)]
+    strip_y = [tile.y1 - r * step_h - OVERLAP_MM / 2 for r in range(1, rows)]
+    mid_x = [(max(x0, tile.x0 + c * step_w) + min(x1, tile.x0 + c * step_w + WINDOW_MM[0])) / 2 for c in range(cols)]
+    mid_y = [(max(y0, tile.y1 - r * step_h - WINDOW_MM[1]) + min(y1, tile.y1 - r * step_h)) / 2 for r in range(rows)]
+    points = sorted({(x, y) for x in strip_x for y in strip_y + mid_y} | {(x, y) for x in mid_x for y in strip_y})
+    return [seg for x, y in points for seg in ([(x - 4, y), (x + 4, y)], [(x, y - 4), (x, y + 4)])]
+
+
+def _page_content(placements, forms: list[int], furniture: int, line: str) -> bytes:
+    """Page-space operators in points: per placement its window clipped on the page holding the
+    drawing's form at 1:1 and its texts; the frame and check bar (``furniture``); the page line."""
     k = PT_PER_MM
-    left, bottom = PAGE_MARGIN_MM, PAGE_MARGIN_MM + FOOTER_MM
-    window = f"{num(left * k)} {num(bottom * k)} {num(WINDOW_MM[0] * k)} {num(WINDOW_MM[1] * k)} re"
-    content = (f"q {window} W n {k:.9f} 0 0 {k:.9f} {num((left - wx) * k)} {num((bottom - wy) * k)} cm "
-               f"/X{form} Do Q\n/X{furniture} Do /X{block} Do 0 g\n").encode() + _header_ops(first)
-    for text, x, y, size in texts:
-        content += text_ops(text, (left + x) * k, (bottom + y) * k, size / CAP_HEIGHT_EM * k)
-    return content
+    out = []
+    for p, form in zip(placements, forms):
+        left, bottom = PAGE_MARGIN_MM + p.at[0], PAGE_MARGIN_MM + FOOTER_MM + p.at[1]
+        wx, wy, wx1, wy1 = p.window
+        clip = f"{num(left * k)} {num(bottom * k)} {num((wx1 - wx) * k)} {num((wy1 - wy) * k)} re"
+        out.append(f"q {clip} W n {k:.9f} 0 0 {k:.9f} {num((left - wx) * k)} {num((bottom - wy) * k)} cm "
+                   f"/X{form} Do Q\n".encode())
+        out += [text_ops(text, (left + x) * k, (bottom + y) * k, size / CAP_HEIGHT_EM * k)
+                for text, x, y, size in p.texts]
+    out.append(f"/X{furniture} Do 0 g\n".encode())
+    top = (A4_MM[1] - PAGE_MARGIN_MM) * k
+    for i, row in enumerate(wrap_text(line, WINDOW_MM[0] * k, PAGE_LINE_PT)):
+        out.append(text_ops(row, PAGE_MARGIN_MM * k, top - PAGE_LINE_PT * (1 + 1.25 * i), PAGE_LINE_PT))
+    return b"".join(out)
 
 
 def _furniture() -> bytes:
@@ -383,38 +430,7 @@ def _furniture() -> bytes:
     ops += [f"{num(x)} {num(bar_y)} m {num(x)} {num(bar_y + (4 if t % 5 == 0 else 2) * k)} l S\n"
             for t, x in enumerate(x_bar)]
     return "".join(ops).encode() + text_ops("100 mm check bar: measure it", (left + CHECK_BAR_MM + 4) * k,
-                                            bar_y - 2, 6)
-
-
-def _header_ops(rows) -> bytes:
-    """Header rows (:func:`header_lines`) set below the page's top margin."""
-    left, top = PAGE_MARGIN_MM * PT_PER_MM, (A4_MM[1] - PAGE_MARGIN_MM) * PT_PER_MM
-    return b"".join(text_ops(text, left, top - y, size) for text, y, size in rows)
-
-
-def header_lines(lines: list[str]) -> tuple[tuple[HeaderRow, ...], tuple[HeaderRow, ...]]:
-    """(text, baseline depth below the page's top margin pt, size pt) of the page line's rows and
-    of the title block's, wrapped to the window width; the title shrinks (to 4 pt) to fit the
-    header."""
-    first = wrap_text(lines[0], WINDOW_MM[0] * PT_PER_MM, HEADER_PT[0])
-    out = tuple((row, HEADER_PT[0] * (1 + 1.25 * i), HEADER_PT[0]) for i, row in enumerate(first))
-    return out, _title_rows(tuple(lines[1:]), len(first))
-
-
-@lru_cache(maxsize=64)
-def _title_rows(title: tuple[str, ...], first_rows: int) -> tuple[HeaderRow, ...]:
-    """The title block's header rows below ``first_rows`` rows of page line (the same on every
-    tile of a drawing: wrapped once, not per page)."""
-    width = WINDOW_MM[0] * PT_PER_MM
-    room = (HEADER_MM - 1.0) * PT_PER_MM - 1.25 * HEADER_PT[0]
-    size = HEADER_PT[1]
-    while True:
-        rows = [row for line in title for row in wrap_text(line, width, size)]
-        if len(rows) * 1.2 * size <= room - 1.25 * HEADER_PT[0] * (first_rows - 1) or size <= HEADER_PT[2]:
-            break
-        size -= 0.5
-    depth = HEADER_PT[0] * (1 + 1.25 * (first_rows - 1)) + 0.25 * HEADER_PT[0]
-    return tuple((row, depth + 1.2 * size * (i + 1), size) for i, row in enumerate(rows))
+                                            bar_y - 3, PAGE_LINE_PT)
 
 
 def _padded(box: tuple[float, float, float, float], pad: float) -> tuple[float, float, float, float]:

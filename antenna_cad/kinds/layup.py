@@ -25,7 +25,7 @@ def plan_sheets(fab: SheetLayupSpec, sheet_thickness_mm: float, *, lens_radius_m
             pedestal_height_mm=fab.pedestal_height_mm, pedestal_width_mm=fab.pedestal_width_mm,
             joining=fab.joining, dowel_diameter_mm=fab.dowel_diameter_mm,
             neck_width_mm=fab.neck_width_mm, kerf_mm=fab.kerf_mm,
-            board_width_mm=fab.board.width_mm, board_length_mm=fab.board.length_mm)
+            board_width_mm=fab.board.width_mm, board_length_mm=fab.board.length_mm, edge=fab.edge)
     except ValueError as exc:
         field, _, message = str(exc).partition(": ")
         raise DesignError(field, message) from None

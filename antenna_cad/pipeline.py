@@ -271,6 +271,8 @@ def _write_manifest(spec, out: Path, figures, checks, parts, layup, fab, templat
                    for r in fab.rows],
         "templates": templates,
     }
+    if getattr(fab, "cam", None) is not None:
+        content["cam"] = list(fab.cam.entries)
     sheet_files = {t["label"]: t["dxf"] for t in templates if "dxf" in t}
     if layup is not None:
         pieces: dict[int, list[str]] = {}

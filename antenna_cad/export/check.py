@@ -65,7 +65,8 @@ def check_build(folder: Path) -> list[Finding]:
             findings += _pdf(folder, entry["pdf"], templates=True)
     if (folder / "report.pdf").exists():
         findings += _pdf(folder, "report.pdf", templates=False)
-    return findings
+    from antenna_cad.export.check_cam import check_cam      # G-code: the wire's surfaces and the travel
+    return findings + check_cam(folder, manifest)
 
 
 def _manifest(folder: Path) -> dict:

@@ -4,6 +4,8 @@ the neck warning."""
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from antenna_cad.fabrication.box import plan_box
 from antenna_cad.fabrication.layup import LayupPlan, plan_layup
 from antenna_cad.fabrication.outline import added_in_aperture_mm2
@@ -50,8 +52,13 @@ def plan_layup_and_box(fab, sheets, lens_for, settings: VerificationSpec = Verif
 def fabricate_layup(fab: SheetLayupSpec, layup: LayupPlan, panels, foam: Material, title: str):
     from antenna_cad.fabrication.sheets import fabricate_sheets
     b = fab.box
-    return fabricate_sheets(layup, panels, foam, resolve_material(b.material),
+    plan = fabricate_sheets(layup, panels, foam, resolve_material(b.material),
                             (b.board.width_mm, b.board.length_mm), title)
+    if fab.cam is None:
+        return plan
+    from antenna_cad.cam.plan import plan_cam
+    cam = plan_cam(layup, plan.pieces, fab.cam, foam.name)
+    return replace(plan, files=plan.files | cam.files, cam=cam)
 
 
 def layup_figures(layup: LayupPlan) -> dict[str, float]:

@@ -118,6 +118,7 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
     """Build every artifact of ``spec`` into ``out_root/<name>/`` atomically (``plan``: from
     :func:`prepare`, when the caller has it already). The writers (CAD, DXF, PDF, plots) are imported
     here, not with the module, so ``validate`` stays free of them."""
+    from antenna_cad.cam.preview import cam_report
     from antenna_cad.export.forked import Job
     from antenna_cad.export.report import write_report
     from antenna_cad.export.step import write_step
@@ -163,6 +164,8 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
             with solving(_design_field(spec), "as-built verification"):
                 verification = kind.verify(spec, p.design, p.layup, p.fab)
             checks += list(verification.checks)
+            if getattr(p.fab, "cam", None) is not None:           # the toolpaths' order, times and previews
+                verification = verification.merged(cam_report(p.fab.cam))
             stage("verify")
             figures = kind.summary(spec, p.design, p.layup)
             stage("step")

@@ -16,7 +16,7 @@ import numpy as np
 from shapely.geometry import Point, Polygon
 
 from antenna_cad.cam.gcode import drill_program, hotwire_program
-from antenna_cad.cam.hotwire import RuledCut, piece_cut, tower_paths
+from antenna_cad.cam.hotwire import RuledCut, cone_cut, piece_cut, tower_paths
 from antenna_cad.cam.machines import BUILT_IN, DEFAULT_KERF, FALLBACK_GRADE, Machine, kerf_at
 from antenna_cad.synthesis.checks import DesignError
 
@@ -28,7 +28,7 @@ DRILL_CLEARANCE_MM = 5.0
 class CamPlan:
     files: dict[str, str]           # name under the build folder -> G-code / CSV text
     entries: tuple[dict, ...]       # manifest cam[] in cut order
-    cuts: tuple[tuple[RuledCut, dict], ...]   # (cut, its entry) of every hot-wire file, for the previews
+    cuts: tuple[tuple[dict, np.ndarray, np.ndarray], ...]   # (entry, XY path, UV path) of every hot-wire file
 
     @property
     def seconds(self) -> float:
@@ -90,7 +90,7 @@ def tower_paths_open(front: np.ndarray, back: np.ndarray, t: float, w0: float, s
     return xy, uv
 
 
-def _hotwire_file(cut: RuledCut, m: Machine, cam, material: str) -> tuple[str, dict]:
+def _hotwire_file(cut: RuledCut, m: Machine, cam, material: str) -> tuple[str, dict, np.ndarray, np.ndarray]:
     xy, uv, front, back, w0, center = place_cut(cut, m, cam)
     name = f"cam/{cut.part}.gcode"
     kind = "cone (taper-cut rim)" if cut.cone else "straight (vertical edges, XY = UV)"
@@ -109,7 +109,7 @@ def _hotwire_file(cut: RuledCut, m: Machine, cam, material: str) -> tuple[str, d
              "faces": [{"z_mm": cut.z_front_mm, "wire_mm": w0},
                        {"z_mm": cut.z_back_mm, "wire_mm": w0 + cut.thickness_mm}],
              "center_mm": [round(center[0], 6), round(center[1], 6)]}
-    return text, entry
+    return text, entry, xy, uv
 
 
 def _drill_file(piece, sheet, cam) -> tuple[str, dict] | None:
@@ -135,20 +135,22 @@ def plan_cam(layup, pieces, cam, material: str) -> CamPlan:
     sheets = sorted(layup.sheets, key=lambda s: s.index, reverse=cam.order == "flat_first")
     files, entries, cuts = {}, [], []
     for sheet in sheets:
-        for piece in sorted((p for p in pieces if p.sheet_index == sheet.index), key=lambda p: p.label):
-            try:
-                cut = piece_cut(piece, sheet, kerf)
-            except ValueError as exc:
-                field, _, message = str(exc).partition(": ")
-                raise DesignError(field, message) from None
-            text, entry = _hotwire_file(cut, m, cam, material)
+        own = sorted((p for p in pieces if p.sheet_index == sheet.index), key=lambda p: p.label)
+        blank = sheet.tapered and not any(p.label == sheet.label for p in own)   # the disc is in board strips
+        for piece in own:
+            text, entry, xy, uv = _hotwire_file(piece_cut(piece, sheet, kerf), m, cam, material)
             files[entry["file"]] = text
             entries.append(entry)
-            cuts.append((cut, entry))
+            cuts.append((entry, xy, uv))
             drill = _drill_file(piece, sheet, cam)
             if drill is not None:
                 files[drill[1]["file"]] = drill[0]
                 entries.append(drill[1])
+        if blank:                                   # the glued strips cut to the cone
+            text, entry, xy, uv = _hotwire_file(cone_cut(sheet, kerf, f"{sheet.label}-blank"), m, cam, material)
+            files[entry["file"]] = text
+            entries.append(entry)
+            cuts.append((entry, xy, uv))
     rows = ["order,file,part,machine,seconds"] + [f"{i},{e['file']},{e['part']},{e['machine']},{e['seconds']:g}"
                                                   for i, e in enumerate(entries, 1)]
     rows.append(f",total,,,{sum(e['seconds'] for e in entries):.1f}")

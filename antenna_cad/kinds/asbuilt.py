@@ -310,7 +310,7 @@ def _layer_table(lens: Lens, layup: LayupPlan, fab) -> Table:
                                                       "cone radius back mm", "largest gap to the profile mm",
                                                       "pieces"), rows,
                      caption="each rim is the cone through the lens profile at the sheet's two faces; gap: the "
-                     "largest radial distance between cone and profile within the sheet (no sanding)")
+                     "largest distance from the profile to the cone in the meridional section (no sanding)")
     rows = tuple((s.label, _r(s.z_min_mm), _r(s.z_max_mm), _r(s.radius_mm), _r(e), k)
                  for s, e, k in zip(layup.sheets, excess, pieces))
     return Table("layers", "Sheets", ("sheet", "z min mm", "z max mm", "disc radius mm",

@@ -60,12 +60,15 @@ class Taper:
         return np.concatenate([ring, ring[:1], [[np.nan, np.nan]]])
 
     def largest_gap_mm(self) -> list[float]:
-        """Per sheet: the largest radial distance between its cone and the lens profile."""
+        """Per sheet: the largest distance from the lens profile to its cone, in the meridional plane."""
         r = np.linspace(0.0, self.lens.radius_mm, 4001)
         zf = self.lens.front_z(r)
         out = []
         for s in self.layup.sheets:
             z = np.linspace(s.z_min_mm, s.z_max_mm, 257)
-            lens_r = np.interp(z, zf, r)                       # the profile's radius at depth z
-            out.append(float(np.max(np.abs(s.radius_at_z(z) - lens_r))))
+            p = np.stack([np.interp(z, zf, r), z], -1)                 # the profile within the sheet
+            a = np.array([s.front_radius_mm, s.z_min_mm])
+            d = np.array([s.radius_mm, s.z_max_mm]) - a
+            u = np.clip((p - a) @ d / (d @ d), 0.0, 1.0)
+            out.append(float(np.max(np.linalg.norm(p - a - u[:, None] * d, axis=1))))
         return out

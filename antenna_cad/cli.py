@@ -7,6 +7,7 @@
     make-lens check OUT              re-read every file of a build folder with independent readers
     make-lens sweep SWEEP [-o OUT] [--scheduler tcp://HOST:PORT] [--workers N]
                                      run a design sweep on dask into OUT/<sweep name>/
+    make-lens kerf coupon|table      hot-wire kerf calibration (antenna_cad.kerf_cli)
     make-lens --version
 """
 
@@ -23,6 +24,7 @@ from rich.table import Table
 
 from antenna_cad import __version__
 from antenna_cad.interrupt import hold_if_stopping
+from antenna_cad.kerf_cli import kerf_app
 
 EXIT_CODES = ("Exit codes: 0 built/valid (checks pass or warn); 1 built, but a check failed; "
               "2 bad spec, design or output folder (one line per problem: file: field: rule) — nothing written; "
@@ -31,9 +33,10 @@ app = typer.Typer(add_completion=False, no_args_is_help=True, rich_markup_mode=N
                   help="Physics spec of a microwave antenna → STEP/STL, 1:1 templates, cut list.\n\n" + EXIT_CODES)
 out_console = Console()
 err_console = Console(stderr=True, soft_wrap=True)
-COMMANDS = {"build", "validate", "schema", "check", "sweep"}
+COMMANDS = {"build", "validate", "schema", "check", "sweep", "kerf"}
 VALUE_OPTIONS = {"-o", "--out", "--scheduler", "--workers"}
 STATUS_STYLE = {"pass": "green", "warn": "yellow", "fail": "red"}
+app.add_typer(kerf_app, name="kerf")        # hot-wire kerf calibration (antenna_cad.kerf_cli)
 
 
 def _version(value: bool) -> None:

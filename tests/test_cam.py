@@ -152,3 +152,26 @@ def test_vertex_cap_gap_is_about_a_quarter_sheet():
     t = plan.layup.sheet_thickness_mm
     assert 0.1 * t < gaps[0] < 0.25 * t
     assert max(gaps[1:-1]) < gaps[0] / 4
+
+
+def test_kerf_coupon_cuts_three_squares_and_the_table_reads_them_back():
+    from typer.testing import CliRunner
+
+    from antenna_cad.cli import app
+    run = CliRunner().invoke(app, ["kerf", "coupon", "--feeds", "100,200,400"])
+    assert run.exit_code == 0
+    moves, cutting = parse_moves(run.stdout, "XYUV")
+    m = np.array(moves)
+    assert np.allclose(m[:, :2], m[:, 2:])                                 # straight: XY = UV
+    squares = [m[i:i + 8] for i in range(0, len(m), 8)]
+    assert len(squares) == 3
+    for sq in squares:
+        contour = sq[1:7, :2]
+        assert np.ptp(contour[:, 0]) == pytest.approx(40) and np.ptp(contour[:, 1]) == pytest.approx(40)
+    run = CliRunner().invoke(app, ["kerf", "table", "xps", "100=38.5", "200=39", "400=39.4"])
+    assert run.exit_code == 0
+    table = yaml.safe_load(run.stdout)["kerf_table"]["xps"]
+    assert table == [[100.0, 1.5], [200.0, 1.0], [400.0, pytest.approx(0.6)]]
+    spec = _spec("xps-collimator-0.5m-taper.yaml", cam={"kerf_table": {"xps": table}, "feed_mm_min": 200})
+    assert {e["kerf_mm"] for e in prepare(spec).fab.cam.entries if "faces" in e} == {1.0}
+    assert CliRunner().invoke(app, ["kerf", "table", "xps", "100=41"]).exit_code == 2

@@ -34,29 +34,33 @@ def _words(axes: str, values, scale: float) -> str:
 
 
 def hotwire_program(header: list[str], machine: Machine, axes: str, units: str, feed_mode: str,
-                    xy: np.ndarray, uv: np.ndarray, front: np.ndarray, back: np.ndarray,
-                    feed_mm_min: float, power: float, dwell_s: float) -> Program:
-    """The program for tower paths ``xy``/``uv`` (M, 2), machine mm, whose moves carry the wire over
-    the foam faces ``front``/``back`` (M, 2); the first and last rows are the safe start/stop."""
+                    passes: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, float]], power: float,
+                    dwell_s: float) -> Program:
+    """The program of ``passes``: (xy, uv, front, back, feed mm/min), tower paths (M, 2) in machine mm
+    whose moves carry the wire over the foam faces ``front``/``back`` (M, 2); each pass's first and
+    last rows are its safe start/stop, where the heat goes on and off."""
     scale = INCH_MM if units == "inch" else 1.0
     lines = [f"({h})" for h in header]
     lines += ["G21" if units == "mm" else "G20", "G90", "G93" if feed_mode == "inverse_time" else "G94"]
-    seconds = dwell_s
-    lines.append("G0 " + _words(axes, (*xy[0], *uv[0]), scale))
-    lines += [machine.heat_on.replace("{power}", _num(power)), f"G4 P{_num(dwell_s)}"]
-    for k in range(1, len(xy)):
-        face = max(np.hypot(*(front[k] - front[k - 1])), np.hypot(*(back[k] - back[k - 1])))
-        if face <= 0:
-            continue
-        minutes = face / feed_mm_min
-        seconds += 60 * minutes
-        if feed_mode == "inverse_time":
-            f = 1.0 / minutes
-        else:
-            f = np.hypot(*(xy[k] - xy[k - 1]), *(uv[k] - uv[k - 1])) / scale / minutes
-        lines.append("G1 " + _words(axes, (*xy[k], *uv[k]), scale) + f" F{_num(f)}")
-    lines += [machine.heat_off, "G94", "M2"]
-    return Program("\n".join(lines) + "\n", seconds)
+    seconds = 0.0
+    for xy, uv, front, back, feed_mm_min in passes:
+        seconds += dwell_s
+        lines.append("G0 " + _words(axes, (*xy[0], *uv[0]), scale))
+        lines += [machine.heat_on.replace("{power}", _num(power)), f"G4 P{_num(dwell_s)}"]
+        for k in range(1, len(xy)):
+            face = max(np.hypot(*(front[k] - front[k - 1])), np.hypot(*(back[k] - back[k - 1])))
+            if face <= 0:
+                continue
+            minutes = face / feed_mm_min
+            seconds += 60 * minutes
+            if feed_mode == "inverse_time":
+                f = 1.0 / minutes
+            else:
+                f = np.hypot(*(xy[k] - xy[k - 1]), *(uv[k] - uv[k - 1])) / scale / minutes
+            lines.append("G1 " + _words(axes, (*xy[k], *uv[k]), scale) + f" F{_num(f)}")
+        lines.append(machine.heat_off)
+    lines += ["G94", "M2"]
+    return Program("\n".join(lines) + "\n", float(seconds))
 
 
 def drill_program(header: list[str], holes: list[tuple[float, float, float]], units: str, feed_mm_min: float,

@@ -101,7 +101,7 @@ def _hotwire_file(cut: RuledCut, m: Machine, cam, material: str) -> tuple[str, d
               f"lens axis at X {center[0]:.3f} Y {center[1]:.3f} (first tower); sheet +y up",
               f"kerf {cut.kerf_mm:g} mm (compensated), feed {cam.feed_mm_min:g} mm/min at the faster face",
               "dowel holes are not cut here: see the drilling file"]
-    prog = hotwire_program(header, m, m.axes, cam.units, m.feed_mode, xy, uv, front, back, cam.feed_mm_min,
+    prog = hotwire_program(header, m, m.axes, cam.units, m.feed_mode, [(xy, uv, front, back, cam.feed_mm_min)],
                            cam.heat_power, m.dwell_s)
     text = prog.text.replace("(antenna_cad hot-wire", f"(estimated cut time {prog.seconds:.0f} s)\n(antenna_cad hot-wire", 1)
     entry = {"file": name, "part": cut.part, "machine": m.name, "axes": m.axes, "kerf_mm": cut.kerf_mm,

@@ -84,5 +84,6 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    os.environ.setdefault("ANTENNA_CAD_MEEP_PYTHON", "/usr/bin/false")
+    if "--full-wave" not in sys.argv:
+        os.environ.setdefault("ANTENNA_CAD_MEEP_PYTHON", "/usr/bin/false")
     main()

@@ -16,7 +16,7 @@ from antenna_cad.spec.common import StrictModel
 
 Axes = Annotated[str, Field(pattern=r"^[A-Z]{3,4}$", description="axis letters: hot wire XYUV/XYZA order "
                             "(tower 1 horizontal, vertical, tower 2 horizontal, vertical); router XYZ")]
-KerfTable = tuple[tuple[Annotated[float, Field(gt=0, le=20000)], Annotated[float, Field(ge=0, le=10)]], ...]
+KerfTable = tuple[tuple[Annotated[float, Field(ge=1, le=20000)], Annotated[float, Field(ge=0, le=10)]], ...]
 
 
 class MachineSpec(StrictModel):
@@ -26,8 +26,8 @@ class MachineSpec(StrictModel):
     axes: Axes
     feed_mode: Literal["inverse_time", "per_minute"] = "per_minute"
     span_mm: float = Field(0.0, ge=0, le=10000)
-    travel_mm: tuple[Annotated[float, Field(gt=0, le=20000)], Annotated[float, Field(gt=0, le=20000)]]
-    rapid_mm_min: float = Field(1000.0, gt=0, le=100000)
+    travel_mm: tuple[Annotated[float, Field(ge=1, le=20000)], Annotated[float, Field(ge=1, le=20000)]]
+    rapid_mm_min: float = Field(1000.0, ge=1, le=100000)
     heat_on: str = Field("M3 S{power}", pattern=r"^[A-Z0-9 .{}\n]*$")
     heat_off: str = Field("M5", pattern=r"^[A-Z0-9 .\n]*$")
     dwell_s: float = Field(2.0, ge=0, le=600)
@@ -45,13 +45,13 @@ class CamSpec(StrictModel):
     machine: MachineRef = "hotwire-4axis"
     axes: Axes | None = None
     units: Literal["mm", "inch"] = "mm"
-    feed_mm_min: float = Field(300.0, gt=0, le=20000, description="wire speed at the faster foam face")
+    feed_mm_min: float = Field(300.0, ge=1, le=20000, description="wire speed at the faster foam face")
     feed_mode: Literal["inverse_time", "per_minute"] | None = Field(
         None, description="G93 inverse time (synchronized towers) or G94 units per minute; default: the profile's")
     heat_power: float = Field(100.0, ge=0, le=100000, description="the {power} of the heat-on template")
     dwell_s: float | None = Field(None, ge=0, le=600)
-    tower_span_mm: float | None = Field(None, gt=0, le=10000)
-    travel_mm: tuple[Annotated[float, Field(gt=0, le=20000)], Annotated[float, Field(gt=0, le=20000)]] | None = None
+    tower_span_mm: float | None = Field(None, ge=10, le=10000)
+    travel_mm: tuple[Annotated[float, Field(ge=1, le=20000)], Annotated[float, Field(ge=1, le=20000)]] | None = None
     foam_grade: str | None = Field(None, pattern=r"^[a-z0-9_-]+$", description="kerf table key; default the material name")
     kerf_table: dict[Annotated[str, Field(pattern=r"^[a-z0-9_-]+$")], KerfTable] = Field(
         default_factory=dict, description="grade → ((feed mm/min, kerf mm), …), over the built-in tables")
@@ -59,7 +59,7 @@ class CamSpec(StrictModel):
     safe_height_mm: float = Field(20.0, ge=1, le=1000, description="wire height above the foam at start/stop")
     order: Literal["flat_first", "vertex_first"] = Field(
         "flat_first", description="cut order of the sheets (flat_first follows the assembly order)")
-    drill_feed_mm_min: float = Field(600.0, gt=0, le=20000)
+    drill_feed_mm_min: float = Field(600.0, ge=1, le=20000)
 
     @field_validator("kerf_table")
     @classmethod

@@ -44,6 +44,18 @@ def parse_moves(text: str, axes: str) -> tuple[list[np.ndarray], list[bool]]:
     return out, cutting
 
 
+def drill_cycles(text: str) -> list[tuple[float, float, float]]:
+    """(X, Y, Z) of every G81 drilling cycle (mm)."""
+    from gcodeparser import parse_gcode_lines
+    scale, out = 1.0, []
+    for line in parse_gcode_lines(text):
+        if line.command in (("G", 20), ("G", 21)):
+            scale = INCH_MM if line.command[1] == 20 else 1.0
+        elif line.command == ("G", 81):
+            out.append(tuple(float(line.params[a]) * scale for a in "XYZ"))
+    return out
+
+
 def _faces(entry: dict, moves: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
     """Wire points on the two foam faces, lens frame (mm), of each move."""
     m = np.array(moves)
@@ -120,6 +132,21 @@ def check_cam(folder: Path, manifest: dict) -> list[Finding]:
         if "faces" in entry:
             findings += hotwire_findings(folder, manifest, entry, radius_at, travel)
         else:
-            moves, _ = parse_moves((folder / entry["file"]).read_text(encoding="utf-8"), "XYZ")
-            findings.append(Finding(entry["file"], "cam_drill", len(moves) > 0, f"{len(moves)} moves parsed"))
+            findings.append(_router_finding(folder, entry))
     return findings
+
+
+def _router_finding(folder: Path, entry: dict) -> Finding:
+    """A router file: its drilling cycles go down, and a board program stays on the router's travel
+    (the tool centre at most a tool diameter off the board's corner)."""
+    from antenna_cad.cam.machines import BUILT_IN
+    text = (folder / entry["file"]).read_text(encoding="utf-8")
+    moves, _ = parse_moves(text, "XYZ")
+    cycles = drill_cycles(text)
+    ok = all(z < 0 for _, _, z in cycles) and (len(cycles) > 0 or len(moves) > 1)
+    if entry["file"].startswith("cam/board-") and moves:
+        m = np.array(moves)
+        travel = np.array(BUILT_IN["router-3axis"].travel_mm)
+        ok = ok and bool(np.all(m[:, :2] >= -entry["kerf_mm"]) and np.all(m[:, :2] <= travel))
+    return Finding(entry["file"], "cam_router", ok, f"{len(moves)} moves and {len(cycles)} drilling cycles parsed"
+                   + ("" if ok else ": a cycle that does not go down, or a move off the travel"))

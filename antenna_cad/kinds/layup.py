@@ -57,7 +57,7 @@ def fabricate_layup(fab: SheetLayupSpec, layup: LayupPlan, panels, foam: Materia
     if fab.cam is None:
         return plan
     from antenna_cad.cam.plan import plan_cam
-    cam = plan_cam(layup, plan.pieces, fab.cam, foam.name)
+    cam = plan_cam(layup, plan.pieces, fab.cam, foam.name, panels, plan.placements)
     return replace(plan, files=plan.files | cam.files, cam=cam)
 
 

@@ -39,6 +39,20 @@ MachineRef = Annotated[
     Field(description="a built-in profile name, or an inline profile")]
 
 
+class RouterSpec(StrictModel):
+    """The router's 2.5-D cuts of the flat parts (box panels), one file per board."""
+    tool_diameter_mm: float = Field(6.0, ge=0.5, le=50)
+    pass_depth_mm: float = Field(6.0, ge=0.1, le=50, description="depth of cut per pass")
+    feed_mm_min: float = Field(1500.0, ge=1, le=50000)
+    plunge_mm_min: float = Field(300.0, ge=1, le=50000)
+    rapid_mm_min: float = Field(5000.0, ge=1, le=100000)
+    direction: Literal["climb", "conventional"] = "climb"
+    ramp_length_mm: float = Field(30.0, ge=1, le=1000, description="each pass enters on a ramp this long")
+    tabs_per_edge: int = Field(1, ge=0, le=10)
+    tab_width_mm: float = Field(8.0, ge=1, le=200)
+    tab_height_mm: float = Field(3.0, ge=0.5, le=50)
+
+
 class CamSpec(StrictModel):
     """Toolpaths for the sheets: hot-wire G-code per piece (cones for ``edge: taper``, straight
     XY = UV cuts otherwise) and a drilling file per piece with dowel holes."""
@@ -60,6 +74,7 @@ class CamSpec(StrictModel):
     order: Literal["flat_first", "vertex_first"] = Field(
         "flat_first", description="cut order of the sheets (flat_first follows the assembly order)")
     drill_feed_mm_min: float = Field(600.0, ge=1, le=20000)
+    router: RouterSpec | None = Field(RouterSpec(), description="router files for the box panels (null: none)")
 
     @field_validator("kerf_table")
     @classmethod

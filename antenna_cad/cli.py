@@ -7,6 +7,7 @@
     make-lens check OUT              re-read every file of a build folder with independent readers
     make-lens sweep SWEEP [-o OUT] [--scheduler tcp://HOST:PORT|tls://HOST:PORT] [--workers N] [-q|-v]
                                      run a design sweep on dask into OUT/<sweep name>/
+    make-lens kerf coupon|table      hot-wire kerf calibration (antenna_cad.kerf_cli)
     make-lens --version
 """
 
@@ -25,6 +26,7 @@ from antenna_cad import __version__
 from antenna_cad.console import (NORMAL, QUIET, STATUS_STYLE, VERBOSE, BuildProgress, SweepProgress, checks_table,
                                  seconds_table, stderr_console, stdout_console, summary_table)
 from antenna_cad.interrupt import graceful, hold_if_stopping
+from antenna_cad.kerf_cli import kerf_app
 
 EXIT_CODES = ("Exit codes: 0 built/valid (checks pass or warn); 1 built, but a check failed; "
               "2 bad spec, design or output folder (one line per problem: file: field: rule) — nothing written; "
@@ -32,7 +34,7 @@ EXIT_CODES = ("Exit codes: 0 built/valid (checks pass or warn); 1 built, but a c
 app = typer.Typer(add_completion=False, no_args_is_help=True, rich_markup_mode=None,
                   help="Physics spec of a microwave antenna → STEP/STL, 1:1 templates, cut list.\n\n" + EXIT_CODES)
 err_console = stderr_console()
-COMMANDS = {"build", "validate", "schema", "check", "sweep"}
+COMMANDS = {"build", "validate", "schema", "check", "sweep", "kerf"}
 VALUE_OPTIONS = {"-o", "--out", "--scheduler", "--workers"}
 QUIET_OPTION = typer.Option(False, "-q", "--quiet", help="no progress, no tables: only the last line and errors")
 VERBOSE_OPTION = typer.Option(False, "-v", "--verbose", help="every progress report as a line, and stage times")
@@ -42,6 +44,9 @@ def _mode(quiet: bool, verbose: bool) -> str:
     if quiet and verbose:
         _fail(["--quiet and --verbose: choose one"])
     return QUIET if quiet else (VERBOSE if verbose else NORMAL)
+
+
+app.add_typer(kerf_app, name="kerf")        # hot-wire kerf calibration (antenna_cad.kerf_cli)
 
 
 def _version(value: bool) -> None:

@@ -133,6 +133,7 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
     what it is doing (the verification's :func:`antenna_cad.progress.report`), and with stage
     ``"waiting"`` while another build holds the folder. The writers (CAD, DXF, PDF, plots) are
     imported here, not with the module, so ``validate`` stays free of them."""
+    from antenna_cad.cam.preview import cam_report
     from antenna_cad.export.forked import Job
     from antenna_cad.export.report import write_report
     from antenna_cad.export.step import write_step
@@ -192,6 +193,8 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
                 lambda used, detail: report("verify", (verifying + used) / len(STAGES), detail)):
             verification = kind.verify(spec, p.design, p.layup, p.fab)
         checks += list(verification.checks)
+        if getattr(p.fab, "cam", None) is not None:           # the toolpaths' order, times and previews
+            verification = verification.merged(cam_report(p.fab.cam))
         stage("verify")
         figures = kind.summary(spec, p.design, p.layup)
         stage("step")
@@ -342,6 +345,8 @@ def _write_manifest(spec, out: Path, figures, checks, parts, layup, fab, templat
                    for r in fab.rows],
         "templates": templates,
     }
+    if getattr(fab, "cam", None) is not None:
+        content["cam"] = list(fab.cam.entries)
     sheet_files = {t["label"]: t["dxf"] for t in templates if "dxf" in t}
     if layup is not None:
         pieces: dict[int, list[str]] = {}

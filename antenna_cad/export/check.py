@@ -34,6 +34,7 @@ class Build:
     folder: Path
     m: Manifest
     good: set[str]
+    raw: dict               # the manifest as read (entries the model does not type: ``cam[]``)
 
     def path(self, rel: str | None) -> Path | None:
         """The file ``rel`` if listed, confined and intact (else None: reported by the file checks)."""
@@ -42,8 +43,8 @@ class Build:
 
 def check_build(folder: Path) -> list[Finding]:
     """All findings for build folder ``folder`` (raises CheckError when it is not one)."""
-    m, _ = read_manifest(folder)
-    build = Build(folder, m, set())
+    m, raw = read_manifest(folder)
+    build = Build(folder, m, set(), raw)
     findings = list(_files(build))
     findings += _required(build) + _lists(build)
     for name, checker in CHECKERS.items():
@@ -206,5 +207,23 @@ def _pdfs(build: Build) -> Iterator[Finding]:
         yield from _per_file("report.pdf", "pdf", lambda: pdf_findings(path, "report.pdf", False, None, words))
 
 
+def _cam(build: Build) -> Iterator[Finding]:
+    """G-code (``cam[]``): each entry's file listed and intact, then parsed back by an independent parser
+    and held to the lens profile and the machine's travel (:mod:`antenna_cad.export.check_cam`)."""
+    entries = build.raw.get("cam", [])
+    if not isinstance(entries, list):
+        yield Finding("manifest.json", "cam", False, "cam is not a list")
+        return
+    intact = [e for e in entries if isinstance(e, dict) and isinstance(e.get("file"), str)
+              and build.path(e["file"]) is not None]
+    for e in entries:
+        if not any(e is i for i in intact):
+            name = e.get("file") if isinstance(e, dict) else None
+            yield Finding(str(name), "cam listed", False, "a cam[] entry whose file is not listed in files[] or not intact")
+    if intact:
+        from antenna_cad.export.check_cam import check_cam
+        yield from check_cam(build.folder, build.raw | {"cam": intact})
+
+
 CHECKERS: dict[str, Callable[[Build], Iterator[Finding]]] = {
-    "step": _step, "stl": _stl, "templates": _drawings, "pdf": _pdfs}
+    "step": _step, "stl": _stl, "templates": _drawings, "pdf": _pdfs, "cam": _cam}

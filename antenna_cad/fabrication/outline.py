@@ -145,7 +145,7 @@ def sheet_pieces(plan: LayupPlan, sheet: SheetPlan) -> list[Piece]:
     lens_holes = unary_union(hole_polygons(sheet.lens_dowels))
     foot_holes = unary_union(hole_polygons(sheet.foot_dowels))
     t = sheet.thickness_mm
-    if sheet.radius_mm < R - 1e-9 and not sheet.has_neck:
+    if (sheet.radius_mm < R - 1e-9 or sheet.tapered) and not sheet.has_neck:   # a cone and a straight foot
         return [Piece(sheet.label, sheet.index, disc.difference(lens_holes), t),
                 Piece(f"{sheet.label}-foot", sheet.index, foot.difference(foot_holes), t)]
     parts = [disc, foot]

@@ -31,6 +31,7 @@ class FabPlan:
     boards: dict[str, int]                    # material -> boards used
     kerf_mm: float
     files: dict[str, str] = field(default_factory=dict)   # extra text files: name -> content
+    cam: object = None                        # antenna_cad.cam.plan.CamPlan when the spec has a cam block
 
     @property
     def checks(self) -> tuple[Check, ...]:

@@ -1,7 +1,8 @@
 """Solids of a sheet layup (seed-000 §6): sheets with their pedestal feet, the pedestal and the box.
 
 Renders :class:`antenna_cad.fabrication.layup.LayupPlan` in 3-D: every sheet is its 2-D outline
-(disc ∪ foot [∪ neck] minus dowel holes) extruded by the stock thickness. The box (seed-000 §6.1
+(disc ∪ foot [∪ neck] minus dowel holes) extruded by the stock thickness; a taper-cut sheet's disc
+is the truncated cone of its rim. The box (seed-000 §6.1
 option 3) clamps the pedestal; its panels are rendered from ``fabrication.box`` (outside the
 aperture cylinder; screws join box panels only — none enters the foam).
 """
@@ -35,8 +36,22 @@ def sheet_sketch(plan: LayupPlan, sheet: SheetPlan) -> kernel.Shape:
 
 
 def sheet_solid(plan: LayupPlan, sheet: SheetPlan) -> kernel.Shape:
+    if sheet.tapered:
+        return _taper_solid(plan, sheet)
     return kernel.translate(kernel.extrude(sheet_sketch(plan, sheet), (0, 0, sheet.thickness_mm)),
                             (0, 0, sheet.z_min_mm))
+
+
+def _taper_solid(plan: LayupPlan, sheet: SheetPlan) -> kernel.Shape:
+    """A taper-cut sheet: the truncated cone of its rim with its foot, dowel holes drilled from the
+    back face (blind where a through hole would break the cone)."""
+    z0, z1, r0, r1 = sheet.z_min_mm, sheet.z_max_mm, sheet.front_radius_mm, sheet.radius_mm
+    outline = [(0, 0, z0)] + ([(r0, 0, z0)] if r0 > 1e-6 else []) + [(r1, 0, z1), (0, 0, z1)]
+    cone = kernel.revolve_z(kernel.face(kernel.polygon(outline)))
+    foot = kernel.translate(kernel.extrude(foot_sketch(plan), (0, 0, sheet.thickness_mm)), (0, 0, z0))
+    holes = [kernel.cylinder(h.diameter_mm / 2, d, (h.x_mm, h.y_mm, z1 - d))
+             for h in sheet.lens_dowels + sheet.foot_dowels if (d := sheet.hole_depth_mm(h)) > 0]
+    return kernel.cut(kernel.fuse([cone, foot]), holes)
 
 
 def pedestal_solid(plan: LayupPlan) -> kernel.Shape:

@@ -30,6 +30,7 @@ from antenna_cad.fabrication.layup import LayupPlan
 from antenna_cad.fabrication.section import fabricated_section, stepped_section
 from antenna_cad.fullwave.verify import fast_model, full_wave_study
 from antenna_cad.kinds.asbuilt_fullwave import modelled_stats, revolved
+from antenna_cad.kinds.taper import Taper
 from antenna_cad.raytrace.collimator import ApertureTrace
 from antenna_cad.raytrace.trace2d import Interface, Slabs, Trace2D, aim_at_face, trace, trace_slabs, \
     transmitted_amplitude
@@ -144,13 +145,18 @@ def focus_shift(lens: Lens, medium: Medium, feed) -> tuple[float, Stats]:
 # ------------------------------------------------------------------ layers and the stock thickness
 
 def excess_mm(lens: Lens, layup: LayupPlan, r: np.ndarray) -> np.ndarray:
-    """(sheets, len(r)) foam of each sheet's disc outside the ideal lens, along z at radius r: what
-    sanding removes there."""
+    """(sheets, len(r)) foam of each sheet outside the ideal lens, along z at radius r: what sanding
+    removes there (negative: a taper-cut sheet's cone inside the lens)."""
     zf, zb = lens.front_z(r), lens.back_z(r)
     rows = []
     for s in layup.sheets:
         overlap = np.clip(np.minimum(s.z_max_mm, zb) - np.maximum(s.z_min_mm, zf), 0.0, None)
-        rows.append(np.where(r <= s.radius_mm, s.thickness_mm - overlap, 0.0))
+        if s.tapered:       # foam where the cone reaches r, on 64 mid-depth samples of the sheet
+            z = s.z_min_mm + s.thickness_mm * (np.arange(64) + 0.5) / 64
+            foam = s.thickness_mm * np.mean(s.radius_at_z(z)[:, None] >= r, axis=0)
+        else:
+            foam = np.where(r <= s.radius_mm, s.thickness_mm, 0.0)
+        rows.append(np.where(r <= s.radius_mm, foam - overlap, 0.0))
     return np.array(rows)
 
 
@@ -183,7 +189,7 @@ def stock_study(sheets: Callable[[float], LayupPlan], lens_for: Callable[[LayupP
             out.append(Candidate(t, None, None, None, False, str(exc)))
             continue
         lens = lens_for(layup)
-        st = aperture_stats(lens, *trace_lens(lens, stepped_section(layup, lens.n), lens.feed))
+        st = aperture_stats(lens, *trace_lens(lens, cut_medium(lens, layup), lens.feed))
         model = modelled_stats(lens, fast_model(revolved(lens, layup), settings), "stepped", lens.feed)
         out.append(Candidate(t, layup, st, step_estimate_deg(lens, layup), model.p2p_deg <= lens.budget_deg,
                              model=model))
@@ -208,9 +214,11 @@ def _scaled(face: Interface, z0: float, scale: float) -> Interface:
                      face.n_after, z0 + scale * (face.z_guess - z0))
 
 
-def _as_built(lens: Lens, section: Slabs | None, eps_r: float, scale: float) -> Medium:
+def _as_built(lens: Lens, section: Slabs | Taper | None, eps_r: float, scale: float) -> Medium:
     """The as-built lens with material εr and its axial size scaled (each sheet, or the lens, thicker)."""
     n = eps_r ** 0.5
+    if isinstance(section, Taper):
+        return section.faces(n, scale)
     if section is not None:
         z = section.z_edges
         return replace(section, n=n, z_edges=z[0] + scale * (z - z[0]))
@@ -222,11 +230,19 @@ def _r(x: float) -> float:
     return round(float(x), 3)
 
 
+def cut_medium(lens: Lens, layup: LayupPlan) -> Medium:
+    """The stack as cut for the GO trace: the stepped section, or a taper-cut stack's cones."""
+    return Taper(lens, layup).faces(lens.n) if layup.edge == "taper" else stepped_section(layup, lens.n)
+
+
 def lens_variants(lens: Lens, layup: LayupPlan | None, fab) -> list[tuple[str, Medium]]:
-    """(name, medium): the ideal lens, and for a layup the stepped stack as cut and as fabricated."""
+    """(name, medium): the ideal lens, and for a layup the stepped stack as cut and as fabricated. A
+    taper-cut stack is its cones in both (dowels only: the feet stay outside the aperture)."""
     n = lens.n
     if layup is None:
         return [("ideal", lens.faces(n))]
+    if layup.edge == "taper":
+        return [("ideal", lens.faces(n)), ("stepped", cut_medium(lens, layup)), ("fabricated", cut_medium(lens, layup))]
     return [("ideal", lens.faces(n)), ("stepped", stepped_section(layup, n)),
             ("fabricated", fabricated_section(layup, fab, n))]
 
@@ -239,7 +255,7 @@ def verify_lens(lens: Lens, feeds: tuple[tuple[str, float, float], ...], toleran
     (issue 10), whose phase model the sanding check and the tolerance budget follow."""
     n = lens.n
     variants = lens_variants(lens, layup, fab)
-    section = variants[-1][1] if layup is not None else None
+    section = (Taper(lens, layup) if layup.edge == "taper" else variants[-1][1]) if layup is not None else None
     as_built = variants[-1][1]
     figures: dict[str, float] = {}
     rows, plots, go = [], [], {}
@@ -278,8 +294,7 @@ def verify_lens(lens: Lens, feeds: tuple[tuple[str, float, float], ...], toleran
                             lens.budget_deg, "deg",
                             f"as fabricated, unsanded ({layup.sheet_thickness_mm:g} mm sheets): {pp:.1f}° "
                             f"p-p vs budget {lens.budget_deg:g}° ({fw.model.name}; GO alone "
-                            f"{figures[f'fabricated_{nominal}_p2p_deg']:.1f}°)" + ("; sanding required: it brings the "
-                            f"error to {sanded:.1f}° (the ideal lens)" if pp > lens.budget_deg else "")))
+                            f"{figures[f'fabricated_{nominal}_p2p_deg']:.1f}°)" + _over_budget(layup, pp > lens.budget_deg, sanded)))
     if study:
         tables.append(_candidates_table(study, layup))
     sens_table, sens_plot, sens_figures, sens_check = _sensitivity(lens, section, tolerances, layup, model)
@@ -288,11 +303,28 @@ def verify_lens(lens: Lens, feeds: tuple[tuple[str, float, float], ...], toleran
                         tuple(plots + [_fan_plot(lens, as_built, section), sens_plot]) + fw.plots, fw.files)
 
 
+def _over_budget(layup: LayupPlan, over: bool, sanded: float) -> str:
+    if not over:
+        return ""
+    if layup.edge == "taper":
+        return "; taper-cut: thinner sheets bring the cones closer to the profile"
+    return f"; sanding required: it brings the error to {sanded:.1f}° (the ideal lens)"
+
+
 def _layer_table(lens: Lens, layup: LayupPlan, fab) -> Table:
     excess = excess_mm(lens, layup, np.linspace(0.0, lens.radius_mm, 4001)).max(axis=1)
-    rows = tuple((s.label, _r(s.z_min_mm), _r(s.z_max_mm), _r(s.radius_mm), _r(e),
-                  sum(p.sheet_index == s.index for p in fab.pieces))
-                 for s, e in zip(layup.sheets, excess))
+    pieces = [sum(p.sheet_index == s.index for p in fab.pieces) for s in layup.sheets]
+    if layup.edge == "taper":
+        gaps = Taper(lens, layup).largest_gap_mm()
+        rows = tuple((s.label, _r(s.z_min_mm), _r(s.z_max_mm), _r(s.front_radius_mm), _r(s.radius_mm), _r(g), k)
+                     for s, g, k in zip(layup.sheets, gaps, pieces))
+        return Table("layers", "Sheets (taper-cut)", ("sheet", "z min mm", "z max mm", "cone radius front mm",
+                                                      "cone radius back mm", "largest gap to the profile mm",
+                                                      "pieces"), rows,
+                     caption="each rim is the cone through the lens profile at the sheet's two faces; gap: the "
+                     "largest distance from the profile to the cone in the meridional section (no sanding)")
+    rows = tuple((s.label, _r(s.z_min_mm), _r(s.z_max_mm), _r(s.radius_mm), _r(e), k)
+                 for s, e, k in zip(layup.sheets, excess, pieces))
     return Table("layers", "Sheets", ("sheet", "z min mm", "z max mm", "disc radius mm",
                                       "max excess over the lens mm", "pieces"), rows,
                  caption="excess: the largest foam depth sanding removes in that sheet")
@@ -311,7 +343,7 @@ def _candidates_table(study: tuple[Candidate, ...], layup: LayupPlan | None) -> 
                  f"sub-wavelength model, which decides; k0(n−1)Δd the thin screen of seed-000 §7.3{chosen}")
 
 
-def _sensitivity(lens: Lens, section: Slabs | None, tol: TolerancesSpec, layup: LayupPlan | None,
+def _sensitivity(lens: Lens, section: Slabs | Taper | None, tol: TolerancesSpec, layup: LayupPlan | None,
                  model: Stats | None = None):
     """Phase error against εr spread, sheet (or lens) thickness and feed position, each at ± its
     tolerance (GO: the changes are smooth); the added errors combined by root-sum-square with the
@@ -382,8 +414,10 @@ def _profile_plot(lens: Lens, layup: LayupPlan) -> Plot:
                         "is sanded off")
 
 
-def _outline(lens: Lens, section: Slabs | None) -> np.ndarray:
+def _outline(lens: Lens, section: Slabs | Taper | None) -> np.ndarray:
     """Closed outlines of the as-built section, NaN-separated (z, y) rows."""
+    if isinstance(section, Taper):
+        return section.outline()
     if section is None:
         y = np.linspace(-lens.radius_mm, lens.radius_mm, 201)
         ring = np.concatenate([np.stack([lens.front_z(y), y], -1), np.stack([lens.back_z(y[::-1]), y[::-1]], -1)])
@@ -398,7 +432,7 @@ def _outline(lens: Lens, section: Slabs | None) -> np.ndarray:
     return np.array(out)
 
 
-def _fan_plot(lens: Lens, medium: Medium, section: Slabs | None) -> Plot:
+def _fan_plot(lens: Lens, medium: Medium, section: Slabs | Taper | None) -> Plot:
     """About 30 rays from the nominal feed through the as-built lens to the antenna plane."""
     tr, keep = trace_lens(lens, medium, lens.feed, FAN_RAYS)
     start = max(lens.feed[0], float(lens.front_z(0.0)) - 4 * lens.radius_mm)

@@ -4,6 +4,8 @@ the neck warning."""
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from antenna_cad.fabrication.box import plan_box
 from antenna_cad.fabrication.layup import LayupPlan, plan_layup
 from antenna_cad.fabrication.outline import added_in_aperture_mm2
@@ -25,7 +27,7 @@ def plan_sheets(fab: SheetLayupSpec, sheet_thickness_mm: float, *, lens_radius_m
             pedestal_height_mm=fab.pedestal_height_mm, pedestal_width_mm=fab.pedestal_width_mm,
             joining=fab.joining, dowel_diameter_mm=fab.dowel_diameter_mm,
             neck_width_mm=fab.neck_width_mm, kerf_mm=fab.kerf_mm,
-            board_width_mm=fab.board.width_mm, board_length_mm=fab.board.length_mm)
+            board_width_mm=fab.board.width_mm, board_length_mm=fab.board.length_mm, edge=fab.edge)
     except ValueError as exc:
         field, _, message = str(exc).partition(": ")
         raise DesignError(field, message) from None
@@ -50,8 +52,13 @@ def plan_layup_and_box(fab, sheets, lens_for, settings: VerificationSpec = Verif
 def fabricate_layup(fab: SheetLayupSpec, layup: LayupPlan, panels, foam: Material, title: str):
     from antenna_cad.fabrication.sheets import fabricate_sheets
     b = fab.box
-    return fabricate_sheets(layup, panels, foam, resolve_material(b.material),
+    plan = fabricate_sheets(layup, panels, foam, resolve_material(b.material),
                             (b.board.width_mm, b.board.length_mm), title)
+    if fab.cam is None:
+        return plan
+    from antenna_cad.cam.plan import plan_cam
+    cam = plan_cam(layup, plan.pieces, fab.cam, foam.name, panels, plan.placements)
+    return replace(plan, files=plan.files | cam.files, cam=cam)
 
 
 def layup_figures(layup: LayupPlan) -> dict[str, float]:

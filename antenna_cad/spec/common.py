@@ -108,6 +108,10 @@ class SheetLayupSpec(StrictModel):
     dowel_diameter_mm: float = Field(20.0, ge=1, le=200)
     neck_width_mm: float = Field(40.0, ge=1, le=500)
     box: BoxSpec = BoxSpec()
+    edge: Literal["stepped", "taper"] = Field(
+        "stepped", description="stepped: vertical sheet edges (sanded to the lens); taper: each rim cut as "
+        "the cone through the lens profile at the sheet's two faces (hot wire, no sanding)")
+    cam: "CamSpec | None" = Field(None, description="hot-wire/drilling G-code for the pieces (cam/)")
 
     @field_validator("stock_thicknesses_mm")
     @classmethod
@@ -123,6 +127,9 @@ class SheetLayupSpec(StrictModel):
         if self.pedestal_width_mm is not None and self.pedestal_width_mm >= d:
             raise ValueError(f"fabrication.pedestal_width_mm: must be < {diameter_field} "
                              f"({self.pedestal_width_mm:g} ≥ {d:g})")
+        if self.edge == "taper" and self.joining == "neck":
+            raise ValueError("fabrication.edge: taper needs joining: dowels (a neck inside the aperture is "
+                             "no cone)")
         if self.joining == "neck" and self.neck_width_mm >= lens_radius_mm:
             raise ValueError(f"fabrication.neck_width_mm: must be < the lens radius ({lens_radius_mm:g} mm)")
 
@@ -217,3 +224,8 @@ class SpecBase(StrictModel):
     @classmethod
     def _known_material(cls, v):
         return _library_name(v) if isinstance(v, str) else v
+
+
+from antenna_cad.spec.cam import CamSpec  # noqa: E402  (the cam block uses StrictModel above)
+
+SheetLayupSpec.model_rebuild()

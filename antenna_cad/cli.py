@@ -22,6 +22,7 @@ from rich.console import Console
 from rich.table import Table
 
 from antenna_cad import __version__
+from antenna_cad.export import present
 from antenna_cad.interrupt import hold_if_stopping
 
 EXIT_CODES = ("Exit codes: 0 built/valid (checks pass or warn); 1 built, but a check failed; "
@@ -33,7 +34,7 @@ out_console = Console()
 err_console = Console(stderr=True, soft_wrap=True)
 COMMANDS = {"build", "validate", "schema", "check", "sweep"}
 VALUE_OPTIONS = {"-o", "--out", "--scheduler", "--workers"}
-STATUS_STYLE = {"pass": "green", "warn": "yellow", "fail": "red"}
+STATUS_STYLE = present.STATUS_COLOUR
 
 
 def _version(value: bool) -> None:
@@ -76,11 +77,11 @@ def _load(spec_path: Path, out: Path | None = None):
 
 def _checks_table(checks) -> Table:
     table = Table(title="checks", show_lines=False)
-    for col in ("check", "status", "value", "limit", "message"):
+    for col in ("check", "status", "value", "message"):
         table.add_column(col, overflow="fold")
-    for c in checks:
-        table.add_row(c.name, f"[{STATUS_STYLE[c.status]}]{c.status}[/]", f"{c.value:.4g} {c.unit}",
-                      f"{c.limit:.4g} {c.unit}", c.message)
+    for c in present.by_urgency(checks):
+        table.add_row(c.name, f"[{STATUS_STYLE[c.status]}]{present.STATUS_LABEL[c.status]}[/]", present.check_value(c),
+                      c.message)
     return table
 
 
@@ -130,13 +131,13 @@ def _summary_table(result) -> Table:
     table = Table(title=f"{result.name} ({result.kind})")
     table.add_column("figure")
     table.add_column("value", justify="right")
-    headline = [(f"as-built {k}", v) for k, v in result.verified.items() if k.endswith(HEADLINE_SUFFIXES)]
-    for key, value in list(result.figures.items()) + headline:
-        table.add_row(key, f"{value:.6g}" if isinstance(value, float) else str(value))
+    headline = {f"as_built_{k}": v for k, v in result.verified.items() if k.endswith(HEADLINE_SUFFIXES)}
+    for name, value in present.figure_rows(result.figures | headline):
+        table.add_row(name, value)
     for material, count in result.boards.items():
-        table.add_row(f"boards {material}", str(count))
+        table.add_row(f"Boards of {material}", str(count))
     for label, kg in result.masses_kg.items():
-        table.add_row(f"mass {label} kg", f"{kg:.3f}")
+        table.add_row(f"Mass of {label}", present.figure_value("mass_kg", kg))
     return table
 
 

@@ -112,7 +112,7 @@ def full_wave_study(lens: RevolvedLens, settings, go: dict[str, tuple[np.ndarray
 
 def _note(why: str, model: str, estimate: float, settings) -> Check:
     """The stage's record: estimated time against budget_s, what ran and which model the verdicts use."""
-    return Check("full_wave", "pass", estimate, settings.budget_s, "s",
+    return Check("full_wave", "pass" if why.startswith("ran") else "skip", estimate, settings.budget_s, "s",
                  f"full-wave stage {why}; stair-step verdicts from the {model}")
 
 

@@ -1,0 +1,110 @@
+"""<name>.glb: the assembly for viewing — one glTF node per part, named as in the STEP, coloured by
+material (graded dielectrics along a sequential map by εr, conductors grey).
+
+The meshes are the report's display meshes (chord tolerance = model size / :data:`VIEW_FACETS`,
+at least 0.05 mm), not the fabrication STLs: the view of a Ka array's 3,200-slot lids or a layup of
+thousands of rings stays a few MB. glTF is metres and +Y up (Khronos glTF 2.0 §3.4); the model's
+frame is already +Y up (DESIGN.md "Frame"), so vertices are only scaled mm → m. No normals are
+stored: viewers shade the facets flat (glTF 2.0 §3.7.2.1), which reads well on CAD solids.
+Written with trimesh; the bytes are reproducible (no dates, parts sorted by label).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import trimesh
+from matplotlib import colormaps
+from matplotlib.colors import to_hex, to_rgb
+
+from antenna_cad.export.mesh import picture_meshes
+from antenna_cad.geometry.kernel import bounding_box
+
+PALETTE = ("#9ecae1", "#fdae6b", "#a1d99b", "#bcbddc", "#fdd0a2", "#c7e9c0", "#dadaeb", "#c6dbef",
+           "#fcbba1", "#d9d9d9")
+METAL = "#9a9a9a"
+GRADE_MAP = colormaps["viridis_r"]             # low εr light, high εr dark
+VIEW_FACETS = 200.0            # chord tolerance of the display meshes = model size / this
+MM_TO_M = 1e-3
+
+
+@dataclass(frozen=True)
+class ViewPart:
+    """One part as the 3-D view and the pictures show it."""
+    label: str
+    group: str          # parts toggled together: the label without its running number ("sheet-07" → "sheet")
+    material: str
+    colour: str         # "#rrggbb"
+    fabricated: bool    # False: a reference body (ideal lens, allowance, envelope), hidden at first
+    cutaway: bool       # left out of the static pictures so nested parts show
+    mesh: trimesh.Trimesh
+
+
+def view_parts(model) -> list[ViewPart]:
+    """Every part of ``model`` meshed for viewing in one pass (:func:`~antenna_cad.export.mesh.picture_meshes`),
+    sorted by label."""
+    parts = sorted(model.parts, key=lambda p: p.label)
+    colour = material_colours([p.material for p in parts])
+    lo, hi = bounding_box([p.shape for p in parts])
+    tol = max(float(np.linalg.norm(hi - lo)) / VIEW_FACETS, 0.05)
+    meshes = picture_meshes([p.shape for p in parts], tol, [p.prism for p in parts])
+    return [ViewPart(p.label, group_of(p.label), p.material.name, colour[p.material.name], p.role == "fabricated",
+                     p.label in model.cutaway, m) for p, m in zip(parts, meshes)]
+
+
+def group_of(label: str) -> str:
+    """The group a part is toggled with: its label less a trailing running number."""
+    return re.sub(r"[-_]?\d+$", "", label) or label
+
+
+def material_colours(materials) -> dict[str, str]:
+    """Material name → colour: conductors grey; three or more dielectrics (a graded lens) along a
+    sequential map by εr, so the grades read in order; fewer from a qualitative palette."""
+    unique = sorted({m.name: m for m in materials}.items(), key=lambda nm: (nm[1].eps_r, nm[0]))
+    dielectrics = [name for name, m in unique if not is_metal(m)]
+    graded = len(dielectrics) >= 3
+    return {name: METAL if is_metal(m) else
+            (to_hex(GRADE_MAP(0.15 + 0.7 * dielectrics.index(name) / (len(dielectrics) - 1))) if graded
+             else PALETTE[dielectrics.index(name) % len(PALETTE)])
+            for name, m in unique}
+
+
+def is_metal(material) -> bool:
+    """Conductors are carried as εr = 1, tanδ = 0 materials (kinds/slot_array.py)."""
+    return material.eps_r == 1.0 and material.tan_delta == 0.0
+
+
+def glb_bytes(parts: list[ViewPart]) -> bytes:
+    """The binary glTF of ``parts``: one node and one mesh per part (both named by its label), one
+    material per material name (metallic for conductors)."""
+    scene = trimesh.Scene()
+    materials: dict[str, trimesh.visual.material.PBRMaterial] = {}
+    for part in parts:
+        if part.material not in materials:
+            metal = part.colour == METAL
+            materials[part.material] = trimesh.visual.material.PBRMaterial(
+                name=part.material, baseColorFactor=[*(round(255 * c) for c in to_rgb(part.colour)), 255],
+                metallicFactor=0.6 if metal else 0.0, roughnessFactor=0.5 if metal else 0.85, doubleSided=True)
+        mesh = trimesh.Trimesh(np.asarray(part.mesh.vertices, np.float64) * MM_TO_M, part.mesh.faces, process=False,
+                               visual=trimesh.visual.TextureVisuals(material=materials[part.material]))
+        scene.add_geometry(mesh, node_name=part.label, geom_name=part.label)
+    return trimesh.exchange.gltf.export_glb(scene, include_normals=False)
+
+
+@dataclass(frozen=True)
+class View:
+    """The assembly as the build shows it: the glb's bytes and its parts."""
+    glb: bytes
+    parts: tuple[ViewPart, ...]
+    colours: dict[str, str]       # material -> colour, in εr order (:func:`material_colours`)
+
+
+def write_view(path: Path, model) -> View:
+    """Mesh ``model`` for viewing and write its glb to ``path`` (beside the STEP)."""
+    parts = view_parts(model)
+    data = glb_bytes(parts)
+    path.write_bytes(data)
+    return View(data, tuple(parts), material_colours([p.material for p in model.parts]))

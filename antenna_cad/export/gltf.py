@@ -51,13 +51,27 @@ def view_parts(model) -> list[ViewPart]:
     lo, hi = bounding_box([p.shape for p in parts])
     tol = max(float(np.linalg.norm(hi - lo)) / VIEW_FACETS, 0.05)
     meshes = picture_meshes([p.shape for p in parts], tol, [p.prism for p in parts])
-    return [ViewPart(p.label, group_of(p.label), p.material.name, colour[p.material.name], p.role == "fabricated",
+    group = part_groups([p.label for p in parts])
+    return [ViewPart(p.label, group[p.label], p.material.name, colour[p.material.name], p.role == "fabricated",
                      p.label in model.cutaway, m) for p, m in zip(parts, meshes)]
 
 
-def group_of(label: str) -> str:
-    """The group a part is toggled with: its label less a trailing running number."""
-    return re.sub(r"[-_]?\d+$", "", label) or label
+GRADE = re.compile(r"(shell|ring)[-_]\d+$")      # a grade of a graded lens: toggled on its own
+IN_SHEET = re.compile(r"^(sheet|layer)-\d+-(?=\D)")  # a layup's piece: the sheet it is cut from
+
+
+def part_groups(labels: list[str]) -> dict[str, str]:
+    """Label → the group it is toggled with. A layup's piece drops its sheet (``sheet-03-ring-04`` →
+    ring-04); shells and rings are grades and keep their index (the outer ones can be hidden one by
+    one); other labels drop their running number (``sheet-07`` → sheet), and names sharing a first word
+    with another name gather under it (``box-floor``, ``box-wall-left`` → box)."""
+    base = {}
+    for label in labels:
+        b = IN_SHEET.sub("", label)
+        base[label] = b if GRADE.match(b) else (re.sub(r"[-_]?\d+$", "", b) or b)
+    head = {b: re.split(r"[-_]", b)[0] for b in base.values()}
+    sharing = {h for h in head.values() if sum(v == h for v in head.values()) > 1}
+    return {label: head[b] if head[b] in sharing and not GRADE.match(b) else b for label, b in base.items()}
 
 
 def material_colours(materials) -> dict[str, str]:

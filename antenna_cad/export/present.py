@@ -19,29 +19,31 @@ UNITS = (
     ("_ghz", "GHz", 0.001), ("_seconds", "s", 0.1), ("_s", "s", 0.1), ("_lambda", "λ", 0.01),
     ("_pct", "%", 0.1), ("_percent", "%", 0.1), ("_rad", "rad", 1e-4), ("_m", "m", 1e-4),
 )
-UNITLESS_RESOLUTION = 1e-4
+SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 SIGNIFICANT = 4
-WORDS = {"p2p": "peak-to-peak", "rms": "RMS", "fullwave": "full-wave", "eps": "εr", "er": "εr", "r": "r",
-         "tir": "TIR", "go": "GO", "aut": "AUT", "sll": "side-lobe level", "hpbw": "half-power beam width",
+WORDS = {"p2p": "peak-to-peak", "rms": "RMS", "fullwave": "full-wave", "epsr": "εr", "tir": "TIR", "go": "GO", "aut": "AUT", "sll": "side-lobe level", "hpbw": "half-power beam width",
          "te30": "TE30", "qz": "quiet zone", "dof": "depth of field", "vs": "vs", "tan": "tan", "delta": "δ",
-         "lambda": "λ", "num": "number of", "n": "number of", "max": "largest", "min": "smallest"}
+         "lambda": "λ", "num": "number of", "max": "largest", "min": "smallest"}
 NAMES = {   # figures whose key alone would read badly
     "thickness_mm": "lens thickness", "diameter_mm": "diameter", "focal_length_mm": "focal length",
-    "eps_r": "εr", "tan_delta": "tanδ", "mass_kg": "mass",
+    "eps_r": "εr", "tan_delta": "tanδ", "mass_kg": "mass", "fullwave_seconds": "full-wave solver time",
 }
 
 STATUS_ORDER = ("fail", "warn", "skip", "pass")          # most urgent first
-STATUS_LABEL = {"fail": "fail", "warn": "warning", "skip": "skipped", "pass": "pass"}
+STATUS_LABEL = {"fail": "fail", "warn": "warning", "skip": "skipped", "pass": "pass",
+                "info": ""}                            # info: a verdict that is an instruction (what to buy)
 STATUS_COLOUR = {"fail": "red", "warn": "yellow", "skip": "blue", "pass": "green"}   # rich colour names
 
 
-def split_key(key: str) -> tuple[str, str, float]:
-    """(words, unit, resolution) of a figure key: ``ideal_on_axis_gain_loss_db`` → ("ideal on axis gain
-    loss", "dB", 0.01)."""
+def split_key(key: str) -> tuple[str, str, float | None]:
+    """(stem, unit, resolution) of a figure key or a column heading: ``ideal_on_axis_gain_loss_db`` →
+    ("ideal_on_axis_gain_loss", "dB", 0.01), ``"P-p deg"`` → ("P-p", "°", 0.01); no unit: resolution None."""
+    low = key.lower()
     for suffix, unit, resolution in UNITS:
-        if key.endswith(suffix) and len(key) > len(suffix):
-            return key[:-len(suffix)], unit, resolution
-    return key, "", UNITLESS_RESOLUTION
+        for tail in (suffix, " " + suffix[1:]):
+            if low.endswith(tail) and len(key) > len(tail):
+                return key[:-len(tail)], unit, resolution
+    return key, "", None
 
 
 def figure_name(key: str) -> str:
@@ -50,13 +52,14 @@ def figure_name(key: str) -> str:
     if key in NAMES or stem in NAMES:
         text = NAMES.get(key) or NAMES[stem]
     else:
-        text = re.sub(r"\beps r\b", "εr", " ".join(WORDS.get(w, w) for w in stem.split("_")))
-    return text[:1].upper() + text[1:]
+        text = " ".join(WORDS.get(w, w) for w in re.sub(r"(?<![a-z])eps_r(?![a-z])", "epsr", stem).split("_"))
+    return text[:1].upper() + text[1:] if text[:1].isascii() else text
 
 
-def format_number(value, resolution: float = UNITLESS_RESOLUTION) -> str:
+def format_number(value, resolution: float | None = None) -> str:
     """``value`` to at most :data:`SIGNIFICANT` significant digits and never finer than ``resolution``;
-    below half the resolution it is 0 (numerical noise); thousands grouped by a thin space."""
+    below half the resolution it is 0 (numerical noise); thousands grouped by a thin space. Without a
+    resolution (a ratio, a count) small values keep their significant digits: ``2.5 × 10⁻⁵``."""
     if value is None:
         return "—"
     if isinstance(value, bool):
@@ -67,9 +70,14 @@ def format_number(value, resolution: float = UNITLESS_RESOLUTION) -> str:
         return str(value)
     if not math.isfinite(value):
         return "—" if math.isnan(value) else ("∞" if value > 0 else "−∞")
-    if abs(value) < resolution / 2:
+    if value == 0 or resolution is not None and abs(value) < resolution / 2:
         return "0"
     magnitude = math.floor(math.log10(abs(value)))
+    if resolution is None:
+        if magnitude < -3:
+            mantissa = f"{value / 10 ** magnitude:.{SIGNIFICANT - 2}g}".replace("-", "−")
+            return f"{mantissa} × 10{str(magnitude).translate(SUPERSCRIPT)}"
+        resolution = 10.0 ** (magnitude + 1 - SIGNIFICANT)
     decimals = max(0, min(-math.floor(math.log10(resolution)), SIGNIFICANT - 1 - magnitude))
     if magnitude >= SIGNIFICANT:                     # 123456.7 → 123500
         value = round(value, SIGNIFICANT - 1 - magnitude)
@@ -81,6 +89,8 @@ def figure_value(key: str, value) -> str:
     """``value`` of figure ``key`` rounded to its resolution, with its unit (``"3.2 mm"``, ``"0 dB"``)."""
     _, unit, resolution = split_key(key)
     text = format_number(value, resolution)
+    if "." in text and "×" not in text:            # a figure alone: no trailing zeros
+        text = text.rstrip("0").rstrip(".")
     if not unit or text in ("—", "yes", "no"):
         return text
     return f"{text}{unit}" if unit == "°" else f"{text} {unit}"
@@ -126,7 +136,8 @@ def by_urgency(checks) -> list:
 
 @dataclass(frozen=True)
 class Verdict:
-    """One answer of the design review: a question, its status and the sentence that answers it."""
+    """One answer of the design review: a question, its status (a check's, or ``info``) and the sentence
+    that answers it."""
     question: str
     status: str
     answer: str
@@ -149,7 +160,7 @@ def verdicts(checks, boards: dict[str, int], totals_kg: dict[str, float]) -> lis
     if boards:
         buy = "; ".join(f"{n} × {material}" for material, n in sorted(boards.items()))
         mass = sum(totals_kg.values())
-        out.append(Verdict("What to buy", "pass", f"{buy} (stock boards), {format_number(mass, 0.01)} kg of material"
+        out.append(Verdict("What to buy", "info", f"{buy} (stock boards), {figure_value('mass_kg', mass)} of material"
                            " in the finished parts"))
     used = set()
     for question, prefixes in QUESTIONS:
@@ -160,5 +171,5 @@ def verdicts(checks, boards: dict[str, int], totals_kg: dict[str, float]) -> lis
             out.append(Verdict(question, worst.status, " ".join(c.message.rstrip(".") + "." for c in by_urgency(hits))))
     for c in by_urgency(checks):
         if c.status in ("fail", "warn") and c.name not in used:
-            out.append(Verdict(c.name.replace("_", " ").capitalize(), c.status, c.message))
+            out.append(Verdict(figure_name(c.name), c.status, c.message))
     return out

@@ -103,8 +103,7 @@ def write_report_html(path: Path, r: ReportContent) -> None:
               + _table(("material", "boards"), sorted(r.boards.items())))
     sections = [
         ("verdicts", "Verdicts", _verdicts(r.verdicts)),
-        ("summary", "Key figures", _collapsed(_table(("figure", "value"), present.figure_rows(r.figures)),
-                                              len(r.figures), "key figures")),
+        ("summary", "Key figures", _table(("figure", "value"), present.figure_rows(r.figures))),
         ("pictures", "Assembly", pictures),
         ("verification", "As-built verification", _verification(r.verification)),
         ("checks", "Checks", _checks_table(r.checks)),

@@ -56,22 +56,26 @@ def view_parts(model) -> list[ViewPart]:
                      p.label in model.cutaway, m) for p, m in zip(parts, meshes)]
 
 
-GRADE = re.compile(r"(shell|ring)[-_]\d+$")      # a grade of a graded lens: toggled on its own
-IN_SHEET = re.compile(r"^(sheet|layer)-\d+-(?=\D)")  # a layup's piece: the sheet it is cut from
+GRADE = re.compile(r"(?:(?:sheet|layer)-\d+-)?((?:shell|ring)-\d+)")   # a grade of a graded lens, in any sheet
 
 
 def part_groups(labels: list[str]) -> dict[str, str]:
-    """Label → the group it is toggled with. A layup's piece drops its sheet (``sheet-03-ring-04`` →
-    ring-04); shells and rings are grades and keep their index (the outer ones can be hidden one by
-    one); other labels drop their running number (``sheet-07`` → sheet), and names sharing a first word
-    with another name gather under it (``box-floor``, ``box-wall-left`` → box)."""
-    base = {}
+    """Label → the group it is toggled with. Shells and rings are grades: each index is a group with
+    everything named after it (``shell-02-front``, ``shell-02-pin-1``, ``sheet-03-ring-02`` → shell-02 or
+    ring-02), so the outer grades can be hidden one by one. Other labels drop their sheet and running
+    number (``sheet-07`` → sheet, ``sheet-03-foot`` → foot), and names sharing a first word with another name gather under it
+    (``box-floor``, ``box-wall-left`` → box)."""
+    groups, rest = {}, {}
     for label in labels:
-        b = IN_SHEET.sub("", label)
-        base[label] = b if GRADE.match(b) else (re.sub(r"[-_]?\d+$", "", b) or b)
-    head = {b: re.split(r"[-_]", b)[0] for b in base.values()}
+        grade = GRADE.match(label)
+        if grade:
+            groups[label] = grade.group(1)
+        else:
+            piece = re.sub(r"^(sheet|layer)-\d+-(?=\D)", "", label)         # a layup's piece: less its sheet
+            rest[label] = re.sub(r"[-_]?\d+$", "", piece) or piece
+    head = {b: re.split(r"[-_]", b)[0] for b in rest.values()}
     sharing = {h for h in head.values() if sum(v == h for v in head.values()) > 1}
-    return {label: head[b] if head[b] in sharing and not GRADE.match(b) else b for label, b in base.items()}
+    return groups | {label: head[b] if head[b] in sharing else b for label, b in rest.items()}
 
 
 def material_colours(materials) -> dict[str, str]:
@@ -101,7 +105,7 @@ def glb_bytes(parts: list[ViewPart]) -> bytes:
             metal = part.colour == METAL
             materials[part.material] = trimesh.visual.material.PBRMaterial(
                 name=part.material, baseColorFactor=[*(round(255 * c) for c in to_rgb(part.colour)), 255],
-                metallicFactor=0.6 if metal else 0.0, roughnessFactor=0.5 if metal else 0.85, doubleSided=True)
+                metallicFactor=0.3 if metal else 0.0, roughnessFactor=0.6 if metal else 0.85, doubleSided=True)
         mesh = trimesh.Trimesh(np.asarray(part.mesh.vertices, np.float64) * MM_TO_M, part.mesh.faces, process=False,
                                visual=trimesh.visual.TextureVisuals(material=materials[part.material]))
         scene.add_geometry(mesh, node_name=part.label, geom_name=part.label)

@@ -21,12 +21,12 @@ UNITS = (
 )
 SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 SIGNIFICANT = 4
-WORDS = {"p2p": "peak-to-peak", "rms": "RMS", "fullwave": "full-wave", "epsr": "εr", "tir": "TIR", "go": "GO", "aut": "AUT", "sll": "side-lobe level", "hpbw": "half-power beam width",
+WORDS = {"p2p": "peak-to-peak", "pp": "peak-to-peak", "rms": "RMS", "fullwave": "full-wave", "epsr": "εr", "tir": "TIR", "go": "GO", "aut": "AUT", "sll": "side-lobe level", "hpbw": "half-power beam width",
          "te30": "TE30", "qz": "quiet zone", "dof": "depth of field", "vs": "vs", "tan": "tan", "delta": "δ",
          "lambda": "λ", "num": "number of", "max": "largest", "min": "smallest"}
 NAMES = {   # figures whose key alone would read badly
     "thickness_mm": "lens thickness", "diameter_mm": "diameter", "focal_length_mm": "focal length",
-    "eps_r": "εr", "tan_delta": "tanδ", "mass_kg": "mass", "fullwave_seconds": "full-wave solver time",
+    "eps_r": "εr", "tan_delta": "tanδ", "d_over_lambda": "D/λ", "mass_kg": "mass", "fullwave_seconds": "full-wave solver time",
 }
 
 STATUS_ORDER = ("fail", "warn", "skip", "pass")          # most urgent first
@@ -39,6 +39,8 @@ def split_key(key: str) -> tuple[str, str, float | None]:
     """(stem, unit, resolution) of a figure key or a column heading: ``ideal_on_axis_gain_loss_db`` →
     ("ideal_on_axis_gain_loss", "dB", 0.01), ``"P-p deg"`` → ("P-p", "°", 0.01); no unit: resolution None."""
     low = key.lower()
+    if "_over_" in low:                                # a ratio (d_over_lambda): no unit
+        return key, "", None
     for suffix, unit, resolution in UNITS:
         for tail in (suffix, " " + suffix[1:]):
             if low.endswith(tail) and len(key) > len(tail):
@@ -52,7 +54,8 @@ def figure_name(key: str) -> str:
     if key in NAMES or stem in NAMES:
         text = NAMES.get(key) or NAMES[stem]
     else:
-        text = " ".join(WORDS.get(w, w) for w in re.sub(r"(?<![a-z])eps_r(?![a-z])", "epsr", stem).split("_"))
+        stem = re.sub(r"^n_", "number of_", re.sub(r"(?<![a-z])eps_r(?![a-z])", "epsr", stem))
+        text = " ".join(WORDS.get(w, w) for w in stem.split("_"))
     return text[:1].upper() + text[1:] if text[:1].isascii() else text
 
 

@@ -191,7 +191,7 @@ def test_glb_has_one_named_node_per_part_coloured_by_material(reports):
 def test_printed_report_shows_every_collapsed_table(reports, browser):
     result = reports["xps-collimator-0.5m"]
     browser.get((result.out_dir / "report.html").as_uri())
-    hidden = "return Array.from(document.querySelectorAll('details table')).filter(t => t.offsetHeight === 0).length"
+    hidden = "return Array.from(document.querySelectorAll('details table')).filter(t => !t.checkVisibility()).length"
     assert browser.execute_script(hidden) > 0                         # on screen: collapsed
     browser.execute_cdp_cmd("Emulation.setEmulatedMedia", {"media": "print"})
     try:

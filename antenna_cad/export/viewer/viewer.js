@@ -39,11 +39,11 @@
     renderer.render(scene, camera);
   }
 
-  function frame() {  // the isometric view of the whole assembly (DESIGN.md frame: +Y up, +Z the beam)
+  function frame() {  // an isometric view from the feed side (DESIGN.md frame: +Y up, +Z the beam)
     const size = box.getSize(new T.Vector3()).length(), centre = box.getCenter(new T.Vector3());
     camera.near = size / 100;
     camera.far = size * 100;
-    camera.position.copy(centre).add(new T.Vector3(1, 0.8, 1.4).normalize().multiplyScalar(1.7 * size));
+    camera.position.copy(centre).add(new T.Vector3(1, 0.8, -1.4).normalize().multiplyScalar(1.7 * size));
     controls.target.copy(centre);
     controls.update();
     draw();

@@ -28,6 +28,7 @@ PALETTE = ("#9ecae1", "#fdae6b", "#a1d99b", "#bcbddc", "#fdd0a2", "#c7e9c0", "#d
 METAL = "#9a9a9a"
 GRADE_MAP = colormaps["viridis_r"]             # low εr light, high εr dark
 VIEW_FACETS = 200.0            # chord tolerance of the display meshes = model size / this
+MERGE_ABOVE = 2000             # parts: a larger assembly is shown in the report merged per group and material
 MM_TO_M = 1e-3
 
 
@@ -41,6 +42,7 @@ class ViewPart:
     fabricated: bool    # False: a reference body (ideal lens, allowance, envelope), hidden at first
     cutaway: bool       # left out of the static pictures so nested parts show
     mesh: trimesh.Trimesh
+    count: int = 1      # parts in this one (:func:`merged`)
 
 
 def view_parts(model) -> list[ViewPart]:
@@ -110,6 +112,18 @@ def glb_bytes(parts: list[ViewPart]) -> bytes:
                                visual=trimesh.visual.TextureVisuals(material=materials[part.material]))
         scene.add_geometry(mesh, node_name=part.label, geom_name=part.label)
     return trimesh.exchange.gltf.export_glb(scene, include_normals=False)
+
+
+def merged(parts: list[ViewPart]) -> list[ViewPart]:
+    """One part per group and material (named by the group, and the material when the group has several):
+    a layup of thousands of pieces draws in a few calls."""
+    bins: dict[tuple[str, str], list[ViewPart]] = {}
+    for p in parts:
+        bins.setdefault((p.group, p.material), []).append(p)
+    several = {g for g, _ in bins if sum(h == g for h, _ in bins) > 1}
+    return [ViewPart(f"{g}-{m}" if g in several else g, g, m, ps[0].colour, any(p.fabricated for p in ps),
+                     all(p.cutaway for p in ps), trimesh.util.concatenate([p.mesh for p in ps]), len(ps))
+            for (g, m), ps in sorted(bins.items())]
 
 
 @dataclass(frozen=True)

@@ -22,7 +22,7 @@ import yaml
 from antenna_cad import __version__
 from antenna_cad.export import present
 from antenna_cad.export.forked import Job
-from antenna_cad.export.gltf import View
+from antenna_cad.export.gltf import MERGE_ABOVE, View, glb_bytes, merged
 from antenna_cad.export.page_parts import page as html_page
 from antenna_cad.export.plots import assembly_png, plot_svg
 from antenna_cad.export.view3d import VIEWER_CSS, licence_note, viewer_html
@@ -74,7 +74,7 @@ def report_content(out: Path, spec, figures, checks, verification, fab, parts, v
     return ReportContent(
         spec.name, spec.kind, spec.frequency_ghz, present.overall(checks),
         tuple(present.verdicts(checks, fab.boards, fab.totals_kg)), dict(figures), tuple(checks), verification,
-        png, legend, count, viewer_html(view.glb, list(view.parts)),
+        png, legend, count, _viewer(view),
         tuple(tuple(getattr(r, f) for f in CUT_FIELDS) for r in fab.rows),
         dict(fab.totals_kg), dict(fab.boards), tuple((f, volumes.get(f, "")) for f in files),
         yaml.safe_dump(spec.model_dump(mode="json"), sort_keys=False, allow_unicode=True))
@@ -176,6 +176,15 @@ def _named_table(t: Table) -> str:
     caption = f"<figcaption>{html.escape(t.caption)}</figcaption>" if t.caption else ""
     return (f'<figure class="table" id="table-{t.name}"><h3>{html.escape(t.title)}</h3>'
             f'{_collapsed(_table(t.columns, t.rows), len(t.rows), "rows")}{caption}</figure>')
+
+
+def _viewer(view: View) -> str:
+    """The 3-D view: the build's glb, or above :data:`~antenna_cad.export.gltf.MERGE_ABOVE` parts the
+    parts merged per group and material (a few draw calls instead of thousands)."""
+    if len(view.parts) <= MERGE_ABOVE:
+        return viewer_html(view.glb, list(view.parts))
+    shown = merged(list(view.parts))
+    return viewer_html(glb_bytes(shown), shown)
 
 
 def _pictures(view: View) -> tuple[bytes, dict[str, str], int]:

@@ -35,7 +35,7 @@ def viewer_html(glb: bytes, parts: list[ViewPart]) -> str:
     groups: dict[str, dict] = {}
     for p in parts:
         g = groups.setdefault(p.group, {"name": p.group, "count": 0, "colours": [], "shown": False})
-        g["count"] += 1
+        g["count"] += p.count
         g["shown"] |= p.fabricated
         if p.colour not in g["colours"] and len(g["colours"]) < 6:
             g["colours"].append(p.colour)
@@ -48,10 +48,12 @@ def viewer_html(glb: bytes, parts: list[ViewPart]) -> str:
                 '<input class="v3d-cut" type="range" min="0" max="1000" value="500" aria-label="section position">'
                 '<span class="v3d-cut-mm" hidden></span><label><input class="v3d-flip" type="checkbox"> keep the other side'
                 '</label><button class="v3d-reset" type="button">reset view</button></div>')
+    count = sum(p.count for p in parts)
+    model = ("the same model is the build's .glb" if count == len(parts) else
+             "shown merged per group and material; the build's .glb has one node per part")
     return (f'<figure class="viewer" id="v3d"><canvas aria-label="3-D view of the assembly"></canvas>'
             f'<p class="v3d-msg"></p>{controls}<figcaption>Drag to orbit, wheel to zoom, right-drag to pan. '
-            f'{len(parts)} parts in {len(groups)} groups, as in the STEP; the same model is the build\'s .glb.'
-            f'</figcaption></figure>'
+            f'{count} parts in {len(groups)} groups, as in the STEP; {model}.</figcaption></figure>'
             f'<script type="text/plain" id="v3d-glb">{base64.b64encode(glb).decode("ascii")}</script>'
             f'<script type="application/json" id="v3d-parts">{info}</script>'
             f"<script>{_asset('three.min.js')}</script><script>{_asset('viewer.js')}</script>")

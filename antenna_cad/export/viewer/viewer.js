@@ -103,9 +103,13 @@
   const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
   new T.GLTFLoader().parse(bytes.buffer, "", (gltf) => {
     const model = gltf.scene;
-    model.traverse((o) => {
-      if (!o.isMesh) return;
-      o.material.side = T.DoubleSide;       // a cut solid shows its inside
+    const meshes = [];
+    model.traverse((o) => { if (o.isMesh) meshes.push(o); });
+    meshes.forEach((o) => {
+      // a cut solid shows its inside faces flat in a darker tone of its colour: they read as the section
+      o.material.side = T.FrontSide;
+      const inside = new T.MeshBasicMaterial({color: o.material.color.clone().multiplyScalar(0.72), side: T.BackSide});
+      o.add(new T.Mesh(o.geometry, inside));
       const label = o.name in info.parts ? o.name : o.parent.name;
       const group = info.parts[label];
       (byGroup[group] = byGroup[group] || []).push(o);

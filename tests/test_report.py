@@ -198,3 +198,12 @@ def test_printed_report_shows_every_collapsed_table(reports, browser):
         assert browser.execute_script(hidden) == 0                    # in print: all open
     finally:
         browser.execute_cdp_cmd("Emulation.setEmulatedMedia", {"media": ""})
+
+
+def test_pdf_keeps_greek_letters_and_powers_of_ten_readable():
+    """The standard PDF fonts have no ε, δ or superscripts: εr stays εr (its outline drawn into the
+    line), 2.5 × 10⁻⁵ becomes 2.5e-5, λ is spelled out."""
+    from antenna_cad.export.report_pdf import format_table, pdf_text
+    assert pdf_text("εr 1.05, tanδ 2.5 × 10⁻⁵, λ/16, 12\u202f345 mm") == "εr 1.05, tanδ 2.5e-5, lambda/16, 12 345 mm"
+    lines = format_table(("figure", "value"), [("D/λ", "13.34"), ("Grade εr", "1.9")])
+    assert lines[2].index("13.34") == lines[3].index("1.9")           # columns aligned after spelling

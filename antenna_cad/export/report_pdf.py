@@ -37,7 +37,7 @@ TEXT_TOP = 0.945                     # first text line, fraction of the page hei
 COURIER_ADVANCE_EM = 0.6             # every Courier glyph (PDF standard font metrics)
 TEXT_SIZES_PT = (6.5, 5.0)           # preferred size; smallest before lines wrap
 LINE_SPACING = 1.25
-EPS = "ε"
+GREEK = "εδ"                         # drawn as outlines: the standard fonts have no Greek ("εr", not "er")
 POWER = re.compile(r" × 10([⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+)")
 UNSUPERSCRIPT = str.maketrans("⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "-0123456789")
 CUT_COLUMNS = ("part", "material", "board", "board_x_mm", "board_y_mm", "rotated", "width_mm", "height_mm",
@@ -102,8 +102,8 @@ def _files_by_folder(files) -> list[tuple]:
 def format_table(columns, rows) -> list[str]:
     """Fixed-width text lines of a table: headings with units, numbers rounded and right-aligned
     (:mod:`antenna_cad.export.present`)."""
-    cells = [[present.column_label(str(c)) for c in columns]] + [
-        [present.cell_text(str(c), v) for c, v in zip(columns, row)] for row in rows]
+    cells = [[pdf_text(present.column_label(str(c))) for c in columns]] + [
+        [pdf_text(present.cell_text(str(c), v)) for c, v in zip(columns, row)] for row in rows]
     numeric = [any(isinstance(row[i], (int, float)) and not isinstance(row[i], bool) for row in rows)
                for i in range(len(columns))]
     widths = [max(len(row[i]) for row in cells) for i in range(len(columns))]
@@ -117,7 +117,7 @@ def _text_pages(pdf: PdfPages, heading: str, lines: list[str]) -> None:
     embedding, 40× faster than embedded DejaVu; characters they lack are spelled out. Courier's
     fixed advance sizes the text so the longest line fits the page width (down to 5 pt); lines
     still longer wrap with an indent, so nothing runs past the page edge."""
-    lines = [_spelled_keeping_eps(line) for line in lines]
+    lines = [pdf_text(line) for line in lines]
     size, width = text_layout(lines)
     rows = [row for line in lines for row in (textwrap.wrap(line, width, subsequent_indent="    ",
                                                             drop_whitespace=False) or [""])]
@@ -127,33 +127,36 @@ def _text_pages(pdf: PdfPages, heading: str, lines: list[str]) -> None:
             fig = Figure(figsize=A4_INCH)
             fig.text(MARGIN, 0.965, spelled(heading), fontsize=12, weight="bold")
             page = rows[start:start + per_page]
-            if any(EPS in row for row in page):
-                _lines_with_eps(fig, page, size)
+            if any(c in GREEK for row in page for c in row):
+                _lines_with_greek(fig, page, size)
             else:
                 fig.text(MARGIN, TEXT_TOP, "\n".join(page), family="monospace",
                          weight="medium", fontsize=size, va="top", linespacing=LINE_SPACING)
             pdf.savefig(fig)
 
 
-def _spelled_keeping_eps(text: str) -> str:
-    """:func:`spelled`, except ε (drawn by :func:`_lines_with_eps`: "εr", not "er"); powers of ten as
-    ``2.5e-5``, thin spaces as spaces (the standard fonts have neither)."""
+def pdf_text(text: str) -> str:
+    """``text`` in the characters the page can show: :func:`spelled`, except the :data:`GREEK` letters
+    (drawn by :func:`_lines_with_greek`); powers of ten as ``2.5e-5``, thin spaces as spaces."""
     text = POWER.sub(lambda m: "e" + m.group(1).translate(UNSUPERSCRIPT), text).replace("\u202f", " ")
-    return spelled(text.replace(EPS, "\x00")).replace("\x00", EPS)
+    kept = str.maketrans({c: chr(i + 1) for i, c in enumerate(GREEK)})
+    back = str.maketrans({chr(i + 1): c for i, c in enumerate(GREEK)})
+    return spelled(text.translate(kept)).translate(back)
 
 
-def _lines_with_eps(fig: Figure, rows: list[str], size: float) -> None:
-    """A page of monospaced ``rows`` one line at a time on a fixed pitch, each ε drawn as its outline
-    (DejaVu Sans Mono; the standard fonts have no Greek) in the blank left for it in the Courier line."""
-    pitch_in, eps = LINE_SPACING * size / 72, TextPath((0, 0), EPS, size=size, prop=FontProperties(family="DejaVu Sans Mono"))
+def _lines_with_greek(fig: Figure, rows: list[str], size: float) -> None:
+    """A page of monospaced ``rows`` one line at a time on a fixed pitch, each :data:`GREEK` letter drawn
+    as its outline (DejaVu Sans Mono) in the blank left for it in the Courier line."""
+    pitch_in = LINE_SPACING * size / 72
+    glyphs = {c: TextPath((0, 0), c, size=size, prop=FontProperties(family="DejaVu Sans Mono")) for c in GREEK}
     for k, row in enumerate(rows):
         y_in = TEXT_TOP * A4_INCH[1] - size / 72 - k * pitch_in          # the baseline
-        fig.text(MARGIN, y_in / A4_INCH[1], row.replace(EPS, " "), family="monospace", weight="medium",
-                 fontsize=size, va="baseline")
-        for col in (i for i, c in enumerate(row) if c == EPS):
+        fig.text(MARGIN, y_in / A4_INCH[1], "".join(" " if c in GREEK else c for c in row), family="monospace",
+                 weight="medium", fontsize=size, va="baseline")
+        for col, c in ((i, c) for i, c in enumerate(row) if c in GREEK):
             x_in = MARGIN * A4_INCH[0] + col * COURIER_ADVANCE_EM * size / 72
             place = Affine2D().scale(1 / 72).translate(x_in, y_in) + fig.dpi_scale_trans
-            fig.add_artist(PathPatch(eps, transform=place, facecolor="black", linewidth=0))
+            fig.add_artist(PathPatch(glyphs[c], transform=place, facecolor="black", linewidth=0))
 
 
 def text_layout(lines: list[str]) -> tuple[float, int]:

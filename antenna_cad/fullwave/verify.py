@@ -23,7 +23,7 @@ import numpy as np
 from antenna_cad.fullwave import solver
 from antenna_cad.fullwave.aperture import aperture_stats, difference_stats, phase_deg, window
 from antenna_cad.fullwave.lens import RevolvedLens
-from antenna_cad.synthesis.checks import Check, DesignError
+from antenna_cad.synthesis.checks import Check, DesignError, Status
 from antenna_cad.verification import Plot, Series
 
 FAST = "fast sub-wavelength model (thin screen + scalar diffraction to the aperture plane)"
@@ -110,9 +110,15 @@ def full_wave_study(lens: RevolvedLens, settings, go: dict[str, tuple[np.ndarray
     return FullWave(model, figures, (note,), _plots(lens, results, go, settings), files)
 
 
+def stage_status(why: str) -> Status:
+    """A full-wave stage's check status from :func:`budget_decision`'s reason: pass when it ran, skip
+    when it did not (off, no Meep, over budget) — a stage that did not run is never a pass."""
+    return "pass" if why.startswith("ran") else "skip"
+
+
 def _note(why: str, model: str, estimate: float, settings) -> Check:
     """The stage's record: estimated time against budget_s, what ran and which model the verdicts use."""
-    return Check("full_wave", "pass" if why.startswith("ran") else "skip", estimate, settings.budget_s, "s",
+    return Check("full_wave", stage_status(why), estimate, settings.budget_s, "s",
                  f"full-wave stage {why}; stair-step verdicts from the {model}")
 
 

@@ -34,7 +34,7 @@ from antenna_cad.fullwave.aperture import aperture_stats, difference_stats, phas
 from antenna_cad.fullwave.mie import shell_parts
 from antenna_cad.fullwave.sphere import (MIE_MAX_D_LAMBDA, aperture_gain_dbi, feed_deck, fine_shells, focal_gain_dbi,
                                          law_table, mie_focal_field, mie_focal_gain_dbi, plane_wave_decks)
-from antenna_cad.fullwave.verify import budget_decision, deck_files
+from antenna_cad.fullwave.verify import budget_decision, deck_files, stage_status
 from antenna_cad.raytrace.media import Shells, Staircase
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.luneburg import LuneburgDesign, traced_law
@@ -73,7 +73,7 @@ def luneburg_full_wave(spec, design: LuneburgDesign, media: dict, go: dict) -> V
     settings = spec.verification
     R, lam, b = design.radius_mm, design.wavelength_mm, design.focal_distance_mm
     if design.shape != "sphere":
-        return Verification(checks=(Check("full_wave", "pass", 0.0, settings.budget_s, "s",
+        return Verification(checks=(Check("full_wave", "skip", 0.0, settings.budget_s, "s",
                                           "full-wave stage not run: the cylindrical (parallel-plate) lens is not a "
                                           "body of revolution about its feed axis (a 2-D run would be needed)"),))
     law = traced_law(design.law, design.focal_distance_ratio, design.outer_shell, R)
@@ -143,7 +143,7 @@ def _note(why: str, estimate: float, settings, figures: dict) -> Check:
     mie = (f"Exact Mie series, gain of a dipole-fed lens by reciprocity (dBi): {gains}; uniform aperture "
            f"{figures['aperture_gain_limit_dbi']:.2f}" if gains else
            f"Mie series not evaluated above D/λ = {MIE_MAX_D_LAMBDA:g}")
-    return Check("full_wave", "pass", estimate, settings.budget_s, "s", f"full-wave stage {why}. {mie}")
+    return Check("full_wave", stage_status(why), estimate, settings.budget_s, "s", f"full-wave stage {why}. {mie}")
 
 
 def _plots(design: LuneburgDesign, out: dict, go: dict, mie: dict, settings) -> tuple[Plot, ...]:

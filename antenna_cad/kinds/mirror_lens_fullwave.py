@@ -31,7 +31,7 @@ from antenna_cad.fullwave import solver
 from antenna_cad.fullwave.aperture import aperture_stats, difference_stats, phase_deg, phase_stats, window
 from antenna_cad.fullwave.deck import DECIMALS, PROFILE_POINTS, make_deck
 from antenna_cad.fullwave.runner import feed_pattern
-from antenna_cad.fullwave.verify import budget_decision, deck_files
+from antenna_cad.fullwave.verify import budget_decision, deck_files, stage_status
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.verification import Plot, Series, Table, Verification
 
@@ -150,7 +150,7 @@ def _co(result: dict) -> np.ndarray:
 
 def _note(why: str, estimate: float, settings) -> Check:
     """The stage's record: estimated time against budget_s and what ran; the verdicts stay GO's."""
-    return Check("full_wave", "pass", estimate, settings.budget_s, "s",
+    return Check("full_wave", stage_status(why), estimate, settings.budget_s, "s",
                  f"full-wave stage {why}; verdicts from the 3-D GO trace, the full-wave figures beside them")
 
 

@@ -6,12 +6,14 @@ at least 0.05 mm), not the fabrication STLs: the view of a Ka array's 3,200-slot
 thousands of rings stays a few MB. glTF is metres and +Y up (Khronos glTF 2.0 §3.4); the model's
 frame is already +Y up (DESIGN.md "Frame"), so vertices are only scaled mm → m. No normals are
 stored: viewers shade the facets flat (glTF 2.0 §3.7.2.1), which reads well on CAD solids.
-Written with trimesh; the bytes are reproducible (no dates, parts sorted by label).
+The bytes are reproducible (no dates, parts sorted by label).
 """
 
 from __future__ import annotations
 
+import json
 import re
+import struct
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -98,20 +100,45 @@ def is_metal(material) -> bool:
 
 
 def glb_bytes(parts: list[ViewPart]) -> bytes:
-    """The binary glTF of ``parts``: one node and one mesh per part (both named by its label), one
-    material per material name (metallic for conductors)."""
-    scene = trimesh.Scene()
-    materials: dict[str, trimesh.visual.material.PBRMaterial] = {}
-    for part in parts:
+    """The binary glTF 2.0 of ``parts`` (Khronos glTF 2.0 §4.4 GLB): one node and one mesh per part (both
+    named by its label), one material per material name (metallic for conductors); positions as float32
+    metres, indices as uint32, all parts in one buffer. Written with numpy and json directly: trimesh's
+    exporter spent ~18 ms a part (26 s on a layup of 1,464 rings)."""
+    materials: dict[str, int] = {}
+    doc: dict = {"asset": {"version": "2.0", "generator": "antenna_cad"}, "scene": 0,
+                 "scenes": [{"nodes": list(range(len(parts)))}], "nodes": [], "meshes": [], "materials": [],
+                 "accessors": []}
+    positions, indices = [], []
+    vertex_bytes = index_bytes = 0
+    for i, part in enumerate(parts):
         if part.material not in materials:
             metal = part.colour == METAL
-            materials[part.material] = trimesh.visual.material.PBRMaterial(
-                name=part.material, baseColorFactor=[*(round(255 * c) for c in to_rgb(part.colour)), 255],
-                metallicFactor=0.3 if metal else 0.0, roughnessFactor=0.6 if metal else 0.85, doubleSided=True)
-        mesh = trimesh.Trimesh(np.asarray(part.mesh.vertices, np.float64) * MM_TO_M, part.mesh.faces, process=False,
-                               visual=trimesh.visual.TextureVisuals(material=materials[part.material]))
-        scene.add_geometry(mesh, node_name=part.label, geom_name=part.label)
-    return trimesh.exchange.gltf.export_glb(scene, include_normals=False)
+            materials[part.material] = len(doc["materials"])
+            doc["materials"].append({"name": part.material, "doubleSided": True, "pbrMetallicRoughness": {
+                "baseColorFactor": [round(c, 4) for c in to_rgb(part.colour)] + [1.0],
+                "metallicFactor": 0.3 if metal else 0.0, "roughnessFactor": 0.6 if metal else 0.85}})
+        v = (np.asarray(part.mesh.vertices, np.float64) * MM_TO_M).astype("<f4")
+        f = np.asarray(part.mesh.faces, "<u4").ravel()
+        doc["accessors"] += [
+            {"bufferView": 0, "byteOffset": vertex_bytes, "componentType": 5126, "count": len(v), "type": "VEC3",
+             "min": [float(x) for x in v.min(axis=0)], "max": [float(x) for x in v.max(axis=0)]},
+            {"bufferView": 1, "byteOffset": index_bytes, "componentType": 5125, "count": len(f), "type": "SCALAR"}]
+        doc["meshes"].append({"name": part.label, "primitives": [
+            {"attributes": {"POSITION": 2 * i}, "indices": 2 * i + 1, "material": materials[part.material]}]})
+        doc["nodes"].append({"name": part.label, "mesh": i})
+        positions.append(v.tobytes())
+        indices.append(f.tobytes())
+        vertex_bytes += v.nbytes
+        index_bytes += f.nbytes
+    doc["bufferViews"] = [{"buffer": 0, "byteOffset": 0, "byteLength": vertex_bytes, "target": 34962},
+                          {"buffer": 0, "byteOffset": vertex_bytes, "byteLength": index_bytes, "target": 34963}]
+    binary = b"".join(positions + indices)                   # float32 and uint32: 4-byte aligned throughout
+    doc["buffers"] = [{"byteLength": len(binary)}]
+    text = json.dumps(doc, separators=(",", ":")).encode("utf-8")
+    text += b" " * (-len(text) % 4)
+    binary += b"\0" * (-len(binary) % 4)
+    chunks = (struct.pack("<II", len(text), 0x4E4F534A) + text + struct.pack("<II", len(binary), 0x004E4942) + binary)
+    return struct.pack("<III", 0x46546C67, 2, 12 + len(chunks)) + chunks
 
 
 def merged(parts: list[ViewPart]) -> list[ViewPart]:

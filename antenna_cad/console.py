@@ -17,9 +17,11 @@ import time
 from rich.console import Console
 from rich.table import Table
 
+from antenna_cad.export import present
+
 HEARTBEAT_S = 10.0
 LOG_WIDTH = 10_000                      # off a terminal: rows are never wrapped
-STATUS_STYLE = {"pass": "green", "warn": "yellow", "fail": "red"}
+STATUS_STYLE = present.STATUS_COLOUR
 QUIET, NORMAL, VERBOSE = "quiet", "normal", "verbose"
 WAITING = "waiting"                     # the pipeline's stage name while another build holds the folder
 
@@ -175,12 +177,13 @@ class SweepProgress(_Lines):
 
 
 def checks_table(checks) -> Table:
+    """The checks, most urgent first, values rounded to what they resolve (:mod:`antenna_cad.export.present`)."""
     table = Table(title="checks", show_lines=False)
-    for col in ("check", "status", "value", "limit", "message"):
+    for col in ("check", "status", "value", "message"):
         table.add_column(col, overflow="fold")
-    for c in checks:
-        table.add_row(c.name, f"[{STATUS_STYLE[c.status]}]{c.status}[/]", f"{c.value:.4g} {c.unit}",
-                      f"{c.limit:.4g} {c.unit}", c.message)
+    for c in present.by_urgency(checks):
+        table.add_row(c.name, f"[{STATUS_STYLE[c.status]}]{present.STATUS_LABEL[c.status]}[/]", present.check_value(c),
+                      c.message)
     return table
 
 
@@ -188,16 +191,17 @@ HEADLINE_SUFFIXES = ("_p2p_deg", "_rms_deg", "_gain_loss_db")   # as-built figur
 
 
 def summary_table(result) -> Table:
+    """The build's key figures with names, units and sensible rounding, boards and masses."""
     table = Table(title=f"{result.name} ({result.kind})")
     table.add_column("figure")
     table.add_column("value", justify="right")
-    headline = [(f"as-built {k}", v) for k, v in result.verified.items() if k.endswith(HEADLINE_SUFFIXES)]
-    for key, value in list(result.figures.items()) + headline:
-        table.add_row(key, f"{value:.6g}" if isinstance(value, float) else str(value))
+    headline = {f"as_built_{k}": v for k, v in result.verified.items() if k.endswith(HEADLINE_SUFFIXES)}
+    for name, value in present.figure_rows(result.figures | headline):
+        table.add_row(name, value)
     for material, count in result.boards.items():
-        table.add_row(f"boards {material}", str(count))
+        table.add_row(f"Boards of {material}", str(count))
     for label, kg in result.masses_kg.items():
-        table.add_row(f"mass {label} kg", f"{kg:.3f}")
+        table.add_row(f"Mass of {label}", present.figure_value("mass_kg", kg))
     return table
 
 

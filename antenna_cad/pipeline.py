@@ -135,6 +135,7 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
     imported here, not with the module, so ``validate`` stays free of them."""
     from antenna_cad.cam.preview import cam_report
     from antenna_cad.export.forked import Job
+    from antenna_cad.export.gltf import write_view
     from antenna_cad.export.report import write_report
     from antenna_cad.export.step import write_step
     from antenna_cad.export.template_files import template_files, write_templates
@@ -204,8 +205,10 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
         for file_name, text in (p.fab.files | verification.files).items():
             (tmp / file_name).parent.mkdir(parents=True, exist_ok=True)
             (tmp / file_name).write_text(text, encoding="utf-8")
+        if spec.outputs.step or spec.outputs.report:    # the assembly for viewing: beside the STEP, in the report
+            view = write_view(tmp / f"{spec.name}.glb", model)
         if spec.outputs.report:
-            write_report(tmp, spec, figures, checks, verification, model, p.fab, parts)
+            write_report(tmp, spec, figures, checks, verification, p.fab, parts, view)
         stage("report")
         values = {}
         for name in list(jobs):                   # the waits: what each child adds to the build

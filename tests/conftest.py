@@ -19,7 +19,8 @@ from antenna_cad.fullwave import budget, solver
 
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                   "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                  "--disable-dev-shm-usage", "--window-size=1200,900"]
+                  "--disable-dev-shm-usage", "--window-size=1200,900",
+                  "--enable-unsafe-swiftshader"]    # software WebGL for the report's 3-D view (trusted pages)
 
 
 @pytest.fixture(scope="session")

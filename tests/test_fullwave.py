@@ -174,6 +174,7 @@ def test_without_meep_verdicts_follow_the_fast_model_and_say_why():
     v = _verify(_recipe())
     note = next(c for c in v.checks if c.name == "full_wave")
     assert "skipped: Meep not found, install python3-meep" in note.message and "fast sub-wavelength" in note.message
+    assert note.status == "skip"                                         # a stage that did not run is not a pass
     assert not any(k.startswith("fullwave_") for k in v.figures)
     sanding = next(c for c in v.checks if c.name == "unsanded_step_phase_error")
     assert "fast sub-wavelength model" in sanding.message
@@ -211,6 +212,7 @@ def test_auto_over_budget_says_so_and_on_without_meep_is_an_error(monkeypatch, t
     v = _verify(_recipe(budget_s=1))
     note = next(c for c in v.checks if c.name == "full_wave")
     assert "skipped: estimated" in note.message and "> budget_s 1 s" in note.message
+    assert note.status == "skip"
     monkeypatch.setattr(solver, "meep_python", lambda: None)
     spec = tmp_path / "on.yaml"
     spec.write_text(yaml.safe_dump(_recipe(full_wave="on")))

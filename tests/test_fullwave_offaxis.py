@@ -113,6 +113,7 @@ def test_auto_runs_the_scan_edge_only_when_every_order_fits_the_budget(monkeypat
     monkeypatch.setattr(solver, "meep_python", lambda: None)
     skipped = next(c for c in _verify(_recipe()).checks if c.name == "full_wave_scan_edge")
     assert "skipped: Meep not found, install python3-meep" in skipped.message
+    assert skipped.status == "skip"
     monkeypatch.setattr(solver, "meep_python", lambda: "/usr/bin/python3")
     from antenna_cad.fullwave import verify
     from antenna_cad.kinds import asbuilt

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import io
 import math
+import re
 import textwrap
 from pathlib import Path
 
@@ -19,9 +20,13 @@ matplotlib.use("Agg")
 import matplotlib.image  # noqa: E402
 from matplotlib.backends.backend_pdf import PdfPages  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
-from matplotlib.patches import Patch  # noqa: E402
+from matplotlib.font_manager import FontProperties  # noqa: E402
+from matplotlib.patches import Patch, PathPatch  # noqa: E402
+from matplotlib.textpath import TextPath  # noqa: E402
+from matplotlib.transforms import Affine2D  # noqa: E402
 
 from antenna_cad import __version__  # noqa: E402
+from antenna_cad.export import present  # noqa: E402
 from antenna_cad.export.plots import STYLE, draw_plot  # noqa: E402
 from antenna_cad.fabrication.cutlist import FIELDS as CUT_FIELDS  # noqa: E402
 from antenna_cad.fabrication.vector_pdf import spelled  # noqa: E402
@@ -32,6 +37,9 @@ TEXT_TOP = 0.945                     # first text line, fraction of the page hei
 COURIER_ADVANCE_EM = 0.6             # every Courier glyph (PDF standard font metrics)
 TEXT_SIZES_PT = (6.5, 5.0)           # preferred size; smallest before lines wrap
 LINE_SPACING = 1.25
+GREEK = "εδ"                         # drawn as outlines: the standard fonts have no Greek ("εr", not "er")
+POWER = re.compile(r" × 10([⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+)")
+UNSUPERSCRIPT = str.maketrans("⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "-0123456789")
 CUT_COLUMNS = ("part", "material", "board", "board_x_mm", "board_y_mm", "rotated", "width_mm", "height_mm",
                "thickness_mm", "mass_kg", "assembly_order")
 
@@ -40,10 +48,14 @@ def write_report_pdf(path: Path, r) -> None:
     """``r``: the ReportContent of export/report.py."""
     metadata = {"Title": f"{r.name} report", "Creator": "antenna_cad", "Producer": "antenna_cad",
                 "CreationDate": None}
-    head = [f"{r.name} — kind {r.kind}, {r.frequency_ghz:g} GHz, antenna_cad {__version__}, overall {r.status}", ""]
-    checks = [f"{c.status:4}  {c.name}: {c.message}" for c in r.checks]
+    head = [f"{r.name} — {r.kind}, {r.frequency_ghz:g} GHz, antenna_cad {__version__}, overall "
+            f"{present.STATUS_LABEL[r.status]}", "", "Verdicts"]
+    head += [f"{present.STATUS_LABEL[d.status]:8}  {d.question}: {d.answer}" for d in r.verdicts] + ["", "Key figures"]
+    checks = [f"{present.STATUS_LABEL[c.status]:8}  {c.name} — {present.check_value(c)}: {c.message}"
+              for c in present.by_urgency(r.checks)]
     v = r.verification
-    verification = (format_table(("figure", "value"), sorted(v.figures.items())) if v.figures else [])
+    verification = (format_table(("figure", "value"), present.figure_rows(dict(sorted(v.figures.items()))))
+                    if v.figures else [])
     for t in v.tables:
         verification += ["", t.title] + format_table(t.columns, t.rows)
     cut = [CUT_FIELDS.index(c) for c in CUT_COLUMNS]
@@ -51,8 +63,8 @@ def write_report_pdf(path: Path, r) -> None:
     cutlist += ([""] + format_table(("material", "mass kg"), sorted(r.totals_kg.items())) + [""]
                 + format_table(("material", "boards"), sorted(r.boards.items())))
     with matplotlib.rc_context(STYLE), PdfPages(path, metadata=metadata) as pdf:
-        _text_pages(pdf, "Key figures and checks",
-                    head + format_table(("figure", "value"), sorted(r.figures.items())) + ["", "Checks"] + checks)
+        _text_pages(pdf, "Verdicts, key figures and checks",
+                    head + format_table(("figure", "value"), present.figure_rows(r.figures)) + ["", "Checks"] + checks)
         if verification:
             _text_pages(pdf, "As-built verification", verification)
         for k in range(0, len(v.plots), 2):
@@ -70,7 +82,7 @@ def write_report_pdf(path: Path, r) -> None:
                    loc="lower left", bbox_to_anchor=(MARGIN, 0.03), ncols=2, fontsize=7, frameon=False)
         pdf.savefig(fig)
         _text_pages(pdf, "Cut list", cutlist)
-        _text_pages(pdf, "Files", format_table(("file", "solid volume mm3"), _files_by_folder(r.files)))
+        _text_pages(pdf, "Files", format_table(("file", "volume_mm3"), _files_by_folder(r.files)))
 
 
 def _files_by_folder(files) -> list[tuple]:
@@ -88,21 +100,16 @@ def _files_by_folder(files) -> list[tuple]:
 
 
 def format_table(columns, rows) -> list[str]:
-    """Fixed-width text lines of a table (numbers to 6 significant digits)."""
-    cells = [[str(c) for c in columns]] + [[_text(v) for v in row] for row in rows]
+    """Fixed-width text lines of a table: headings with units, numbers rounded and right-aligned
+    (:mod:`antenna_cad.export.present`)."""
+    cells = [[pdf_text(present.column_label(str(c))) for c in columns]] + [
+        [pdf_text(present.cell_text(str(c), v)) for c, v in zip(columns, row)] for row in rows]
+    numeric = [any(isinstance(row[i], (int, float)) and not isinstance(row[i], bool) for row in rows)
+               for i in range(len(columns))]
     widths = [max(len(row[i]) for row in cells) for i in range(len(columns))]
-    lines = ["  ".join(c.ljust(w) for c, w in zip(row, widths)).rstrip() for row in cells]
+    lines = ["  ".join(c.rjust(w) if num else c.ljust(w) for c, w, num in zip(row, widths, numeric)).rstrip()
+             for row in cells]
     return [lines[0], "-" * len(lines[0])] + lines[1:]
-
-
-def _text(value) -> str:
-    if value is None:
-        return "-"
-    if isinstance(value, bool):
-        return "yes" if value else "no"
-    if isinstance(value, float):
-        return f"{value:.6g}"
-    return str(value)
 
 
 def _text_pages(pdf: PdfPages, heading: str, lines: list[str]) -> None:
@@ -110,17 +117,46 @@ def _text_pages(pdf: PdfPages, heading: str, lines: list[str]) -> None:
     embedding, 40× faster than embedded DejaVu; characters they lack are spelled out. Courier's
     fixed advance sizes the text so the longest line fits the page width (down to 5 pt); lines
     still longer wrap with an indent, so nothing runs past the page edge."""
-    size, width = text_layout([spelled(line) for line in lines])
-    rows = [row for line in lines for row in (textwrap.wrap(spelled(line), width, subsequent_indent="    ",
+    lines = [pdf_text(line) for line in lines]
+    size, width = text_layout(lines)
+    rows = [row for line in lines for row in (textwrap.wrap(line, width, subsequent_indent="    ",
                                                             drop_whitespace=False) or [""])]
     per_page = math.floor((TEXT_TOP - MARGIN) * A4_INCH[1] * 72 / (LINE_SPACING * size))
     with matplotlib.rc_context({"pdf.use14corefonts": True}):
         for start in range(0, max(len(rows), 1), per_page):
             fig = Figure(figsize=A4_INCH)
             fig.text(MARGIN, 0.965, spelled(heading), fontsize=12, weight="bold")
-            fig.text(MARGIN, TEXT_TOP, "\n".join(rows[start:start + per_page]), family="monospace",
-                     weight="medium", fontsize=size, va="top", linespacing=LINE_SPACING)
+            page = rows[start:start + per_page]
+            if any(c in GREEK for row in page for c in row):
+                _lines_with_greek(fig, page, size)
+            else:
+                fig.text(MARGIN, TEXT_TOP, "\n".join(page), family="monospace",
+                         weight="medium", fontsize=size, va="top", linespacing=LINE_SPACING)
             pdf.savefig(fig)
+
+
+def pdf_text(text: str) -> str:
+    """``text`` in the characters the page can show: :func:`spelled`, except the :data:`GREEK` letters
+    (drawn by :func:`_lines_with_greek`); powers of ten as ``2.5e-5``, thin spaces as spaces."""
+    text = POWER.sub(lambda m: "e" + m.group(1).translate(UNSUPERSCRIPT), text).replace("\u202f", " ")
+    kept = str.maketrans({c: chr(i + 1) for i, c in enumerate(GREEK)})
+    back = str.maketrans({chr(i + 1): c for i, c in enumerate(GREEK)})
+    return spelled(text.translate(kept)).translate(back)
+
+
+def _lines_with_greek(fig: Figure, rows: list[str], size: float) -> None:
+    """A page of monospaced ``rows`` one line at a time on a fixed pitch, each :data:`GREEK` letter drawn
+    as its outline (DejaVu Sans Mono) in the blank left for it in the Courier line."""
+    pitch_in = LINE_SPACING * size / 72
+    glyphs = {c: TextPath((0, 0), c, size=size, prop=FontProperties(family="DejaVu Sans Mono")) for c in GREEK}
+    for k, row in enumerate(rows):
+        y_in = TEXT_TOP * A4_INCH[1] - size / 72 - k * pitch_in          # the baseline
+        fig.text(MARGIN, y_in / A4_INCH[1], "".join(" " if c in GREEK else c for c in row), family="monospace",
+                 weight="medium", fontsize=size, va="baseline")
+        for col, c in ((i, c) for i, c in enumerate(row) if c in GREEK):
+            x_in = MARGIN * A4_INCH[0] + col * COURIER_ADVANCE_EM * size / 72
+            place = Affine2D().scale(1 / 72).translate(x_in, y_in) + fig.dpi_scale_trans
+            fig.add_artist(PathPatch(glyphs[c], transform=place, facecolor="black", linewidth=0))
 
 
 def text_layout(lines: list[str]) -> tuple[float, int]:

@@ -25,7 +25,7 @@ from antenna_cad.fullwave import solver
 from antenna_cad.fullwave.aperture import aperture_stats, difference_stats, phase_deg, window
 from antenna_cad.fullwave.budget import Budget, budget_for
 from antenna_cad.fullwave.lens import RevolvedLens
-from antenna_cad.synthesis.checks import Check, DesignError
+from antenna_cad.synthesis.checks import Check, DesignError, Status
 from antenna_cad.verification import Plot, Series
 
 FAST = "fast sub-wavelength model (thin screen + scalar diffraction to the aperture plane)"
@@ -66,7 +66,8 @@ def on_axis_decks(lens: RevolvedLens, settings) -> list[dict]:
 @dataclass(frozen=True)
 class Decision:
     """Whether a stage runs Meep: the interpreter (None: it does not), why, the estimate, the budget
-    it runs within, and the check status a stage that does not run gets (warn unless off in the spec)."""
+    it runs within, and the check status a stage that does not run gets (skip when off in the spec; warn
+    when Meep is missing or the estimate is over budget: the verdicts then rest on the fast model)."""
     python: str | None
     why: str
     estimate_s: float
@@ -80,7 +81,7 @@ def budget_decision(settings, decks: list[dict], jobs: int) -> Decision:
     the runs stop at the budget (:func:`run_named`)."""
     within = budget_for(settings)
     if settings.full_wave == "off":
-        return Decision(None, "not run: off in the spec (verification.full_wave)", 0.0, within)
+        return Decision(None, "not run: off in the spec (verification.full_wave)", 0.0, within, "skip")
     python = solver.meep_python()
     if python is None:
         if settings.full_wave == "on":

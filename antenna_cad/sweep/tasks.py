@@ -132,4 +132,4 @@ def finish(stages: tuple[str, ...], counts: tuple[int, ...], wanted: tuple[str, 
                          f"{', '.join(sorted(k for k, v in figures.items() if not isinstance(v, str)))}"}
     worst = "fail" if "fail" in checks.values() else ("warn" if "warn" in checks.values() else "pass")
     return {"figures": {w: figures[w] for w in wanted}, "checks": worst,
-            "check_issues": " ".join(sorted(k for k, v in checks.items() if v != "pass")), "folder": folder}
+            "check_issues": " ".join(sorted(k for k, v in checks.items() if v in ("fail", "warn"))), "folder": folder}

@@ -15,7 +15,7 @@ from typing import Literal
 
 import numpy as np
 
-Status = Literal["pass", "warn", "fail"]
+Status = Literal["pass", "warn", "fail", "skip"]   # skip: a stage that did not run (never a pass)
 
 
 class DesignError(ValueError):

@@ -1,4 +1,4 @@
-"""``make-lens``: thin Typer front end over :mod:`antenna_cad.pipeline` (no logic here).
+"""``make-lens``: thin Typer front end over :mod:`antenna_cad.api` (no logic here).
 
     make-lens SPEC [-o OUT]          build everything into OUT/<name>/ (default exports/)
     make-lens build SPEC [-o OUT]    the same; options may come before or after SPEC
@@ -7,6 +7,8 @@
     make-lens check OUT              re-read every file of a build folder with independent readers
     make-lens sweep SWEEP [-o OUT] [--scheduler tcp://HOST:PORT] [--workers N]
                                      run a design sweep on dask into OUT/<sweep name>/
+    make-lens recipes                list the bundled recipes (one line each)
+    make-lens new KIND|RECIPE [NAME] write NAME.yaml: a commented starting spec
     make-lens --version
 """
 
@@ -31,7 +33,7 @@ app = typer.Typer(add_completion=False, no_args_is_help=True, rich_markup_mode=N
                   help="Physics spec of a microwave antenna → STEP/STL, 1:1 templates, cut list.\n\n" + EXIT_CODES)
 out_console = Console()
 err_console = Console(stderr=True, soft_wrap=True)
-COMMANDS = {"build", "validate", "schema", "check", "sweep"}
+COMMANDS = {"build", "validate", "schema", "check", "sweep", "recipes", "new"}
 VALUE_OPTIONS = {"-o", "--out", "--scheduler", "--workers"}
 STATUS_STYLE = {"pass": "green", "warn": "yellow", "fail": "red"}
 
@@ -56,21 +58,17 @@ def _fail(lines: list[str]) -> None:
 
 
 def _load(spec_path: Path, out: Path | None = None):
-    """Spec, output folder check (when building), then everything before CAD (pipeline.prepare);
+    """Spec, output folder check (when building), then everything before CAD (api.validate);
     or a clean exit 2 naming the field and the rule."""
-    from antenna_cad.pipeline import OutputError, check_output, prepare
-    from antenna_cad.spec import SpecError, load_spec
-    from antenna_cad.synthesis.checks import DesignError
+    from antenna_cad import api
     try:
-        spec = load_spec(spec_path)
-        if out is not None:
-            check_output(out, spec.name)
-        return spec, prepare(spec)
-    except SpecError as exc:
+        checked = api.validate(spec_path, out)
+        return checked.spec, checked
+    except api.SpecError as exc:
         _fail(exc.lines)
-    except DesignError as exc:
+    except api.DesignError as exc:
         _fail([f"{spec_path}: {exc}"])
-    except OutputError as exc:
+    except api.OutputError as exc:
         _fail([str(exc)])
 
 
@@ -85,7 +83,7 @@ def _checks_table(checks) -> Table:
 
 
 @app.command(epilog=EXIT_CODES)
-def validate(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML")) -> None:
+def validate(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML (or a bundled recipe's name)")) -> None:
     """Check the spec and run every rule a build applies (synthesis, layup, limits, fabrication
     plan) before any CAD work; writes nothing."""
     # numpy is not imported yet: its BLAS in one thread (a thread pool costs more than it saves on
@@ -97,19 +95,18 @@ def validate(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YA
 
 
 @app.command(epilog=EXIT_CODES)
-def build(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML"),
+def build(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML (or a bundled recipe's name)"),
           out: Path = typer.Option(Path("exports"), "-o", "--out", help="output root folder")) -> None:
     """Build STEP/STL, templates, cut list, report and manifest into OUT/<name>/."""
     from rich.progress import Progress
 
-    from antenna_cad.pipeline import OutputError, build as run_build
-    from antenna_cad.synthesis.checks import DesignError
-    spec, plan = _load(spec_path, out)
+    from antenna_cad.api import DesignError, OutputError, build as run_build
+    spec, checked = _load(spec_path, out)
     try:
         with Progress(console=err_console, transient=True) as bar:
             task = bar.add_task(f"building {spec.name}", total=1.0)
-            result = run_build(spec, out, lambda stage, f: bar.update(task, completed=f,
-                                                                      description=f"{spec.name}: {stage}"), plan)
+            result = run_build(checked, out, lambda stage, f: bar.update(task, completed=f,
+                                                                      description=f"{spec.name}: {stage}"))
     except DesignError as exc:
         _fail([f"{spec_path}: {exc}"])
     except OutputError as exc:
@@ -235,6 +232,36 @@ def sweep(sweep_path: Path = typer.Argument(..., metavar="SWEEP", help="sweep YA
     out_console.print(f"{len(result.rows)} variants ({result.unique} computed, {counts['ok']} ok, "
                       f"{counts['invalid']} invalid, {counts['failed']} failed) in {result.seconds:.1f} s → "
                       f"{result.out_dir}/index.html")
+
+
+@app.command("recipes")
+def list_recipes() -> None:
+    """List the recipes shipped with the package, one line each (build one: make-lens NAME)."""
+    from antenna_cad.catalog import recipes, sweeps
+    for r in recipes():
+        out_console.print(f"{r.name:37} {r.kind:12} {r.summary}", markup=False, highlight=False, soft_wrap=True)
+    out_console.print(f"sweeps: {', '.join(sweeps())}  (make-lens new RECIPE writes one to edit)", markup=False)
+
+
+@app.command(epilog=EXIT_CODES)
+def new(source: str = typer.Argument(..., metavar="KIND|RECIPE", help="a kind (collimator, luneburg, …) or a recipe"),
+        name: str = typer.Argument(None, metavar="[NAME]", help="the new spec's name (default my-<kind> or the recipe's)"),
+        out: Path = typer.Option(None, "-o", "--out", help="file to write (default NAME.yaml here)")) -> None:
+    """Write a commented starting spec from a kind or a bundled recipe; never overwrites a file."""
+    from antenna_cad.api import CatalogError, new_spec
+    try:
+        name, text = new_spec(source, name)
+    except CatalogError as exc:
+        _fail([str(exc)])
+    target = out or Path(f"{name}.yaml")
+    try:
+        with open(target, "x", encoding="utf-8") as fh:
+            fh.write(text)
+    except FileExistsError:
+        _fail([f"{target}: exists; choose another NAME or -o FILE"])
+    except OSError as exc:
+        _fail([f"{target}: cannot write ({exc.strerror})"])
+    err_console.print(f"wrote {target} — next: make-lens validate {target}", markup=False, highlight=False)
 
 
 def main() -> None:

@@ -240,7 +240,7 @@ def list_recipes() -> None:
     from antenna_cad.catalog import recipes, sweeps
     for r in recipes():
         out_console.print(f"{r.name:37} {r.kind:12} {r.summary}", markup=False, highlight=False, soft_wrap=True)
-    out_console.print(f"sweeps: {', '.join(sweeps())}  (make-lens new RECIPE writes one to edit)", markup=False)
+    out_console.print(f"sweeps: {', '.join(sweeps())} (run one: make-lens sweep FILE)", markup=False, soft_wrap=True)
 
 
 @app.command(epilog=EXIT_CODES)

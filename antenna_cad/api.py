@@ -32,7 +32,7 @@ from antenna_cad.spec.common import SpecBase
 from antenna_cad.synthesis.checks import Check, DesignError
 
 __all__ = ["Build", "CatalogError", "Check", "DesignError", "OutputError", "Part", "Recipe", "Spec", "SpecError",
-           "Validation", "build", "load", "new_spec", "recipes", "validate", "with_changes"]
+           "Validation", "build", "load", "new_spec", "read_build", "recipes", "validate", "with_changes"]
 
 Spec = SpecBase
 """A validated spec: a frozen pydantic model of its kind (``spec.kind``, ``spec.name``, its blocks)."""
@@ -150,12 +150,22 @@ def build(spec: SpecLike | Validation, out: str | Path = "exports", progress: Pr
     OutputError (nothing written); a failed check is in the result."""
     checked = spec if isinstance(spec, Validation) else validate(spec, out)
     result = _build(checked.spec, Path(out), progress, checked.plan)
-    manifest = json.loads((result.out_dir / "manifest.json").read_text(encoding="utf-8"))
+    return _from_manifest(result.out_dir, dict(result.seconds))
+
+
+def read_build(folder: str | Path) -> Build:
+    """An earlier build (``OUT/<name>/``, by ``make-lens`` or :func:`build`) read back from its
+    ``manifest.json``; stage times are not recorded there (``seconds`` is empty)."""
+    return _from_manifest(Path(folder), {})
+
+
+def _from_manifest(folder: Path, seconds: dict[str, float]) -> Build:
+    manifest = json.loads((folder / "manifest.json").read_text(encoding="utf-8"))
     parts = [Part(p["label"], p["material"], p["role"], p["volume_mm3"], p["solids"],
-                  result.out_dir / p["file"] if "file" in p else None) for p in manifest["parts"]]
-    return Build(result.name, result.kind, result.out_dir, dict(result.figures), dict(result.verified),
-                 list(result.checks), parts, dict(result.masses_kg), dict(result.boards), list(result.files),
-                 dict(result.seconds))
+                  folder / p["file"] if "file" in p else None) for p in manifest["parts"]]
+    return Build(manifest["name"], manifest["kind"], folder, manifest["figures"], manifest["verification"]["figures"],
+                 [Check(**c) for c in manifest["checks"]], parts, manifest["mass_kg"], manifest["boards"],
+                 sorted(f["path"] for f in manifest["files"]) + ["manifest.json"], seconds)
 
 
 def new_spec(source: str, name: str | None = None) -> tuple[str, str]:

@@ -104,6 +104,9 @@ def test_validate_then_build_returns_the_build_as_objects(tmp_path):
     worst = "fail" if any(c.status == "fail" for c in result.checks) else (
         "warn" if any(c.status == "warn" for c in result.checks) else "pass")
     assert result.status == worst
+    again = api.read_build(result.out_dir)
+    assert (again.figures, again.verified, again.checks, again.parts, again.files) == (
+        result.figures, result.verified, result.checks, result.parts, result.files)
 
 
 def test_build_refuses_an_output_folder_that_is_not_a_build(tmp_path):

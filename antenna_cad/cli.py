@@ -1,4 +1,4 @@
-"""``make-lens``: thin Typer front end over :mod:`antenna_cad.pipeline` (no logic here).
+"""``make-lens``: thin Typer front end over :mod:`antenna_cad.api` (no logic here).
 
     make-lens SPEC [-o OUT] [-q|-v]  build everything into OUT/<name>/ (default exports/)
     make-lens build SPEC [-o OUT]    the same; options may come before or after SPEC
@@ -8,6 +8,8 @@
     make-lens sweep SWEEP [-o OUT] [--scheduler tcp://HOST:PORT|tls://HOST:PORT] [--workers N] [-q|-v]
                                      run a design sweep on dask into OUT/<sweep name>/
     make-lens kerf coupon|table      hot-wire kerf calibration (antenna_cad.kerf_cli)
+    make-lens recipes                list the bundled recipes (one line each)
+    make-lens new KIND|RECIPE [NAME] write NAME.yaml: a commented starting spec
     make-lens --version
 """
 
@@ -34,7 +36,7 @@ EXIT_CODES = ("Exit codes: 0 built/valid (checks pass or warn); 1 built, but a c
 app = typer.Typer(add_completion=False, no_args_is_help=True, rich_markup_mode=None,
                   help="Physics spec of a microwave antenna → STEP/STL, 1:1 templates, cut list.\n\n" + EXIT_CODES)
 err_console = stderr_console()
-COMMANDS = {"build", "validate", "schema", "check", "sweep", "kerf"}
+COMMANDS = {"build", "validate", "schema", "check", "sweep", "kerf", "recipes", "new"}
 VALUE_OPTIONS = {"-o", "--out", "--scheduler", "--workers"}
 QUIET_OPTION = typer.Option(False, "-q", "--quiet", help="no progress, no tables: only the last line and errors")
 VERBOSE_OPTION = typer.Option(False, "-v", "--verbose", help="every progress report as a line, and stage times")
@@ -69,26 +71,22 @@ def _fail(lines: list[str]) -> None:
 
 
 def _load(spec_path: Path, out: Path | None = None):
-    """Spec, output folder check (when building), then everything before CAD (pipeline.prepare);
+    """Spec, output folder check (when building), then everything before CAD (api.validate);
     or a clean exit 2 naming the field and the rule."""
-    from antenna_cad.pipeline import OutputError, check_output, prepare
-    from antenna_cad.spec import SpecError, load_spec
-    from antenna_cad.synthesis.checks import DesignError
+    from antenna_cad import api
     try:
-        spec = load_spec(spec_path)
-        if out is not None:
-            check_output(out, spec.name)
-        return spec, prepare(spec)
-    except SpecError as exc:
+        checked = api.validate(spec_path, out)
+        return checked.spec, checked
+    except api.SpecError as exc:
         _fail(exc.lines)
-    except DesignError as exc:
+    except api.DesignError as exc:
         _fail([f"{spec_path}: {exc}"])
-    except OutputError as exc:
+    except api.OutputError as exc:
         _fail([str(exc)])
 
 
 @app.command(epilog=EXIT_CODES)
-def validate(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML")) -> None:
+def validate(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML (or a bundled recipe's name)")) -> None:
     """Check the spec and run every rule a build applies (synthesis, layup, limits, fabrication
     plan) before any CAD work; writes nothing."""
     # numpy is not imported yet: its BLAS in one thread (a thread pool costs more than it saves on
@@ -104,18 +102,17 @@ def validate(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YA
 
 
 @app.command(epilog=EXIT_CODES)
-def build(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML"),
+def build(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML (or a bundled recipe's name)"),
           out: Path = typer.Option(Path("exports"), "-o", "--out", help="output root folder"),
           quiet: bool = QUIET_OPTION, verbose: bool = VERBOSE_OPTION) -> None:
     """Build STEP/STL, templates, cut list, report and manifest into OUT/<name>/. Progress on stderr:
     a bar on a terminal, else a line per stage start and end and a heartbeat every 10 s."""
-    from antenna_cad.pipeline import OutputError, build as run_build
-    from antenna_cad.synthesis.checks import DesignError
+    from antenna_cad.api import DesignError, OutputError, build as run_build
     mode, started = _mode(quiet, verbose), time.monotonic()
-    spec, plan = _load(spec_path, out)          # a bad spec: its one line, before any progress line
+    spec, checked = _load(spec_path, out)          # a bad spec: its one line, before any progress line
     with BuildProgress(spec.name, mode, started=started) as progress:
         try:
-            result = run_build(spec, out, progress, plan)
+            result = run_build(checked, out, progress)
         except DesignError as exc:
             _fail([f"{spec_path}: {exc}"])
         except OutputError as exc:
@@ -226,6 +223,36 @@ def sweep(sweep_path: Path = typer.Argument(..., metavar="SWEEP", help="sweep YA
     console.print(f"{len(result.rows)} variants ({result.unique} computed, {counts['ok']} ok, {counts['invalid']} "
                   f"invalid, {counts['failed']} failed) in {result.seconds:.1f} s → {result.out_dir}/index.html"
                   + (f" ({result.resumed} rows kept from the interrupted run)" if result.resumed else ""))
+
+
+@app.command("recipes")
+def list_recipes() -> None:
+    """List the recipes shipped with the package, one line each (build one: make-lens NAME)."""
+    from antenna_cad.catalog import recipes, sweeps
+    for r in recipes():
+        stdout_console().print(f"{r.name:37} {r.kind:12} {r.summary}", markup=False, highlight=False, soft_wrap=True)
+    stdout_console().print(f"sweeps: {', '.join(sweeps())} (run one: make-lens sweep FILE)", markup=False, soft_wrap=True)
+
+
+@app.command(epilog=EXIT_CODES)
+def new(source: str = typer.Argument(..., metavar="KIND|RECIPE", help="a kind (collimator, luneburg, …) or a recipe"),
+        name: str = typer.Argument(None, metavar="[NAME]", help="the new spec's name (default my-<kind> or the recipe's)"),
+        out: Path = typer.Option(None, "-o", "--out", help="file to write (default NAME.yaml here)")) -> None:
+    """Write a commented starting spec from a kind or a bundled recipe; never overwrites a file."""
+    from antenna_cad.api import CatalogError, new_spec
+    try:
+        name, text = new_spec(source, name)
+    except CatalogError as exc:
+        _fail([str(exc)])
+    target = out or Path(f"{name}.yaml")
+    try:
+        with open(target, "x", encoding="utf-8") as fh:
+            fh.write(text)
+    except FileExistsError:
+        _fail([f"{target}: exists; choose another NAME or -o FILE"])
+    except OSError as exc:
+        _fail([f"{target}: cannot write ({exc.strerror})"])
+    err_console.print(f"wrote {target} — next: make-lens validate {target}", markup=False, highlight=False)
 
 
 def main() -> None:

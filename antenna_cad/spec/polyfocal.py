@@ -131,6 +131,9 @@ class PolyfocalDesignSpec(StrictModel):
     straight_index: float = Field(0.5, gt=0.05, lt=1.0, description="§1.2 (b): phase index n_w of the "
                                   "identical straight lines")
     view_angle_deg: float = Field(60.0, ge=MIN_DEG, le=150, description="full view angle of the σ study")
+    focal_axis_z: float | None = Field(None, ge=-1e4, le=1e4, description="2-D bifocal only (§1.2): z_F, where the "
+                                       "focal circle through F1, F2 crosses the axis (normalised, from the lens "
+                                       "centre); None: optimised for the least peak σ over the view")
     lines: LinesSpec
 
     @property
@@ -165,6 +168,18 @@ class PolyfocalDesignSpec(StrictModel):
             a, b = foci
             if b["angle_deg"] == 0 or a["angle_deg"] == b["angle_deg"]:
                 raise ValueError("design.foci: the second pair needs an angle > 0 and ≠ the first")
+        bifocal = self.case == "2d/two_planes/foci" and len(foci) == 1
+        if bifocal and foci[0]["angle_deg"] == 0:
+            raise ValueError("design.foci: a bifocal lens needs its pair off the axis (angle > 0); one focus on the "
+                             "axis is a single-focus lens")
+        if self.focal_axis_z is not None and not bifocal:
+            raise ValueError("design.focal_axis_z: only for a 2-D bifocal lens (other lenses' focal curves pass "
+                             "through their foci or are fitted)")
+        if self.focal_axis_z is not None:
+            z_focus = -self.thickness / 2 - foci[0]["f"] * np.cos(np.radians(foci[0]["angle_deg"]))
+            if abs(self.focal_axis_z - z_focus) < 1e-6 * self.aperture:
+                raise ValueError(f"design.focal_axis_z: equals the foci's z {z_focus:.6g}; no circle centred on the "
+                                 "axis passes through them and this point")
         if self.case == "2d/one_plane/plane_waves" and (foci[0]["angle_deg"] != 0 or foci[1]["angle_deg"] == 0):
             raise ValueError("design.foci: §1.5 takes [F on the axis (angle 0), the F1/F2 pair (angle > 0)]")
         if self.case == "3d/one_plane/plane_waves":

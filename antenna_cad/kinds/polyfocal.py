@@ -24,7 +24,7 @@ from antenna_cad.spec.polyfocal import PolyfocalSpec
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.collimator import wavelength_mm
 from antenna_cad.synthesis.polyfocal import ConstrainedLens
-from antenna_cad.synthesis.polyfocal_analysis import best_direction, sigma_scan, source_on
+from antenna_cad.synthesis.polyfocal_analysis import best_direction, image_circle, image_of, sigma_scan, source_on
 from antenna_cad.synthesis.polyfocal_design import PolyfocalDesign, grid_3d, solve_case, synthesize_polyfocal
 from antenna_cad.verification import Plot, Series, Table, Verification
 
@@ -152,7 +152,12 @@ def aperture_field(design: PolyfocalDesign, lens: ConstrainedLens, angle_deg: fl
     r = np.linalg.norm(lens.r1 - s, axis=1)
     amp = r ** (-0.5 if lens.dimensions == 2 else -1.0)
     phase = -2 * np.pi / design.wavelength_mm * (r + lens.l) * design.unit_mm
-    target = -s * design.unit_mm if lens.foci[0].image is not None else best_direction(lens, s)[1]
+    if lens.foci[0].image is None:
+        target = best_direction(lens, s)[1]
+    else:
+        images = image_circle(lens)
+        target = (-s if images is None else image_of(images, np.radians(angle_deg), np.radians(azimuth_deg)))
+        target = target * design.unit_mm
     return lens.r2 * design.unit_mm, amp / amp.max(), phase, target
 
 

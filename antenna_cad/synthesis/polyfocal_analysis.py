@@ -13,7 +13,8 @@ the kind's notes):
   the yz and xz planes (the seed optimises its focal sphere's radius, seed-001 §2.2–§2.4; no sphere
   centred on the axis passes through five general foci), scanned in both planes. The source at field
   angle θ is where the ray from the lens centre O at angle θ to −z meets the curve.
-* Images: two-plane-symmetric lenses image S at S' = −S (point symmetry, seed-001 §4.2);
+* Images: two-plane-symmetric lenses image S at S' = −S (point symmetry, seed-001 §4.2); lenses
+  with f ≠ f' (§1.4) on the image circle through the F_i', in the direction opposite to S;
   plane-wave lenses radiate in the direction that minimises σ (seed-001 §4.2, option 2).
 """
 
@@ -94,14 +95,33 @@ def design_foci_sigma(lens: ConstrainedLens) -> np.ndarray:
     return np.array(out)
 
 
-def _sigma_on(lens: ConstrainedLens, zc: float, radius: float, theta: float, azimuth: float = 0.0) -> float:
-    """σ for the source at field angle θ on the sphere (z_c, R); inf where the ray misses the sphere."""
+def image_circle(lens: ConstrainedLens) -> tuple[float, float, float] | None:
+    """(z_e, z_c, R) of the image curve when the images are not the foci point-reflected (seed-001
+    §1.4, f ≠ f'): F_i' = e − (f_i'/f_i)·F_i about the exit-surface centre (0, 0, z_e), so the image
+    of S is e − (the point of the axis-centred circle through e − F_i' in S's direction); None for
+    point-symmetric or plane-wave lenses."""
+    if lens.foci[0].image is None or all(np.allclose(f.image, -f.point) for f in lens.foci):
+        return None
+    z_e = float(lens.r2[_central(lens), 2])
+    return (z_e, *focal_sphere(np.array([[0.0, 0.0, z_e] - f.image for f in lens.foci])))
+
+
+def _sigma_on(lens: ConstrainedLens, zc: float, radius: float, theta: float, azimuth: float = 0.0,
+              images: tuple[float, float, float] | None = None) -> float:
+    """σ for the source at field angle θ on the sphere (z_c, R); inf where the ray misses the sphere.
+    The image of S is −S, or on the image curve ``images`` (:func:`image_circle`)."""
     s = source_on(zc, radius, theta, azimuth)
     if not np.all(np.isfinite(s)):
         return np.inf
     if lens.foci[0].image is not None:
-        return sigma(lens, s, image=-s)
+        return sigma(lens, s, image=-s if images is None else image_of(images, theta, azimuth))
     return best_direction(lens, s)[0]
+
+
+def image_of(images: tuple[float, float, float], theta: float, azimuth: float = 0.0) -> np.ndarray:
+    """The image point on the curve ``images`` (:func:`image_circle`) for the field angle θ."""
+    z_e, zc, radius = images
+    return np.array([0.0, 0.0, z_e]) - source_on(zc, radius, theta, azimuth)
 
 
 @dataclass(frozen=True)
@@ -126,7 +146,8 @@ def sigma_scan(lens: ConstrainedLens, half_view_deg: float, count: int = 61, azi
     sphere through the design foci) in the plane of ``azimuth``."""
     zc, radius, how = sphere or (*focal_sphere(np.array([f.point for f in lens.foci])), "through the design foci")
     angles = np.linspace(-half_view_deg, half_view_deg, count)
-    values = np.array([_sigma_on(lens, zc, radius, a, azimuth) for a in np.radians(angles)])
+    images = image_circle(lens)
+    values = np.array([_sigma_on(lens, zc, radius, a, azimuth, images) for a in np.radians(angles)])
     return SigmaScan(label, angles, values, zc, radius, how)
 
 

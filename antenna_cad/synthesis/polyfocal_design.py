@@ -18,6 +18,8 @@ from antenna_cad.synthesis.polyfocal import (ConstrainedLens, FiveFocal, SymFocu
                                              plane_wave_trifocal_2d, two_planes_2d)
 from antenna_cad.synthesis.polyfocal_analysis import (SigmaScan, axis_point_circle, design_foci_sigma, fitted_sphere,
                                                       focal_sphere, optimal_axis_point, seed_comparison, sigma_scan)
+from antenna_cad.synthesis.polyfocal_oneplane import FinitePair, one_plane_2d
+from antenna_cad.synthesis.polyfocal_three_planes import three_planes_3d
 
 EXACT_LIMIT = 1e-9          # eikonal spread / D at the design foci (closed-form or Newton solutions)
 DENSE_POINTS = 201          # half-aperture samples of the 2-D surfaces (the CAD curves)
@@ -70,6 +72,12 @@ def solve_case(case: str, foci: list[dict], aperture: float, thickness: float, l
     if case == "2d/two_planes/foci":
         sym = [SymFocus(f["f"], rad(f["angle_deg"])) for f in foci]
         return two_planes_2d(sym, thickness / 2, aperture, coords, law, straight_index)
+    if case == "3d/three_planes/foci":
+        f1, f3 = (SymFocus(f["f"], rad(f["angle_deg"])) for f in foci)
+        return three_planes_3d(f1, f3, thickness / 2, aperture, coords)
+    if case == "2d/one_plane/foci":
+        p1, p3 = (FinitePair(f["f"], f["f_image"], rad(f["angle_deg"])) for f in foci)
+        return one_plane_2d(p1, p3, aperture, coords).shifted(thickness)
     if case == "2d/one_plane/plane_waves":
         t = Trifocal15(foci[0]["f"], foci[1]["f"], rad(foci[1]["angle_deg"]), thickness)
         errors = []
@@ -115,8 +123,9 @@ def synthesize_polyfocal(*, case: str, foci: list[dict], unit_mm: float, apertur
     if case.startswith("2d"):
         dense_y = np.linspace(0.0, aperture / 2, DENSE_POINTS)
         el_y = _element_coords(aperture, pitch)
-        dense = solve_case(case, foci, aperture, thickness, law, straight_index, np.union1d(dense_y, el_y))
-        surface = dense.r1 if case == "2d/two_planes/foci" else dense.r2
+        coords = np.union1d(np.round(dense_y, 12), np.round(el_y, 12))      # one point where they coincide
+        dense = solve_case(case, foci, aperture, thickness, law, straight_index, coords)
+        surface = dense.r1 if case.endswith("/foci") else dense.r2
         pick = np.isin(np.round(surface[:, 1], 12), np.round(np.concatenate([-el_y, el_y]), 12))
         elements = dense.take(pick)
         dense = dense.take(np.isin(np.round(np.abs(surface[:, 1]), 12), np.round(dense_y, 12)))

@@ -1,0 +1,77 @@
+"""3-D constrained lens with three symmetry planes, variant 1 (seed-001 §2.2, (2.2)–(2.3)).
+
+Four foci in the yz plane, F1/F2 at (f1, ±α) and F3/F4 at (f3, ±β), distances from the surface centres
+A = (0, 0, −z0) and B = (0, 0, z0) as §1.2–§1.3, each imaged at the point-symmetric F_i' = −F_i. The
+symmetry makes the line through the lens parallel to the axis: entry (x, y, −z), exit (x, y, z), and
+the two pair equations (2.2) (with the corrected f3 cos β in the second) fix z and the line length l
+at every (x, y). They are (1.5) with x² added to each squared distance, so in the plane x = 0 the lens
+is the 2-D two-plane lens. Solved for all points at once by Newton's method on (z, l) with
+continuation along each point's ray from the lens centre; the thesis' explicit (2.3) (its inputs are
+(x, l)) is evaluated on the solution as a cross-check (:func:`explicit_23_residuals`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from antenna_cad.synthesis.checks import DesignError
+from antenna_cad.synthesis.polyfocal import ConstrainedLens, Focus, SymFocus, _pt
+
+STEPS = 24                # continuation steps along each ray
+NEWTON_IT = 40
+
+
+def _pair(s: SymFocus, x, y, z, z0):
+    """Left side of (2.2) for one pair, minus 2f: the paths from F and its mirror to (x, y, −z)."""
+    t = (s.f * np.cos(s.angle) + z0 - z) ** 2 + x**2
+    c = s.f * np.sin(s.angle)
+    return np.sqrt(t + (c - y) ** 2) + np.sqrt(t + (c + y) ** 2) - 2 * s.f
+
+
+def three_planes_3d(f1: SymFocus, f3: SymFocus, z0: float, aperture: float, xy: np.ndarray) -> ConstrainedLens:
+    """Seed-001 §2.2 variant 1 at the points (x, y) (rows of ``xy``); DesignError naming design.aperture
+    where the continuation loses the solution."""
+    xy = np.asarray(xy, dtype=float)
+    z, dl = np.full(len(xy), z0), np.zeros(len(xy))
+    for t in np.linspace(1.0 / STEPS, 1.0, STEPS):
+        x, y = xy[:, 0] * t, xy[:, 1] * t
+        for _ in range(NEWTON_IT):
+            r1, r3 = _pair(f1, x, y, z, z0) + dl, _pair(f3, x, y, z, z0) + dl
+            if max(np.max(np.abs(r1)), np.max(np.abs(r3))) < 1e-13:
+                break
+            h = 1e-7
+            d1 = (_pair(f1, x, y, z + h, z0) - _pair(f1, x, y, z - h, z0)) / (2 * h)
+            d3 = (_pair(f3, x, y, z + h, z0) - _pair(f3, x, y, z - h, z0)) / (2 * h)
+            det = d1 - d3                                     # rows [d1, 1], [d3, 1]
+            z, dl = z - (r1 - r3) / det, dl - (d1 * r3 - d3 * r1) / det
+        bad = ~(np.maximum(np.abs(_pair(f1, x, y, z, z0) + dl), np.abs(_pair(f3, x, y, z, z0) + dl)) < 1e-10)
+        if bad.any():
+            k = int(np.flatnonzero(bad)[0])
+            raise DesignError("design.aperture", f"the three-plane solution (2.2) is lost at x = {x[k]:.4g}, y = "
+                              f"{y[k]:.4g} (no real solution there for these foci; reduce the aperture)")
+    r1 = np.column_stack([xy, -z])
+    r2 = np.column_stack([xy, z])
+    foci = []
+    for s in (f1, f3):
+        for sg in ((1.0, -1.0) if s.angle else (1.0,)):
+            c, u = s.f * np.sin(s.angle) * sg, z0 + s.f * np.cos(s.angle)
+            foci.append(Focus(_pt(c, -u), image=_pt(-c, u)))
+    return ConstrainedLens(r1, r2, dl, tuple(foci), aperture, 3,
+                           "Newton on the two pair equations (2.2) in (z, l), continuation along each ray")
+
+
+def explicit_23_residuals(f1: SymFocus, f3: SymFocus, z0: float, lens: ConstrainedLens) -> np.ndarray:
+    """|z − z(2.3)| and |y² − y²(2.3)| on the lens's points off the centre: (2.3) with inputs (x, l), the
+    nearer of its two roots (the branch caveat of (1.6)), z the exit side's from its centre (z − z0)."""
+    x, y, z, l = lens.r2[:, 0], lens.r2[:, 1], lens.r2[:, 2] - z0, lens.l
+    ca, cb = f1.f * np.cos(f1.angle), f3.f * np.cos(f3.angle)
+    s1, s3 = 2 * f1.f - l, 2 * f3.f - l
+    L = f1.f**2 * np.sin(f1.angle) ** 2 / s1**2 - f3.f**2 * np.sin(f3.angle) ** 2 / s3**2
+    M = 4 * f1.f**2 * np.sin(f1.angle) ** 2 / s1**2 - 1
+    P = (ca - cb) * M / (2 * L) - 2 * ca
+    Q = f1.f**2 + x**2 - s1**2 / 4 - l * (f1.f - f3.f) * M / (4 * L)
+    disc = np.sqrt(np.maximum(P**2 - 4 * Q, 0.0))
+    roots = np.stack([-(P + disc) / 2, -(P - disc) / 2])
+    z23 = roots[np.argmin(np.abs(roots - z), axis=0), np.arange(len(z))]
+    y23 = (-2 * z23 * (ca - cb) + l * (f1.f - f3.f)) / (4 * L)
+    return np.concatenate([np.abs(z23 - z), np.abs(y23 - y**2)])

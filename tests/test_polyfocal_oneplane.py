@@ -1,0 +1,71 @@
+"""Seed-001 §1.4: the four-focal 2-D constrained lens with one symmetry plane and finite foci —
+exact at its four foci, the thesis' reduction (1.9)–(1.13) (with the corrected (1.11)) holds on the
+solution, f = f' gives back the two-plane lens, the RMS optimum against the thesis' RMS_min, the
+spec path."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from antenna_cad.registry import adapter
+from antenna_cad.spec import load_spec
+from antenna_cad.synthesis.polyfocal import SymFocus, two_planes_2d
+from antenna_cad.synthesis.polyfocal_analysis import sigma_scan
+from antenna_cad.synthesis.polyfocal_oneplane import FinitePair, one_plane_2d, reduction_residuals
+
+RECIPE = Path(__file__).resolve().parents[1] / "recipes" / "polyfocal-oneplane-2d-90deg.yaml"
+Y = np.linspace(0.0, 0.5, 51)            # D = 1, 101 lines
+rad = np.radians
+
+
+def _peak(f1, f1i, f3, f3i, a, b):
+    lens = one_plane_2d(FinitePair(f1, f1i, rad(a)), FinitePair(f3, f3i, rad(b)), 1.0, Y)
+    return sigma_scan(lens, 45.0, 19).max
+
+
+def test_exact_at_four_finite_foci_and_the_reduction_holds():
+    p1, p3 = FinitePair(1.2, 4.5, rad(15.0)), FinitePair(1.1, 4.0, rad(35.0))
+    lens = one_plane_2d(p1, p3, 1.0, Y)
+    assert lens.residuals().max() < 1e-12
+    assert reduction_residuals(p1, p3, lens).max() < 1e-9            # (1.12)–(1.13), corrected (1.11)
+    assert np.all(lens.r2[:, 1] * lens.r1[:, 1] >= 0)                  # y2 on the side of y1
+
+
+def test_equal_focal_distances_give_the_two_plane_lens():
+    """f = f' on both pairs: the surfaces are mirror images (z2 = −z1, y2 = y1), the §1.3 lens."""
+    lens = one_plane_2d(FinitePair(25.0, 25.0, rad(11.7)), FinitePair(22.925, 22.925, rad(27.9)), 25.0,
+                        np.linspace(0, 12.5, 26))
+    ref = two_planes_2d([SymFocus(25.0, rad(11.7)), SymFocus(22.925, rad(27.9))], 0.0, 25.0, np.linspace(0, 12.5, 26))
+    np.testing.assert_allclose(lens.r1, ref.r1, atol=1e-9)
+    np.testing.assert_allclose(lens.r2, ref.r2, atol=1e-9)
+    np.testing.assert_allclose(lens.l, ref.l, atol=1e-9)
+
+
+def test_recipe_synthesizes_exactly():
+    spec = load_spec(RECIPE)
+    kind = adapter("polyfocal")
+    design = kind.synthesize(spec)
+    assert all(c.status != "fail" for c in design.checks)
+    assert design.dense.residuals().max() < 1e-9 and design.foci_sigma.max() < 1e-12
+    assert len(np.unique(np.round(design.r1_mm[:, 1], 6))) == len(design.r1_mm)       # one channel per element
+    fig = kind.summary(spec, design, None)
+    assert fig["foci_count"] == 4
+    assert fig["dense_lines_sigma_over_D_max"] == pytest.approx(6.465e-6, rel=1e-3)    # 401 lines
+
+
+@pytest.mark.parametrize("foci, match", [
+    ([{"f": 1.2, "angle_deg": 15.0, "f_image": 4.5}, {"f": 1.0, "angle_deg": 40.0}], "f_image"),
+    ([{"f": 1.2, "angle_deg": 0.0, "f_image": 4.5}, {"f": 1.0, "angle_deg": 40.0, "f_image": 4.0}], "off the axis"),
+])
+def test_spec_rules_for_finite_foci(foci, match):
+    import yaml
+
+    from antenna_cad.spec import parse_spec
+    data = yaml.safe_load(RECIPE.read_text())
+    data["design"]["foci"] = foci
+    with pytest.raises(Exception, match=match):
+        parse_spec(data, "x.yaml")
+    data["design"] |= {"symmetry": "two_planes", "foci": [{"f": 25.0, "angle_deg": 10.0, "f_image": 20.0}]}
+    with pytest.raises(Exception, match="f_image"):
+        parse_spec(data, "x.yaml")

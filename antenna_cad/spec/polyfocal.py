@@ -11,8 +11,9 @@ that fills the lines (air, {eps_r: 1, …}, for hollow waveguides). Supported ca
   the entry surface through the origin, ``thickness`` moves the output half along z (§1.1).
 * ``2d`` / ``one_plane`` / ``plane_waves`` — §1.5: equal-line trifocal lens, foci [F on the axis,
   F1/F2 pair]; ``thickness`` = d.
-* ``3d`` / ``three_planes`` / ``foci`` — §2.2 variant 1: two pairs in the yz plane as §1.3 (f from
-  the surface centres, angles), imaged point-symmetrically; ``thickness`` = 2·z0.
+* ``3d`` / ``three_planes`` / ``foci`` — §2.2: two pairs as §1.3 (f from the surface centres,
+  angles), imaged point-symmetrically, ``thickness`` = 2·z0; both in the yz plane (variant 1), or the
+  second in the xz plane (``azimuth_deg: 90``, variant 2, the rhombus).
 * ``3d`` / ``one_plane`` / ``plane_waves`` — §2.4: five foci, [F1/F2 (f1, α, φ), F3/F4 (f3, β, ξ),
   F5 (f5, ψ) in the xz plane].
 
@@ -78,10 +79,13 @@ class FocusSpec(StrictModel):
         if len(pos) != dims:
             raise ValueError(f"{field}: {'2-D foci take (y, z)' if dims == 2 else '3-D foci take (x, y, z)'}; "
                              f"got {len(pos)} numbers")
-        if case == "3d/three_planes/foci":         # the foci lie in the yz plane, given as in 2-D
-            if pos[0] != 0:
-                raise ValueError(f"{field}: the foci of the three-plane lens lie in the yz plane (x = 0)")
-            pos, dims = pos[1:], 2
+        rhombus = 0.0
+        if case == "3d/three_planes/foci":         # the foci lie in the yz (or xz) plane, given as in 2-D
+            if pos[0] != 0 and pos[1] != 0:
+                raise ValueError(f"{field}: the foci of the three-plane lens lie in the yz plane (x = 0) or, for "
+                                 "the rhombus, the second pair in the xz plane (y = 0)")
+            rhombus = 90.0 if pos[0] != 0 else 0.0
+            pos, dims = np.array([abs(pos[0]) or pos[1], pos[2]]), 2
         if dims == 2:
             y, z = pos
             z_ref = 0.0 if case == "2d/one_plane/foci" else -thickness / 2   # the entry-surface centre
@@ -92,7 +96,7 @@ class FocusSpec(StrictModel):
                 raise ValueError(f"{field}: give the upper focus of the ±pair (y ≥ 0)")
             if single and y != 0:
                 raise ValueError(f"{field}: this focus lies on the axis (y = 0)")
-            f, angle, azimuth = float(np.hypot(y, z - z_ref)), float(np.degrees(np.arctan2(y, z_ref - z))), 0.0
+            f, angle, azimuth = float(np.hypot(y, z - z_ref)), float(np.degrees(np.arctan2(y, z_ref - z))), rhombus
         else:
             x, y, z = pos
             f = float(np.linalg.norm(pos))
@@ -174,9 +178,12 @@ class PolyfocalDesignSpec(StrictModel):
         if len(self.foci) not in counts[self.case]:
             raise ValueError(f"design.foci: the case {self.case} takes {' or '.join(map(str, counts[self.case]))} "
                              f"focus entries (got {len(self.foci)})")
-        if self.case != "3d/one_plane/plane_waves" and any(f.azimuth_deg for f in self.foci):
-            raise ValueError("design.foci: azimuth_deg is for the 3-D one-plane lens only (the others' foci lie "
-                             "in the yz plane)")
+        if self.case == "3d/three_planes/foci":
+            if self.foci[0].azimuth_deg or self.foci[1].azimuth_deg not in (None, 0, 90):
+                raise ValueError("design.foci: the three-plane lens takes azimuth_deg 0 (yz plane) or, on the "
+                                 "second pair only, 90 (xz plane: the rhombus)")
+        elif self.case != "3d/one_plane/plane_waves" and any(f.azimuth_deg for f in self.foci):
+            raise ValueError("design.foci: azimuth_deg is for the 3-D lenses only (the 2-D foci lie in the yz plane)")
         foci = self.resolved_foci()
         finite = self.case == "2d/one_plane/foci"
         if any((f.f_image is not None) != finite for f in self.foci):

@@ -190,8 +190,10 @@ def fitted_sphere(lens: ConstrainedLens, half_view_deg: float, count: int = 5) -
     both = np.radians(np.linspace(-half_view_deg, half_view_deg, 2 * count - 1))
     cases = [(a, 0.0) for a in pos] + [(a, np.pi / 2) for a in both]
 
+    images = image_circle(lens)
+
     def peak(p) -> float:
-        return max(_sigma_on(lens, p[0], p[1], a, az) for a, az in cases)
+        return max(_sigma_on(lens, p[0], p[1], a, az, images) for a, az in cases)
 
     start = np.array(focal_sphere(np.array([f.point for f in lens.foci])))
     res = minimize(peak, start, method="Nelder-Mead",

@@ -74,7 +74,7 @@ def solve_case(case: str, foci: list[dict], aperture: float, thickness: float, l
         return two_planes_2d(sym, thickness / 2, aperture, coords, law, straight_index)
     if case == "3d/three_planes/foci":
         f1, f3 = (SymFocus(f["f"], rad(f["angle_deg"])) for f in foci)
-        return three_planes_3d(f1, f3, thickness / 2, aperture, coords)
+        return three_planes_3d(f1, f3, thickness / 2, aperture, coords, rhombus=foci[1]["azimuth_deg"] == 90)
     if case == "2d/one_plane/foci":
         p1, p3 = (FinitePair(f["f"], f["f_image"], rad(f["angle_deg"])) for f in foci)
         return one_plane_2d(p1, p3, aperture, coords).shifted(thickness)

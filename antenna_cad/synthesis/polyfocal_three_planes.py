@@ -1,11 +1,13 @@
-"""3-D constrained lens with three symmetry planes, variant 1 (seed-001 §2.2, (2.2)–(2.3)).
+"""3-D constrained lens with three symmetry planes (seed-001 §2.2): variant 1, (2.2)–(2.3), and
+variant 2, the "rhombus", (2.4)–(2.9).
 
-Four foci in the yz plane, F1/F2 at (f1, ±α) and F3/F4 at (f3, ±β), distances from the surface centres
+Variant 1: four foci in the yz plane, F1/F2 at (f1, ±α) and F3/F4 at (f3, ±β); variant 2: F3/F4 in the
+xz plane instead (the foci's projections form a rhombus). Distances from the surface centres
 A = (0, 0, −z0) and B = (0, 0, z0) as §1.2–§1.3, each imaged at the point-symmetric F_i' = −F_i. The
 symmetry makes the line through the lens parallel to the axis: entry (x, y, −z), exit (x, y, z), and
-the two pair equations (2.2) (with the corrected f3 cos β in the second) fix z and the line length l
-at every (x, y). They are (1.5) with x² added to each squared distance, so in the plane x = 0 the lens
-is the 2-D two-plane lens. Solved for all points at once by Newton's method on (z, l) with
+the two pair equations (2.2) (with the corrected f3 cos β in the second) or (2.4) fix z and the line
+length l at every (x, y). They are (1.5) with the other transverse coordinate's square added to each
+squared distance, so in variant 1 the plane x = 0 holds the 2-D two-plane lens. Solved for all points at once by Newton's method on (z, l) with
 continuation along each point's ray from the lens centre; the thesis' explicit (2.3) (its inputs are
 (x, l)) is evaluated on the solution as a cross-check (:func:`explicit_23_residuals`).
 """
@@ -22,29 +24,32 @@ NEWTON_IT = 40
 
 
 def _pair(s: SymFocus, x, y, z, z0):
-    """Left side of (2.2) for one pair, minus 2f: the paths from F and its mirror to (x, y, −z)."""
+    """Left side of (2.2) for a pair in the yz plane, minus 2f: the paths from F and its mirror to
+    (x, y, −z) (a pair in the xz plane: called with x and y swapped, (2.4))."""
     t = (s.f * np.cos(s.angle) + z0 - z) ** 2 + x**2
     c = s.f * np.sin(s.angle)
     return np.sqrt(t + (c - y) ** 2) + np.sqrt(t + (c + y) ** 2) - 2 * s.f
 
 
-def three_planes_3d(f1: SymFocus, f3: SymFocus, z0: float, aperture: float, xy: np.ndarray) -> ConstrainedLens:
-    """Seed-001 §2.2 variant 1 at the points (x, y) (rows of ``xy``); DesignError naming design.aperture
-    where the continuation loses the solution."""
+def three_planes_3d(f1: SymFocus, f3: SymFocus, z0: float, aperture: float, xy: np.ndarray,
+                    rhombus: bool = False) -> ConstrainedLens:
+    """Seed-001 §2.2 at the points (x, y) (rows of ``xy``): variant 1, or variant 2 (``rhombus``: F3/F4
+    in the xz plane); DesignError naming design.aperture where the continuation loses the solution."""
     xy = np.asarray(xy, dtype=float)
+    second = (lambda f, x, y, z: _pair(f, y, x, z, z0)) if rhombus else (lambda f, x, y, z: _pair(f, x, y, z, z0))
     z, dl = np.full(len(xy), z0), np.zeros(len(xy))
     for t in np.linspace(1.0 / STEPS, 1.0, STEPS):
         x, y = xy[:, 0] * t, xy[:, 1] * t
         for _ in range(NEWTON_IT):
-            r1, r3 = _pair(f1, x, y, z, z0) + dl, _pair(f3, x, y, z, z0) + dl
+            r1, r3 = _pair(f1, x, y, z, z0) + dl, second(f3, x, y, z) + dl
             if max(np.max(np.abs(r1)), np.max(np.abs(r3))) < 1e-13:
                 break
             h = 1e-7
             d1 = (_pair(f1, x, y, z + h, z0) - _pair(f1, x, y, z - h, z0)) / (2 * h)
-            d3 = (_pair(f3, x, y, z + h, z0) - _pair(f3, x, y, z - h, z0)) / (2 * h)
+            d3 = (second(f3, x, y, z + h) - second(f3, x, y, z - h)) / (2 * h)
             det = d1 - d3                                     # rows [d1, 1], [d3, 1]
             z, dl = z - (r1 - r3) / det, dl - (d1 * r3 - d3 * r1) / det
-        bad = ~(np.maximum(np.abs(_pair(f1, x, y, z, z0) + dl), np.abs(_pair(f3, x, y, z, z0) + dl)) < 1e-10)
+        bad = ~(np.maximum(np.abs(_pair(f1, x, y, z, z0) + dl), np.abs(second(f3, x, y, z) + dl)) < 1e-10)
         if bad.any():
             k = int(np.flatnonzero(bad)[0])
             raise DesignError("design.aperture", f"the three-plane solution (2.2) is lost at x = {x[k]:.4g}, y = "
@@ -52,12 +57,13 @@ def three_planes_3d(f1: SymFocus, f3: SymFocus, z0: float, aperture: float, xy: 
     r1 = np.column_stack([xy, -z])
     r2 = np.column_stack([xy, z])
     foci = []
-    for s in (f1, f3):
+    for s, in_xz in ((f1, False), (f3, rhombus)):
         for sg in ((1.0, -1.0) if s.angle else (1.0,)):
             c, u = s.f * np.sin(s.angle) * sg, z0 + s.f * np.cos(s.angle)
-            foci.append(Focus(_pt(c, -u), image=_pt(-c, u)))
+            foci.append(Focus(_pt(0.0, -u, c), image=_pt(0.0, u, -c)) if in_xz else Focus(_pt(c, -u), image=_pt(-c, u)))
     return ConstrainedLens(r1, r2, dl, tuple(foci), aperture, 3,
-                           "Newton on the two pair equations (2.2) in (z, l), continuation along each ray")
+                           f"Newton on the two pair equations {'(2.4)' if rhombus else '(2.2)'} in (z, l), "
+                           "continuation along each ray")
 
 
 def explicit_23_residuals(f1: SymFocus, f3: SymFocus, z0: float, lens: ConstrainedLens) -> np.ndarray:
@@ -75,3 +81,17 @@ def explicit_23_residuals(f1: SymFocus, f3: SymFocus, z0: float, lens: Constrain
     z23 = roots[np.argmin(np.abs(roots - z), axis=0), np.arange(len(z))]
     y23 = (-2 * z23 * (ca - cb) + l * (f1.f - f3.f)) / (4 * L)
     return np.concatenate([np.abs(z23 - z), np.abs(y23 - y**2)])
+
+
+def rhombus_27_28_residuals(f1: SymFocus, f3: SymFocus, z0: float, lens: ConstrainedLens) -> np.ndarray:
+    """|y1² − (J z1 + T)| (2.7) and |z1² + M z1 + N| (2.8) on the rhombus lens's entry points, z1 from
+    the entry surface's centre (z1 = z_entry + z0)."""
+    x1, y1, z1, l = lens.r1[:, 0], lens.r1[:, 1], lens.r1[:, 2] + z0, lens.l
+    a, b, g1, g3 = f1.angle, f3.angle, f1.f, f3.f
+    s1, s3 = 2 * g1 - l, 2 * g3 - l
+    J = (g1 * np.cos(a) - g3 * np.cos(b)) * s1**2 / (2 * g1**2 * np.sin(a) ** 2)
+    T = ((4 * (g1**2 - g3**2) + s3**2 - s1**2 + 16 * x1**2 * g3**2 * np.sin(b) ** 2 / s3**2) * s1**2
+         / (16 * g1**2 * np.sin(a) ** 2))
+    M = J + 2 * g3 * np.cos(b)
+    N = T + g3**2 + x1**2 - s3**2 / 4 - 4 * x1**2 * g3**2 * np.sin(b) ** 2 / s3**2
+    return np.concatenate([np.abs(y1**2 - (J * z1 + T)), np.abs(z1**2 + M * z1 + N)])

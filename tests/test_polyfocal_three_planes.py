@@ -67,7 +67,7 @@ def test_rhombus_exact_and_its_reduction_holds():
     lens = three_planes_3d(f1, f3, 0.0, 1.0, grid_3d(1.0, 1.0 / 24), rhombus=True)
     assert lens.residuals().max() < 1e-13
     assert rhombus_27_28_residuals(f1, f3, 0.0, lens).max() < 1e-12
-    assert lens.foci[2].point[1] == 0 and lens.foci[2].point[0] > 0              # F3 in the xz plane
+    assert abs(lens.foci[2].point[1]) < 1e-15 and lens.foci[2].point[0] > 0       # F3 in the xz plane
 
 
 def test_rhombus_recipe():
@@ -79,3 +79,29 @@ def test_rhombus_recipe():
     assert all(c.status != "fail" for c in design.checks) and design.foci_sigma.max() < 1e-12
     assert [s.max for s in design.scans] == pytest.approx([1.0614e-2, 8.8997e-3], rel=1e-3)
     assert design.focal[1] == pytest.approx(0.432, abs=0.002)
+
+
+def test_trapezoid_exact_and_237_holds():
+    """§2.3 (d) example (D = 1, f1 = 1, f3 = 0.97, α 8.6°, β 28°, φ −0.5°, ξ 0.1°) at zero thickness:
+    exact at its four foci, lines crossing x = 0 (x2 = −x1), and (2.37) y1² = (A z1 + B)/C holds."""
+    rad = np.radians
+    a, b, p, q, f1, f3 = rad(8.6), rad(28.0), rad(-0.5), rad(0.1), 1.0, 0.97
+    lens = three_planes_3d(SymFocus(f1, a), SymFocus(f3, b), 0.0, 1.0, grid_3d(1.0, 1.0 / 24), azimuths=(p, q))
+    assert lens.residuals().max() < 1e-13 and len(lens.foci) == 4
+    np.testing.assert_array_equal(lens.r2[:, 0], -lens.r1[:, 0])
+    x1, y1, z1, l = lens.r1[:, 0], lens.r1[:, 1], lens.r1[:, 2], lens.l
+    A = 8 * (f1 * np.cos(a) - f3 * np.cos(b))
+    B = (4 * (f1**2 - f3**2) + (2 * f3 - l) ** 2 - (2 * f1 - l) ** 2
+         + 8 * x1 * (f3 * np.sin(b) * np.sin(q) - f1 * np.sin(a) * np.sin(p)))
+    C = 16 * (f1**2 * np.sin(a) ** 2 * np.cos(p) ** 2 / (2 * f1 - l) ** 2
+              - f3**2 * np.sin(b) ** 2 * np.cos(q) ** 2 / (2 * f3 - l) ** 2)
+    assert np.abs(y1**2 - (A * z1 + B) / C).max() < 1e-12
+
+
+def test_trapezoid_is_refused_by_the_spec_with_its_reason():
+    """Its lines cross x = 0 (x2 = −x1): straight channels would intersect; the spec says so."""
+    data = yaml.safe_load(RECIPE.read_text())
+    data["design"] |= {"symmetry": "two_planes", "foci": [{"f": 25.0, "angle_deg": 8.6, "azimuth_deg": -0.5},
+                                                          {"f": 24.25, "angle_deg": 28.0, "azimuth_deg": 0.1}]}
+    with pytest.raises(Exception, match="crosses the plane x = 0"):
+        parse_spec(data, "x.yaml")

@@ -172,6 +172,10 @@ class PolyfocalDesignSpec(StrictModel):
     def _supported(self):
         counts = {"2d/two_planes/foci": (1, 2), "2d/one_plane/foci": (2,), "2d/one_plane/plane_waves": (2,),
                   "3d/three_planes/foci": (2,), "3d/one_plane/plane_waves": (3,)}
+        if self.case == "3d/two_planes/foci":
+            raise ValueError("design.symmetry: the two-plane 3-D lens with finite foci (seed-001 §2.3 (d), the "
+                             "trapezoid) maps x2 = −x1: every line crosses the plane x = 0, so straight channels "
+                             "would cut through each other; it needs flexible (bootlace) lines, which are not built")
         if self.case not in counts:
             raise ValueError(f"design.symmetry: the case {self.case} is not implemented; use one of "
                              f"{', '.join(sorted(counts))} (seed-001 §1.2–§1.5, §2.4)")
@@ -182,7 +186,7 @@ class PolyfocalDesignSpec(StrictModel):
             if self.foci[0].azimuth_deg or self.foci[1].azimuth_deg not in (None, 0, 90):
                 raise ValueError("design.foci: the three-plane lens takes azimuth_deg 0 (yz plane) or, on the "
                                  "second pair only, 90 (xz plane: the rhombus)")
-        elif self.case != "3d/one_plane/plane_waves" and any(f.azimuth_deg for f in self.foci):
+        elif self.dimensions == "2d" and any(f.azimuth_deg for f in self.foci):
             raise ValueError("design.foci: azimuth_deg is for the 3-D lenses only (the 2-D foci lie in the yz plane)")
         foci = self.resolved_foci()
         finite = self.case == "2d/one_plane/foci"

@@ -17,53 +17,65 @@ from __future__ import annotations
 import numpy as np
 
 from antenna_cad.synthesis.checks import DesignError
-from antenna_cad.synthesis.polyfocal import ConstrainedLens, Focus, SymFocus, _pt
+from antenna_cad.synthesis.polyfocal import ConstrainedLens, Focus, SymFocus
 
 STEPS = 24                # continuation steps along each ray
 NEWTON_IT = 40
 
 
-def _pair(s: SymFocus, x, y, z, z0):
-    """Left side of (2.2) for a pair in the yz plane, minus 2f: the paths from F and its mirror to
-    (x, y, −z) (a pair in the xz plane: called with x and y swapped, (2.4))."""
-    t = (s.f * np.cos(s.angle) + z0 - z) ** 2 + x**2
-    c = s.f * np.sin(s.angle)
-    return np.sqrt(t + (c - y) ** 2) + np.sqrt(t + (c + y) ** 2) - 2 * s.f
+def _front(s: SymFocus, azimuth: float, z0: float) -> np.ndarray:
+    """The focus at distance f from A = (0, 0, −z0), angle θ to the axis, azimuth from Oy (2.1)."""
+    return np.array([s.f * np.sin(s.angle) * np.sin(azimuth), s.f * np.sin(s.angle) * np.cos(azimuth),
+                     -z0 - s.f * np.cos(s.angle)])
+
+
+def _partner(p: np.ndarray, sx: float) -> np.ndarray:
+    """The pair's second focus: the entry-side point whose path to (x, y, −z) equals the exit path to
+    −F through (sx·x, y, z) — the mirror of F in y (sx = −1, or F in the yz plane) or in x (F in xz)."""
+    return np.array([-sx * p[0], -p[1], p[2]])
+
+
+def _pair(p: np.ndarray, q: np.ndarray, f: float, x, y, z):
+    """(2.2)/(2.4)/(2.34) for one pair, minus 2f: the paths from F and its partner to (x, y, −z)."""
+    return (np.sqrt((p[0] - x) ** 2 + (p[1] - y) ** 2 + (p[2] + z) ** 2)
+            + np.sqrt((q[0] - x) ** 2 + (q[1] - y) ** 2 + (q[2] + z) ** 2) - 2 * f)
 
 
 def three_planes_3d(f1: SymFocus, f3: SymFocus, z0: float, aperture: float, xy: np.ndarray,
-                    rhombus: bool = False) -> ConstrainedLens:
+                    rhombus: bool = False, azimuths: tuple[float, float] = (0.0, 0.0)) -> ConstrainedLens:
     """Seed-001 §2.2 at the points (x, y) (rows of ``xy``): variant 1, or variant 2 (``rhombus``: F3/F4
-    in the xz plane); DesignError naming design.aperture where the continuation loses the solution."""
+    in the xz plane); with ``azimuths`` (φ, ξ) ≠ 0 the §2.3 (d) trapezoid, whose lines cross the axis
+    plane x = 0 (exit x2 = −x1, (2.34)). DesignError naming design.aperture where the continuation
+    loses the solution."""
     xy = np.asarray(xy, dtype=float)
-    second = (lambda f, x, y, z: _pair(f, y, x, z, z0)) if rhombus else (lambda f, x, y, z: _pair(f, x, y, z, z0))
+    sx = -1.0 if any(azimuths) else 1.0
+    fronts = (_front(f1, azimuths[0], z0), _front(f3, np.pi / 2 if rhombus else azimuths[1], z0))
+    pairs = [(p, _partner(p, sx), s.f) for p, s in zip(fronts, (f1, f3))]
     z, dl = np.full(len(xy), z0), np.zeros(len(xy))
     for t in np.linspace(1.0 / STEPS, 1.0, STEPS):
         x, y = xy[:, 0] * t, xy[:, 1] * t
         for _ in range(NEWTON_IT):
-            r1, r3 = _pair(f1, x, y, z, z0) + dl, second(f3, x, y, z) + dl
+            r1, r3 = (_pair(*pr, x, y, z) + dl for pr in pairs)
             if max(np.max(np.abs(r1)), np.max(np.abs(r3))) < 1e-13:
                 break
             h = 1e-7
-            d1 = (_pair(f1, x, y, z + h, z0) - _pair(f1, x, y, z - h, z0)) / (2 * h)
-            d3 = (second(f3, x, y, z + h) - second(f3, x, y, z - h)) / (2 * h)
+            d1, d3 = ((_pair(*pr, x, y, z + h) - _pair(*pr, x, y, z - h)) / (2 * h) for pr in pairs)
             det = d1 - d3                                     # rows [d1, 1], [d3, 1]
             z, dl = z - (r1 - r3) / det, dl - (d1 * r3 - d3 * r1) / det
-        bad = ~(np.maximum(np.abs(_pair(f1, x, y, z, z0) + dl), np.abs(second(f3, x, y, z) + dl)) < 1e-10)
+        bad = ~(np.maximum(*(np.abs(_pair(*pr, x, y, z) + dl) for pr in pairs)) < 1e-10)
         if bad.any():
             k = int(np.flatnonzero(bad)[0])
-            raise DesignError("design.aperture", f"the three-plane solution (2.2) is lost at x = {x[k]:.4g}, y = "
+            raise DesignError("design.aperture", f"the symmetric 3-D solution is lost at x = {x[k]:.4g}, y = "
                               f"{y[k]:.4g} (no real solution there for these foci; reduce the aperture)")
     r1 = np.column_stack([xy, -z])
-    r2 = np.column_stack([xy, z])
+    r2 = np.column_stack([sx * xy[:, 0], xy[:, 1], z])
     foci = []
-    for s, in_xz in ((f1, False), (f3, rhombus)):
-        for sg in ((1.0, -1.0) if s.angle else (1.0,)):
-            c, u = s.f * np.sin(s.angle) * sg, z0 + s.f * np.cos(s.angle)
-            foci.append(Focus(_pt(0.0, -u, c), image=_pt(0.0, u, -c)) if in_xz else Focus(_pt(c, -u), image=_pt(-c, u)))
+    for p, q, _ in pairs:
+        for point in ((p, q) if np.linalg.norm(p - q) > 0 else (p,)):
+            foci.append(Focus(point, image=-point))
+    eq = "(2.34)" if sx < 0 else "(2.4)" if rhombus else "(2.2)"
     return ConstrainedLens(r1, r2, dl, tuple(foci), aperture, 3,
-                           f"Newton on the two pair equations {'(2.4)' if rhombus else '(2.2)'} in (z, l), "
-                           "continuation along each ray")
+                           f"Newton on the two pair equations {eq} in (z, l), continuation along each ray")
 
 
 def explicit_23_residuals(f1: SymFocus, f3: SymFocus, z0: float, lens: ConstrainedLens) -> np.ndarray:

@@ -55,6 +55,9 @@ def test_foci_out_of_the_yz_plane_are_refused():
     data["design"]["foci"][0] = {"f": 25.0, "angle_deg": 11.7, "azimuth_deg": 5}
     with pytest.raises(Exception, match="azimuth_deg"):
         parse_spec(data, "x.yaml")
+    data["design"]["foci"][0] = {"position": [5.0, 0.0, -30.0]}       # first pair in the xz plane
+    with pytest.raises(Exception, match="first pair in the yz plane"):
+        parse_spec(data, "x.yaml")
 
 
 RHOMBUS = RECIPE.parent / "polyfocal-rhombus-3d.yaml"

@@ -182,13 +182,12 @@ class PolyfocalDesignSpec(StrictModel):
         if len(self.foci) not in counts[self.case]:
             raise ValueError(f"design.foci: the case {self.case} takes {' or '.join(map(str, counts[self.case]))} "
                              f"focus entries (got {len(self.foci)})")
-        if self.case == "3d/three_planes/foci":
-            if self.foci[0].azimuth_deg or self.foci[1].azimuth_deg not in (None, 0, 90):
-                raise ValueError("design.foci: the three-plane lens takes azimuth_deg 0 (yz plane) or, on the "
-                                 "second pair only, 90 (xz plane: the rhombus)")
-        elif self.dimensions == "2d" and any(f.azimuth_deg for f in self.foci):
+        if self.dimensions == "2d" and any(f.azimuth_deg for f in self.foci):
             raise ValueError("design.foci: azimuth_deg is for the 3-D lenses only (the 2-D foci lie in the yz plane)")
         foci = self.resolved_foci()
+        if self.case == "3d/three_planes/foci" and (foci[0]["azimuth_deg"] != 0 or foci[1]["azimuth_deg"] not in (0, 90)):
+            raise ValueError("design.foci: the three-plane lens takes its first pair in the yz plane (azimuth_deg 0) "
+                             "and its second in the yz (0) or the xz plane (90: the rhombus)")
         finite = self.case == "2d/one_plane/foci"
         if any((f.f_image is not None) != finite for f in self.foci):
             raise ValueError("design.foci: f_image is for the 2-D one-plane lens with finite foci (§1.4), and that "

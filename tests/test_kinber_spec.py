@@ -89,3 +89,17 @@ def test_horn_and_plates_geometry():
     assert np.allclose(ap, d.foci_mm[0]) and bp.horn_clearance_check(d, h).status == "pass"
     outline = bp.plate_outline(d, h, 10.0)
     assert outline.contains(bp.lens_section_zy(d)) and outline.contains(h.walls)
+
+
+def test_summary_names_the_vertex_positions_as_such():
+    """The summary's lens vertices are positions on the axis (mm), not the thesis' ρ1/ρ2 (a point-image
+    distance; infinite for a plane-output lens): they are named for what they are."""
+    from antenna_cad.registry import adapter
+    data = _spec(LENS3) | {"material": {"name": "n16", "eps_r": 2.56, "tan_delta": 1e-4, "density_kg_m3": 1000}}
+    spec = BifocalSpec.model_validate(data)
+    kind = adapter("bifocal")
+    design = kind.synthesize(spec)
+    fig = kind.summary(spec, design, None)
+    assert not {"rho1_mm", "rho2_mm"} & set(fig)
+    assert fig["illuminated_vertex_z_mm"] == design.rho1_mm and fig["shadow_vertex_z_mm"] == design.rho2_mm
+    assert fig["shadow_vertex_z_mm"] - fig["illuminated_vertex_z_mm"] == pytest.approx(fig["thickness_mm"])

@@ -180,3 +180,25 @@ def test_rays_lost_at_an_earlier_face_are_not_iterated(on_surface):
     t, conv = _hit(p, w, body.mirror, t0, alive)
     assert np.array_equal(t[alive], t_all[alive]) and np.array_equal(conv[alive], conv_all[alive])
     assert np.array_equal(t[~alive], t0[~alive]) and not conv[~alive].any()
+
+
+def test_field_edge_sigma_of_the_paper_design_and_its_ray_set(optimum):
+    """The paper's design (n 1.3, f0/d0 1.0148, γ 0.9371) at the field edge: σ 7.45e-4 D at 19.64°
+    (tol 1 %) with the rays launched over 1.25× the on-axis cone (the report's convention); over the
+    on-axis cone alone (δZ re-optimised) σ is 5.96e-4 D, 20 % lower. The paper states σ < 5.3e-4 D
+    within the 40° field: ours is 1.41× that (the paper's ray set, angle definition and focal-curve
+    procedure are not given; with the cone-only set the gap is 1.13×)."""
+    from scipy.optimize import minimize_scalar
+
+    from antenna_cad.raytrace import mirror_lens as ml
+    body = body_from_profiles(optimum)
+    scan = field_scan(body, [20.0])
+    assert scan.field_angle_deg[0] == pytest.approx(19.64, abs=0.01)
+    assert scan.sigma[0] == pytest.approx(7.45e-4, rel=0.01)
+    assert scan.sigma[0] / 5.3e-4 == pytest.approx(1.41, abs=0.02)         # the gap to the paper
+    cone = ml.launch_grid(body, margin=1.0)
+    d = body.gamma * np.sin(np.radians(20.0))
+    res = minimize_scalar(lambda z: ml.sigma_at(body, (-d, 0.0, z), cone).sigma, bounds=(-0.05, 0.05),
+                          method="bounded", options={"xatol": 1e-7})
+    assert res.fun == pytest.approx(5.96e-4, rel=0.01)
+    assert res.fun / scan.sigma[0] == pytest.approx(0.80, abs=0.01)

@@ -63,7 +63,7 @@ def test_bifocal_designs_are_exact_and_equal_lines_give_the_ellipse():
 
 
 def test_trifocal_and_fourfocal_beat_bifocal_as_the_seed_says():
-    bi, tri, four = (s.max for s in seed_comparison(30.0))
+    bi, tri, four = (s.max for s in seed_comparison())
     assert four < tri < bi
     assert 1.5 / 2 <= tri / four <= 1.5 * 2                    # seed L319: ≈ 1.5× at 60°, factor 2
 

@@ -24,7 +24,7 @@ from antenna_cad.spec.polyfocal import PolyfocalSpec
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.collimator import wavelength_mm
 from antenna_cad.synthesis.polyfocal import ConstrainedLens
-from antenna_cad.synthesis.polyfocal_analysis import best_direction, focal_sphere, sigma_scan, source_on
+from antenna_cad.synthesis.polyfocal_analysis import best_direction, image_circle, image_of, sigma_scan, source_on
 from antenna_cad.synthesis.polyfocal_design import PolyfocalDesign, grid_3d, solve_case, synthesize_polyfocal
 from antenna_cad.verification import Plot, Series, Table, Verification
 
@@ -40,7 +40,7 @@ def synthesize(spec: PolyfocalSpec) -> PolyfocalDesign:
         thickness=g.thickness, law=g.line_law, straight_index=g.straight_index, view_angle_deg=g.view_angle_deg,
         line_type=ln.type, pitch_mm=ln.pitch_mm, phase_index=ln.phase_index, wall_mm=ln.wall_mm,
         height_mm=ln.plate_spacing_mm, fill_eps_r=resolve_material(spec.material).eps_r,
-        wavelength_mm=wavelength_mm(spec.frequency_ghz))
+        wavelength_mm=wavelength_mm(spec.frequency_ghz), focal_axis_z=g.focal_axis_z)
 
 
 def _metal(spec: PolyfocalSpec) -> Material:
@@ -118,7 +118,11 @@ def summary(spec: PolyfocalSpec, design: PolyfocalDesign, layup) -> dict[str, fl
                "electrical_length_spread_mm": float(np.ptp(design.electrical_mm)),
                "phase_index_min": float(design.index.min()), "phase_index_max": float(design.index.max()),
                "channel_width_min_mm": float(design.width_mm.min()), "channel_width_max_mm": float(design.width_mm.max()),
-               "design_focus_eikonal_spread_over_D": float(design.dense.residuals().max() / design.dense.aperture)}
+               "design_focus_eikonal_spread_over_D": float(design.dense.residuals().max() / design.dense.aperture),
+               "design_foci_sigma_over_D_max": float(design.foci_sigma.max()),
+               "focal_centre_z_mm": design.focal[0] * design.unit_mm, "focal_radius_mm": design.focal[1] * design.unit_mm}
+    if design.focal_axis_z is not None:
+        figures["focal_axis_z_mm"] = design.focal_axis_z * design.unit_mm
     for scan in design.scans:
         tag = scan.label.replace(" ", "_")
         figures[f"{tag}_sigma_over_D_max"] = scan.max
@@ -143,12 +147,17 @@ def aperture_field(design: PolyfocalDesign, lens: ConstrainedLens, angle_deg: fl
     (positions_mm N×3, amplitude N, phase_rad N, output direction or image point in mm). Amplitude:
     free-space spreading from the feed to each entry port (1/√r in 2-D, 1/r in 3-D), no feed pattern;
     phase −2π/λ·(|S − r1| + l). For the radiation-pattern module."""
-    zc, radius = focal_sphere(np.array([f.point for f in lens.foci]))
+    zc, radius, _ = design.focal
     s = source_on(zc, radius, np.radians(angle_deg), np.radians(azimuth_deg))
     r = np.linalg.norm(lens.r1 - s, axis=1)
     amp = r ** (-0.5 if lens.dimensions == 2 else -1.0)
     phase = -2 * np.pi / design.wavelength_mm * (r + lens.l) * design.unit_mm
-    target = -s * design.unit_mm if lens.foci[0].image is not None else best_direction(lens, s)[1]
+    if lens.foci[0].image is None:
+        target = best_direction(lens, s)[1]
+    else:
+        images = image_circle(lens)
+        target = (-s if images is None else image_of(images, np.radians(angle_deg), np.radians(azimuth_deg)))
+        target = target * design.unit_mm
     return lens.r2 * design.unit_mm, amp / amp.max(), phase, target
 
 
@@ -158,9 +167,9 @@ def verify(spec: PolyfocalSpec, design: PolyfocalDesign, layup, fab) -> Verifica
     built = lines_from_table(fab.files["lines.csv"], design)
     half = spec.design.view_angle_deg / 2
     azimuths = (0.0,) if design.case.startswith("2d") else (0.0, 90.0)
-    built_scans = [sigma_scan(built, half, len(design.scans[0].angle_deg), np.radians(a), f"as built, az {a:g}°")
-                   for a in azimuths]
-    elem_scans = [sigma_scan(design.elements, half, len(design.scans[0].angle_deg), np.radians(a)) for a in azimuths]
+    count = len(design.scans[0].angle_deg)
+    built_scans = [sigma_scan(built, half, count, np.radians(a), f"as built, az {a:g}°", design.focal) for a in azimuths]
+    elem_scans = [sigma_scan(design.elements, half, count, np.radians(a), sphere=design.focal) for a in azimuths]
     worst, ref = max(s.max for s in built_scans), max(s.max for s in elem_scans)
     checks = [Check.upper("as_built_sigma", worst - ref, AS_BUILT_LIMIT, "",
                           "σ/D of the lines as built (lines.csv) above the synthesized elements'")]
@@ -170,14 +179,14 @@ def verify(spec: PolyfocalSpec, design: PolyfocalDesign, layup, fab) -> Verifica
     series = tuple(Series(s.label, s.angle_deg, s.sigma) for s in design.scans) + tuple(
         Series(s.label, s.angle_deg, s.sigma, "dashed") for s in built_scans)
     plots = [Plot("sigma", "RMS aberration against the field angle (seed-001 (1.4))", "field angle (deg)",
-                  "σ / D", series, caption=f"focal {'circle' if design.case.startswith('2d') else 'sphere'} "
-                  f"centre z {design.scans[0].focal_centre_z * design.unit_mm:.1f} mm, radius "
-                  f"{design.scans[0].focal_radius * design.unit_mm:.1f} mm")]
+                  "σ / D", series, caption=_focal_caption(design))]
     if design.comparison:
-        plots.append(Plot("seed-comparison", "Seed-001 §1.3: best two-/three-/four-focal lenses, 60° view",
+        plots.append(Plot("seed-comparison", "Seed-001 §1.3: best two-/three-/four-focal lenses, 60° view (±30°)",
                           "field angle (deg)", "σ / D", tuple(Series(s.label, s.angle_deg, s.sigma)
                                                              for s in design.comparison),
-                          caption="f1 = D = 25 λ, 2z0 = 10 λ (assumed), focal circles through the design foci"))
+                          caption="the seed's designs over their own ±30° whatever this lens's view: f1 = D = 25 λ, "
+                                  "2z0 = 10 λ (assumed), focal circles through the design foci (bifocal: and the "
+                                  "seed's z_F = −31.1)"))
         tri, four = design.comparison[1].max, design.comparison[2].max
         figures |= {"seed_trifocal_over_fourfocal_sigma_ratio": tri / four}
     pos, amp, phase, _ = aperture_field(design, built, 0.0)
@@ -186,6 +195,14 @@ def verify(spec: PolyfocalSpec, design: PolyfocalDesign, layup, fab) -> Verifica
                   "pattern module)", ("x_mm", "y_mm", "z_mm", "amplitude", "phase_rad"),
                   tuple((*map(float, p), float(a), float(ph)) for p, a, ph in zip(pos, amp, phase)))
     return Verification(figures, tuple(checks), (table,), tuple(plots)).merged(patterns)
+
+
+def _focal_caption(design: PolyfocalDesign) -> str:
+    zc, radius, how = design.focal
+    shape = "circle" if design.case.startswith("2d") else "sphere"
+    return (f"sources on the focal {shape} {how}: centre z {zc * design.unit_mm:.1f} mm, radius "
+            f"{radius * design.unit_mm:.1f} mm (normalised {zc:.4g}, {radius:.4g}); σ at the design foci "
+            f"≤ {design.foci_sigma.max():.1e} D")
 
 
 def _patterns(spec: PolyfocalSpec, design: PolyfocalDesign, built: ConstrainedLens) -> Verification:

@@ -6,8 +6,14 @@ that fills the lines (air, {eps_r: 1, …}, for hollow waveguides). Supported ca
 
 * ``2d`` / ``two_planes`` / ``foci`` — §1.2–§1.3: one focus pair (bifocal, with ``line_law``), or two
   pairs (first angle 0: trifocal; otherwise four-focal); ``thickness`` = 2·z0.
+* ``2d`` / ``one_plane`` / ``foci`` — §1.4: four finite foci, two pairs [F1/F2 (f1, ±α) imaged at
+  f1', F3/F4 (f3, ±β) imaged at f3'] (``f_image``: the image's distance from the exit-surface centre);
+  the entry surface through the origin, ``thickness`` moves the output half along z (§1.1).
 * ``2d`` / ``one_plane`` / ``plane_waves`` — §1.5: equal-line trifocal lens, foci [F on the axis,
   F1/F2 pair]; ``thickness`` = d.
+* ``3d`` / ``three_planes`` / ``foci`` — §2.2: two pairs as §1.3 (f from the surface centres,
+  angles), imaged point-symmetrically, ``thickness`` = 2·z0; both in the yz plane (variant 1), or the
+  second in the xz plane (``azimuth_deg: 90``, variant 2, the rhombus).
 * ``3d`` / ``one_plane`` / ``plane_waves`` — §2.4: five foci, [F1/F2 (f1, α, φ), F3/F4 (f3, β, ξ),
   F5 (f5, ψ) in the xz plane].
 
@@ -40,6 +46,8 @@ class FocusSpec(StrictModel):
                             "surface centre in 2-D (seed-001 (1.2)/(1.5)), from the lens centre O in 3-D (2.1)")
     angle_deg: float | None = Field(None, ge=0, lt=80, description="angle to the lens axis (α, β, ψ); default 0")
     azimuth_deg: float | None = Field(None, ge=-90, le=90, description="3-D only: azimuth from Oy (φ, ξ); default 0")
+    f_image: float | None = Field(None, gt=MIN_F, le=1e4, description="2-D one-plane lens with finite foci only "
+                                  "(§1.4): distance f' of the pair's images from the exit-surface centre")
     position: tuple[COORD, ...] | None = Field(None, min_length=2, max_length=3, description="the focus "
                                                "position, normalised units (instead of f and the angles)")
     position_mm: tuple[COORD_MM, ...] | None = Field(None, min_length=2, max_length=3, description="the focus "
@@ -61,7 +69,8 @@ class FocusSpec(StrictModel):
         pair (§1.5's F, §2.4's F5), so it must lie on the axis (2-D) or in the xz plane (3-D).
         Raises ValueError "<where>.position: rule" for a position the case cannot take."""
         if self.f is not None:
-            return {"f": self.f, "angle_deg": self.angle_deg or 0.0, "azimuth_deg": self.azimuth_deg or 0.0}
+            return {"f": self.f, "angle_deg": self.angle_deg or 0.0, "azimuth_deg": self.azimuth_deg or 0.0,
+                    "f_image": self.f_image}
         key = "position" if self.position is not None else "position_mm"
         pos = np.array(self.position if self.position is not None else self.position_mm, float)
         pos = pos / (1.0 if self.position is not None else unit_mm)
@@ -70,17 +79,24 @@ class FocusSpec(StrictModel):
         if len(pos) != dims:
             raise ValueError(f"{field}: {'2-D foci take (y, z)' if dims == 2 else '3-D foci take (x, y, z)'}; "
                              f"got {len(pos)} numbers")
+        rhombus = 0.0
+        if case == "3d/three_planes/foci":         # the foci lie in the yz (or xz) plane, given as in 2-D
+            if pos[0] != 0 and pos[1] != 0:
+                raise ValueError(f"{field}: the foci of the three-plane lens lie in the yz plane (x = 0) or, for "
+                                 "the rhombus, the second pair in the xz plane (y = 0)")
+            rhombus = 90.0 if pos[0] != 0 else 0.0
+            pos, dims = np.array([abs(pos[0]) or pos[1], pos[2]]), 2
         if dims == 2:
             y, z = pos
-            z_ref = -thickness / 2              # the entry-surface centre: focal distances from it
+            z_ref = 0.0 if case == "2d/one_plane/foci" else -thickness / 2   # the entry-surface centre
             if z >= z_ref:
                 raise ValueError(f"{field}: the focus must lie in front of the entry surface (z < "
-                                 f"{z_ref:.6g} normalised, −thickness/2)")
+                                 f"{z_ref:.6g} normalised: the entry-surface centre)")
             if y < 0:
                 raise ValueError(f"{field}: give the upper focus of the ±pair (y ≥ 0)")
             if single and y != 0:
                 raise ValueError(f"{field}: this focus lies on the axis (y = 0)")
-            f, angle, azimuth = float(np.hypot(y, z - z_ref)), float(np.degrees(np.arctan2(y, z_ref - z))), 0.0
+            f, angle, azimuth = float(np.hypot(y, z - z_ref)), float(np.degrees(np.arctan2(y, z_ref - z))), rhombus
         else:
             x, y, z = pos
             f = float(np.linalg.norm(pos))
@@ -96,7 +112,7 @@ class FocusSpec(StrictModel):
             raise ValueError(f"{field}: focal distance {f:.6g} below {MIN_F} normalised units")
         if not angle < 80:
             raise ValueError(f"{field}: angle to the axis {angle:.4g}° (rule: < 80°)")
-        return {"f": f, "angle_deg": angle, "azimuth_deg": azimuth}
+        return {"f": f, "angle_deg": angle, "azimuth_deg": azimuth, "f_image": self.f_image}
 
 
 class LinesSpec(StrictModel):
@@ -118,7 +134,7 @@ class LinesSpec(StrictModel):
 
 class PolyfocalDesignSpec(StrictModel):
     dimensions: Literal["2d", "3d"]
-    symmetry: Literal["two_planes", "one_plane"]
+    symmetry: Literal["three_planes", "two_planes", "one_plane"]
     output: Literal["foci", "plane_waves"]
     foci: tuple[FocusSpec, ...] = Field(min_length=1, max_length=3,
                                         description="focus pairs ±angle (and single foci) in the seed's order")
@@ -131,6 +147,9 @@ class PolyfocalDesignSpec(StrictModel):
     straight_index: float = Field(0.5, gt=0.05, lt=1.0, description="§1.2 (b): phase index n_w of the "
                                   "identical straight lines")
     view_angle_deg: float = Field(60.0, ge=MIN_DEG, le=150, description="full view angle of the σ study")
+    focal_axis_z: float | None = Field(None, ge=-1e4, le=1e4, description="2-D bifocal only (§1.2): z_F, where the "
+                                       "focal circle through F1, F2 crosses the axis (normalised, from the lens "
+                                       "centre); None: optimised for the least peak σ over the view")
     lines: LinesSpec
 
     @property
@@ -151,7 +170,12 @@ class PolyfocalDesignSpec(StrictModel):
 
     @model_validator(mode="after")
     def _supported(self):
-        counts = {"2d/two_planes/foci": (1, 2), "2d/one_plane/plane_waves": (2,), "3d/one_plane/plane_waves": (3,)}
+        counts = {"2d/two_planes/foci": (1, 2), "2d/one_plane/foci": (2,), "2d/one_plane/plane_waves": (2,),
+                  "3d/three_planes/foci": (2,), "3d/one_plane/plane_waves": (3,)}
+        if self.case == "3d/two_planes/foci":
+            raise ValueError("design.symmetry: the two-plane 3-D lens with finite foci (seed-001 §2.3 (d), the "
+                             "trapezoid) maps x2 = −x1: every line crosses the plane x = 0, so straight channels "
+                             "would cut through each other; it needs flexible (bootlace) lines, which are not built")
         if self.case not in counts:
             raise ValueError(f"design.symmetry: the case {self.case} is not implemented; use one of "
                              f"{', '.join(sorted(counts))} (seed-001 §1.2–§1.5, §2.4)")
@@ -159,12 +183,33 @@ class PolyfocalDesignSpec(StrictModel):
             raise ValueError(f"design.foci: the case {self.case} takes {' or '.join(map(str, counts[self.case]))} "
                              f"focus entries (got {len(self.foci)})")
         if self.dimensions == "2d" and any(f.azimuth_deg for f in self.foci):
-            raise ValueError("design.foci: azimuth_deg is for 3-D lenses only")
+            raise ValueError("design.foci: azimuth_deg is for the 3-D lenses only (the 2-D foci lie in the yz plane)")
         foci = self.resolved_foci()
-        if self.case == "2d/two_planes/foci" and len(foci) == 2:
+        if self.case == "3d/three_planes/foci" and (foci[0]["azimuth_deg"] != 0 or foci[1]["azimuth_deg"] not in (0, 90)):
+            raise ValueError("design.foci: the three-plane lens takes its first pair in the yz plane (azimuth_deg 0) "
+                             "and its second in the yz (0) or the xz plane (90: the rhombus)")
+        finite = self.case == "2d/one_plane/foci"
+        if any((f.f_image is not None) != finite for f in self.foci):
+            raise ValueError("design.foci: f_image is for the 2-D one-plane lens with finite foci (§1.4), and that "
+                             "lens needs it on both pairs")
+        if finite and (min(f["angle_deg"] for f in foci) == 0 or foci[0]["angle_deg"] == foci[1]["angle_deg"]):
+            raise ValueError("design.foci: §1.4 takes two pairs off the axis at different angles (angle > 0)")
+        if self.case in ("2d/two_planes/foci", "3d/three_planes/foci") and len(foci) == 2:
             a, b = foci
             if b["angle_deg"] == 0 or a["angle_deg"] == b["angle_deg"]:
                 raise ValueError("design.foci: the second pair needs an angle > 0 and ≠ the first")
+        bifocal = self.case == "2d/two_planes/foci" and len(foci) == 1
+        if bifocal and foci[0]["angle_deg"] == 0:
+            raise ValueError("design.foci: a bifocal lens needs its pair off the axis (angle > 0); one focus on the "
+                             "axis is a single-focus lens")
+        if self.focal_axis_z is not None and not bifocal:
+            raise ValueError("design.focal_axis_z: only for a 2-D bifocal lens (other lenses' focal curves pass "
+                             "through their foci or are fitted)")
+        if self.focal_axis_z is not None:
+            z_focus = -self.thickness / 2 - foci[0]["f"] * np.cos(np.radians(foci[0]["angle_deg"]))
+            if abs(self.focal_axis_z - z_focus) < 1e-6 * self.aperture:
+                raise ValueError(f"design.focal_axis_z: equals the foci's z {z_focus:.6g}; no circle centred on the "
+                                 "axis passes through them and this point")
         if self.case == "2d/one_plane/plane_waves" and (foci[0]["angle_deg"] != 0 or foci[1]["angle_deg"] == 0):
             raise ValueError("design.foci: §1.5 takes [F on the axis (angle 0), the F1/F2 pair (angle > 0)]")
         if self.case == "3d/one_plane/plane_waves":

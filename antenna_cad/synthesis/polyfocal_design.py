@@ -16,7 +16,10 @@ import numpy as np
 from antenna_cad.synthesis.checks import Check, DesignError
 from antenna_cad.synthesis.polyfocal import (ConstrainedLens, FiveFocal, SymFocus, Trifocal15, five_focal_3d,
                                              plane_wave_trifocal_2d, two_planes_2d)
-from antenna_cad.synthesis.polyfocal_analysis import SigmaScan, seed_comparison, sigma_scan
+from antenna_cad.synthesis.polyfocal_analysis import (SigmaScan, axis_point_circle, design_foci_sigma, fitted_sphere,
+                                                      focal_sphere, optimal_axis_point, seed_comparison, sigma_scan)
+from antenna_cad.synthesis.polyfocal_oneplane import FinitePair, one_plane_2d
+from antenna_cad.synthesis.polyfocal_three_planes import three_planes_3d
 
 EXACT_LIMIT = 1e-9          # eikonal spread / D at the design foci (closed-form or Newton solutions)
 DENSE_POINTS = 201          # half-aperture samples of the 2-D surfaces (the CAD curves)
@@ -38,6 +41,9 @@ class PolyfocalDesign:
     height_mm: float
     surfaces: tuple[np.ndarray, np.ndarray] | None     # 3-D: (entry, exit) point grids (n, n, 3), normalised
     scans: tuple[SigmaScan, ...]
+    focal: tuple[float, float, str]  # the focal curve/sphere of the scans: (z_c, R, how chosen), normalised
+    focal_axis_z: float | None      # bifocal 2-D: the axis point z_F of the focal circle (given or optimised)
+    foci_sigma: np.ndarray          # σ/D at each design focus (1.4), dense lines
     comparison: tuple[SigmaScan, ...]
     checks: tuple[Check, ...]
 
@@ -66,6 +72,12 @@ def solve_case(case: str, foci: list[dict], aperture: float, thickness: float, l
     if case == "2d/two_planes/foci":
         sym = [SymFocus(f["f"], rad(f["angle_deg"])) for f in foci]
         return two_planes_2d(sym, thickness / 2, aperture, coords, law, straight_index)
+    if case == "3d/three_planes/foci":
+        f1, f3 = (SymFocus(f["f"], rad(f["angle_deg"])) for f in foci)
+        return three_planes_3d(f1, f3, thickness / 2, aperture, coords, rhombus=foci[1]["azimuth_deg"] == 90)
+    if case == "2d/one_plane/foci":
+        p1, p3 = (FinitePair(f["f"], f["f_image"], rad(f["angle_deg"])) for f in foci)
+        return one_plane_2d(p1, p3, aperture, coords).shifted(thickness)
     if case == "2d/one_plane/plane_waves":
         t = Trifocal15(foci[0]["f"], foci[1]["f"], rad(foci[1]["angle_deg"]), thickness)
         errors = []
@@ -106,13 +118,14 @@ def _surface_grids(case, foci, aperture, thickness) -> tuple[np.ndarray, np.ndar
 def synthesize_polyfocal(*, case: str, foci: list[dict], unit_mm: float, aperture: float, thickness: float,
                          law: str, straight_index: float, view_angle_deg: float, line_type: str, pitch_mm: float,
                          phase_index: float, wall_mm: float, height_mm: float, fill_eps_r: float,
-                         wavelength_mm: float) -> PolyfocalDesign:
+                         wavelength_mm: float, focal_axis_z: float | None = None) -> PolyfocalDesign:
     pitch = pitch_mm / unit_mm
     if case.startswith("2d"):
         dense_y = np.linspace(0.0, aperture / 2, DENSE_POINTS)
         el_y = _element_coords(aperture, pitch)
-        dense = solve_case(case, foci, aperture, thickness, law, straight_index, np.union1d(dense_y, el_y))
-        surface = dense.r1 if case == "2d/two_planes/foci" else dense.r2
+        coords = np.union1d(np.round(dense_y, 12), np.round(el_y, 12))      # one point where they coincide
+        dense = solve_case(case, foci, aperture, thickness, law, straight_index, coords)
+        surface = dense.r1 if case.endswith("/foci") else dense.r2
         pick = np.isin(np.round(surface[:, 1], 12), np.round(np.concatenate([-el_y, el_y]), 12))
         elements = dense.take(pick)
         dense = dense.take(np.isin(np.round(np.abs(surface[:, 1]), 12), np.round(dense_y, 12)))
@@ -130,14 +143,39 @@ def synthesize_polyfocal(*, case: str, foci: list[dict], unit_mm: float, apertur
     index = electrical / length
     width, eps, rchecks = _realize(line_type, index, fill_eps_r, pitch_mm, wall_mm, height_mm, wavelength_mm)
     half = view_angle_deg / 2
+    optimise = case == "2d/two_planes/foci" and len(foci) == 1 and focal_axis_z is None
+    if optimise:
+        focal_axis_z = optimal_axis_point(dense, half)
+    focal = focal_curve(case, dense, half, focal_axis_z)
+    if optimise:
+        focal = (*focal[:2], focal[2] + " (optimised: least peak σ over the view, seed-001 §1.2)")
     if case.startswith("2d"):
-        scans = (sigma_scan(dense, half, 61, label="dense lines"), sigma_scan(elements, half, 61, label="elements"))
+        scans = tuple(sigma_scan(lens, half, 61, label=label, sphere=focal)
+                      for lens, label in ((dense, "dense lines"), (elements, "elements")))
     else:
-        scans = tuple(sigma_scan(dense, half, 31, azimuth=az, label=f"{plane} plane")
+        scans = tuple(sigma_scan(dense, half, 31, azimuth=az, label=f"{plane} plane", sphere=focal)
                       for az, plane in ((0.0, "yz"), (np.pi / 2, "xz")))
-    comparison = tuple(seed_comparison(half)) if case == "2d/two_planes/foci" else ()
+    comparison = tuple(seed_comparison()) if case == "2d/two_planes/foci" else ()
     return PolyfocalDesign(case, unit_mm, wavelength_mm, dense, elements, line_type, length, electrical, index,
-                           width, eps, height_mm, surfaces, scans, comparison, tuple(checks + rchecks))
+                           width, eps, height_mm, surfaces, scans, focal, focal_axis_z, design_foci_sigma(dense), comparison,
+                           tuple(checks + rchecks))
+
+
+def focal_curve(case: str, dense: ConstrainedLens, half_view_deg: float,
+                focal_axis_z: float | None) -> tuple[float, float, str]:
+    """(z_c, R, how) of the focal curve the σ study scans (seed-001 §1.2, §2.2–§2.4; see
+    :mod:`~antenna_cad.synthesis.polyfocal_analysis`): bifocal 2-D through the axis point z_F
+    (``focal_axis_z``), other 2-D lenses through their foci, 3-D the sphere fitted by minimising σ."""
+    if focal_axis_z is not None:
+        zc, radius = axis_point_circle(dense, focal_axis_z)
+        if focal_axis_z >= zc:
+            raise DesignError("design.focal_axis_z", f"z_F {focal_axis_z:.6g} is the near axis point of its circle "
+                              f"(centre {zc:.6g}); the sources scan the far arc: give z_F < {zc:.6g}")
+        return zc, radius, f"through F1, F2 and the axis point z_F = {focal_axis_z:.6g}"
+    if case.startswith("3d"):
+        return (*fitted_sphere(dense, half_view_deg), "fitted: minimises the peak σ over the view (yz and xz)")
+    zc, radius = focal_sphere(np.array([f.point for f in dense.foci]))
+    return zc, radius, "through the design foci"
 
 
 def _realize(line_type, index, fill_eps_r, pitch_mm, wall_mm, height_mm, lam):

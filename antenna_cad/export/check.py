@@ -153,6 +153,7 @@ def _masses(m: Manifest, layup: bool) -> Finding:
     sheet layup (its pieces are cut to the parts' outlines)."""
     from antenna_cad.materials import LIBRARY
     densities = {name: mat.density_kg_m3 for name, mat in LIBRARY.items()} | {m.material.name: m.material.density_kg_m3}
+    densities |= _metals(m.spec.model_extra or {})
     made = [p for p in m.parts if p.role == "fabricated"]
     unknown = sorted({p.material for p in made} - set(densities))
     kg = sum(p.volume_mm3 * 1e-9 * densities.get(p.material, 0.0) for p in made)
@@ -165,6 +166,21 @@ def _masses(m: Manifest, layup: bool) -> Finding:
     rule = f"within {MASS_RTOL:.0%} for a sheet layup" if layup else f"at most the stock's + {MASS_RTOL:.0%}"
     return Finding("manifest.json", "masses", ok, f"parts' volumes × densities {kg:.4g} kg, cut list "
                    f"{total:.4g} kg (ratio {ratio:.4f}; {rule})")
+
+
+def _metals(spec: object) -> dict[str, float]:
+    """Metal name → density of every block of the spec that has ``metal`` and ``metal_density_kg_m3``."""
+    found = {}
+    if isinstance(spec, dict):
+        metal, density = spec.get("metal"), spec.get("metal_density_kg_m3")
+        if isinstance(metal, str) and isinstance(density, (int, float)) and not isinstance(density, bool):
+            found[metal] = float(density)
+        for value in spec.values():
+            found |= _metals(value)
+    elif isinstance(spec, list):
+        for value in spec:
+            found |= _metals(value)
+    return found
 
 
 # ------------------------------------------------------------------ file checkers (one per file type)

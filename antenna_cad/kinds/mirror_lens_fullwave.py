@@ -94,7 +94,8 @@ def full_wave_verification(design, settings, parts: dict[str, list[dict]], go) -
     """The stage: runs (or declines, saying why) and returns figures, the comparison table, plots
     and the deck folder. ``go``: the GO on-axis aperture field (ApertureFieldMM) of the body as fabricated."""
     all_decks = decks(design, settings, parts)
-    names, deck_list = list(all_decks), list(all_decks.values())
+    names = sorted(all_decks, key=lambda n: n != "free")     # every figure needs the back lobe: it runs first
+    deck_list = [all_decks[n] for n in names]
     jobs = max(1, min(len(deck_list), os.cpu_count() or 1))
     decision = budget_decision(settings, deck_list, jobs)
     files = deck_files(names, deck_list)

@@ -400,7 +400,8 @@ def _crosses(extents: tuple[float, float, float, float], tile) -> list[list[tupl
 
 def _page_content(placements, forms: list[int], furniture: int, line: str) -> bytes:
     """Page-space operators in points: per placement its window clipped on the page holding the
-    drawing's form at 1:1 and its texts; the frame and check bar (``furniture``); the page line."""
+    drawing's form at 1:1, its texts and (on a shared page) a dashed grey frame; the frame and
+    check bar (``furniture``); the page line."""
     k = PT_PER_MM
     out = []
     for p, form in zip(placements, forms):
@@ -409,6 +410,8 @@ def _page_content(placements, forms: list[int], furniture: int, line: str) -> by
         clip = f"{num(left * k)} {num(bottom * k)} {num((wx1 - wx) * k)} {num((wy1 - wy) * k)} re"
         out.append(f"q {clip} W n {k:.9f} 0 0 {k:.9f} {num((left - wx) * k)} {num((bottom - wy) * k)} cm "
                    f"/X{form} Do Q\n".encode())
+        if len(placements) > 1:                          # where to cut the page apart: a light frame a part
+            out.append(f"q 0.2 w 0.7 G [2 2] 0 d {clip} S Q\n".encode())
         out += [text_ops(text, (left + x) * k, (bottom + y) * k, size / CAP_HEIGHT_EM * k)
                 for text, x, y, size in p.texts]
     out.append(f"/X{furniture} Do 0 g\n".encode())

@@ -38,6 +38,7 @@ MIN_TEXT_MM = 2.5                                # no text smaller (cap height),
 TITLE_HEIGHT_MM = 3.0
 TITLE_WIDTH_MM = (60.0, 180.0)                   # a title block's width: the drawing's, within these
 MIN_VERTEX_STEP_MM = 0.01                        # closer vertices are one (plotters read them as moves)
+_THIN_MM = MIN_VERTEX_STEP_MM + 0.0015             # ... as written: 3-decimal SVG/PDF numbers move a step 1.4 µm
 LAYERS = {"CUT": 1, "MARK": 5, "TEXT": 7}      # DXF colour indices: red, blue, black/white
 SVG_COLOURS = {"CUT": "red", "MARK": "blue"}
 LINE_WIDTH_MM = {"CUT": 0.18, "MARK": 0.14}
@@ -157,7 +158,7 @@ class Drawing:
                 max(b[3] for b in boxes))
 
 
-def thinned(points: Points, closed: bool, tol: float = MIN_VERTEX_STEP_MM) -> Points:
+def thinned(points: Points, closed: bool, tol: float = _THIN_MM) -> Points:
     """``points`` without the vertices nearer than ``tol`` to the last one kept (a closed path:
     nor its last vertices near the first; an open one keeps its end); unchanged when none is."""
     a = np.asarray(points, dtype=float)[:, :2] if len(points) else np.zeros((0, 2))
@@ -170,7 +171,7 @@ def thinned(points: Points, closed: bool, tol: float = MIN_VERTEX_STEP_MM) -> Po
     return points[kept] if isinstance(points, np.ndarray) else [points[k] for k in kept]
 
 
-def thinned_bulges(path: BulgePath, tol: float = MIN_VERTEX_STEP_MM) -> BulgePath:
+def thinned_bulges(path: BulgePath, tol: float = _THIN_MM) -> BulgePath:
     """A closed bulge path thinned as :func:`thinned`; the segment joining two kept vertices
     takes the bulge of the longest of the segments it replaces (the others are the tiny ones)."""
     a = np.array([(x, y) for x, y, _ in path])

@@ -38,6 +38,7 @@ MIN_TEXT_MM = 2.5                                # no text smaller (cap height),
 TITLE_HEIGHT_MM = 3.0
 TITLE_WIDTH_MM = (60.0, 180.0)                   # a title block's width: the drawing's, within these
 MIN_VERTEX_STEP_MM = 0.01                        # closer vertices are one (plotters read them as moves)
+_THIN_MM = MIN_VERTEX_STEP_MM + 0.0015             # ... as written: 3-decimal SVG/PDF numbers move a step 1.4 µm
 LAYERS = {"CUT": 1, "MARK": 5, "TEXT": 7}      # DXF colour indices: red, blue, black/white
 SVG_COLOURS = {"CUT": "red", "MARK": "blue"}
 LINE_WIDTH_MM = {"CUT": 0.18, "MARK": 0.14}
@@ -157,7 +158,7 @@ class Drawing:
                 max(b[3] for b in boxes))
 
 
-def thinned(points: Points, closed: bool, tol: float = MIN_VERTEX_STEP_MM) -> Points:
+def thinned(points: Points, closed: bool, tol: float = _THIN_MM) -> Points:
     """``points`` without the vertices nearer than ``tol`` to the last one kept (a closed path:
     nor its last vertices near the first; an open one keeps its end); unchanged when none is."""
     a = np.asarray(points, dtype=float)[:, :2] if len(points) else np.zeros((0, 2))
@@ -170,7 +171,7 @@ def thinned(points: Points, closed: bool, tol: float = MIN_VERTEX_STEP_MM) -> Po
     return points[kept] if isinstance(points, np.ndarray) else [points[k] for k in kept]
 
 
-def thinned_bulges(path: BulgePath, tol: float = MIN_VERTEX_STEP_MM) -> BulgePath:
+def thinned_bulges(path: BulgePath, tol: float = _THIN_MM) -> BulgePath:
     """A closed bulge path thinned as :func:`thinned`; the segment joining two kept vertices
     takes the bulge of the longest of the segments it replaces (the others are the tiny ones)."""
     a = np.array([(x, y) for x, y, _ in path])
@@ -400,7 +401,8 @@ def _crosses(extents: tuple[float, float, float, float], tile) -> list[list[tupl
 
 def _page_content(placements, forms: list[int], furniture: int, line: str) -> bytes:
     """Page-space operators in points: per placement its window clipped on the page holding the
-    drawing's form at 1:1 and its texts; the frame and check bar (``furniture``); the page line."""
+    drawing's form at 1:1, its texts and (on a shared page) a dashed grey frame; the frame and
+    check bar (``furniture``); the page line."""
     k = PT_PER_MM
     out = []
     for p, form in zip(placements, forms):
@@ -409,6 +411,8 @@ def _page_content(placements, forms: list[int], furniture: int, line: str) -> by
         clip = f"{num(left * k)} {num(bottom * k)} {num((wx1 - wx) * k)} {num((wy1 - wy) * k)} re"
         out.append(f"q {clip} W n {k:.9f} 0 0 {k:.9f} {num((left - wx) * k)} {num((bottom - wy) * k)} cm "
                    f"/X{form} Do Q\n".encode())
+        if len(placements) > 1:                          # where to cut the page apart: a light frame a part
+            out.append(f"q 0.2 w 0.7 G [2 2] 0 d {clip} S Q\n".encode())
         out += [text_ops(text, (left + x) * k, (bottom + y) * k, size / CAP_HEIGHT_EM * k)
                 for text, x, y, size in p.texts]
     out.append(f"/X{furniture} Do 0 g\n".encode())

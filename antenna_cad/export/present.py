@@ -21,7 +21,7 @@ UNITS = (
 )
 SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 SIGNIFICANT = 4
-WORDS = {"p2p": "peak-to-peak", "pp": "peak-to-peak", "rms": "RMS", "fullwave": "full-wave", "epsr": "εr", "tir": "TIR", "go": "GO", "aut": "AUT", "sll": "side-lobe level", "hpbw": "half-power beam width",
+WORDS = {"p2p": "peak-to-peak", "pp": "peak-to-peak", "rss": "RSS", "rms": "RMS", "fullwave": "full-wave", "epsr": "εr", "tir": "TIR", "go": "GO", "aut": "AUT", "sll": "side-lobe level", "hpbw": "half-power beam width",
          "te30": "TE30", "qz": "quiet zone", "dof": "depth of field", "vs": "vs", "tan": "tan", "delta": "δ",
          "lambda": "λ", "num": "number of", "max": "largest", "min": "smallest"}
 NAMES = {   # figures whose key alone would read badly

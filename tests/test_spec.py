@@ -36,7 +36,7 @@ def _with(path: str, value):
 @pytest.mark.parametrize("path,value,expected", [
     ("design.focal_length_mm", -4, "s.yaml: design.focal_length_mm: must be ≥ 1 (got -4)"),
     ("design.colour", "red", "s.yaml: design.colour: unknown key (not allowed here)"),
-    ("design.diameter_mm", "big", "s.yaml: design.diameter_mm: must be a valid number"),
+    ("design.diameter_mm", "big", "s.yaml: design.diameter_mm: must be a number, not a string"),
     ("fabrication.pedestal_height_mm", 30, "s.yaml: fabrication.pedestal_height_mm: must be ≥ 50 (got 30)"),
     ("fabrication.kerf_mm", -1, "s.yaml: fabrication.kerf_mm: must be ≥ 0 (got -1)"),
     ("material", "unobtainium", "s.yaml: material: unknown material 'unobtainium'"),

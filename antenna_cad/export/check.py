@@ -218,7 +218,7 @@ def _pdfs(build: Build) -> Iterator[Finding]:
             yield from _per_file(entry.pdf, "pdf", lambda: pdf_findings(path, entry.pdf, True, entry.pages, words))
     path = build.path("report.pdf")
     if path is not None:
-        words = (build.m.name, *(p.label for p in build.m.parts))
+        words = (build.m.name, *(str(p.get("label")) for p in build.m.pieces))     # its cut list
         yield from _per_file("report.pdf", "pdf", lambda: pdf_findings(path, "report.pdf", False, None, words))
 
 

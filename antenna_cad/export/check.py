@@ -158,14 +158,15 @@ def _masses(m: Manifest, layup: bool) -> Finding:
     unknown = sorted({p.material for p in made} - set(densities))
     kg = sum(p.volume_mm3 * 1e-9 * densities.get(p.material, 0.0) for p in made)
     total = m.mass_kg.get("all")
-    if unknown or total is None or total <= 0:
-        return Finding("manifest.json", "masses", False, f"cannot compare: no density for {unknown}"
-                       if unknown else "no positive mass_kg.all")
+    if total is None or total <= 0:
+        return Finding("manifest.json", "masses", False, "no positive mass_kg.all")
     ratio = kg / total
-    ok = ratio <= 1 + MASS_RTOL and (not layup or ratio >= 1 - MASS_RTOL)
-    rule = f"within {MASS_RTOL:.0%} for a sheet layup" if layup else f"at most the stock's + {MASS_RTOL:.0%}"
+    both = layup and not unknown          # parts of materials without a known density: the upper bound only
+    ok = ratio <= 1 + MASS_RTOL and (not both or ratio >= 1 - MASS_RTOL)
+    rule = f"within {MASS_RTOL:.0%} for a sheet layup" if both else f"at most the stock's + {MASS_RTOL:.0%}"
     return Finding("manifest.json", "masses", ok, f"parts' volumes × densities {kg:.4g} kg, cut list "
-                   f"{total:.4g} kg (ratio {ratio:.4f}; {rule})")
+                   f"{total:.4g} kg (ratio {ratio:.4f}; {rule})"
+                   + (f"; no density for {len(unknown)} materials ({unknown[0]}…)" if unknown else ""))
 
 
 def _metals(spec: object) -> dict[str, float]:
@@ -219,7 +220,7 @@ def _pdfs(build: Build) -> Iterator[Finding]:
             yield from _per_file(entry.pdf, "pdf", lambda: pdf_findings(path, entry.pdf, True, entry.pages, words))
     path = build.path("report.pdf")
     if path is not None:
-        words = (build.m.name, *(p.label for p in build.m.parts))
+        words = (build.m.name, *(str(p.get("label")) for p in build.m.pieces))     # its cut list
         yield from _per_file("report.pdf", "pdf", lambda: pdf_findings(path, "report.pdf", False, None, words))
 
 

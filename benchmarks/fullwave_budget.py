@@ -93,7 +93,9 @@ def section(results: dict) -> str:
              f"`PYTHONPATH=. python benchmarks/fullwave_budget.py {' '.join(results['argv'])}`.",
              "Wall: the whole `build` in a fresh interpreter (imports included). Solver: seconds the full-wave "
              "stages spent in the build (`fullwave_seconds` + `fullwave_scan_edge_seconds`). Over: wall with "
-             "full-wave on minus wall with it off minus the budget (≤ 0: within the budget).", "",
+             "full-wave on minus wall with it off minus the budget (≤ 0: within the budget); the on and off builds run "
+             "minutes apart on a shared machine, so `over` carries the load's noise on the rest of the build, while "
+             "the solver column is the cap itself (budget_s plus at most the 0.2 s poll).", "",
              "| recipe | wall off s | wall on s | solver s | budget s | over s | status on | cut / not run |",
              "|---|---:|---:|---:|---:|---:|---|---|"]
     for name, r in results["recipes"].items():

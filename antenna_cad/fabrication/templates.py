@@ -68,6 +68,7 @@ class Drawing:
     title: list[str] = field(default_factory=list)
     title_texts: set[int] = field(default_factory=set)                         # their indices in texts
     bar: tuple[slice, int] | None = None
+    pieces_named: bool = False                   # its maker named every piece (``piece_labels``)
     _paths: tuple | None = field(default=None, repr=False, compare=False)
 
     def add_title(self, lines: list[str], x: float, y: float, height: float = TITLE_HEIGHT_MM) -> None:
@@ -144,9 +145,14 @@ class Drawing:
         """The marks and (index, text) the PDF draws: all but the check bar."""
         _, _, marks = self.paths()
         if self.bar is None:
-            return marks, list(enumerate(self.texts))
-        cut, i = self.bar
-        return marks[:cut.start] + marks[cut.stop:], [(k, t) for k, t in enumerate(self.texts) if k != i]
+            return marks, self.page_texts()
+        cut, _ = self.bar
+        return marks[:cut.start] + marks[cut.stop:], self.page_texts()
+
+    def page_texts(self) -> list[tuple[int, tuple[str, float, float, float]]]:
+        """(index, text) of the texts the PDF draws: all but the check bar's."""
+        skip = self.bar[1] if self.bar else -1
+        return [(k, t) for k, t in enumerate(self.texts) if k != skip]
 
     def page_extents(self) -> tuple[float, float, float, float]:
         """Extents of what the PDF draws (cut paths, marks, texts; no check bar)."""

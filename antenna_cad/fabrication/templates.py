@@ -4,8 +4,10 @@ A :class:`Drawing` is the one description of a template; the DXF (its entities i
 document ezdxf writes once), the SVG and the PDF are written directly from it (ezdxf's SVG
 rendering and matplotlib's PDF pages cost 80 ms per drawing and 90 ms per page;
 benchmarks/template_speed.py). The PDF holds each drawing
-once and tiles it onto A4 pages at exactly 1 mm = 1 mm, with overlap, registration crosses, page
-ids and a 100 mm check bar on every page (DESIGN.md pitfalls).
+once and places it on A4 pages at exactly 1 mm = 1 mm: small ones nested several to a page,
+larger ones tiled with overlap and registration crosses (:mod:`page_layout`), a page line and a
+100 mm check bar on every page (DESIGN.md pitfalls). The writers drop near-duplicate vertices
+(:func:`thinned`), which plotter and laser drivers read as extra moves.
 """
 
 from __future__ import annotations

@@ -148,6 +148,7 @@ def _sheet_drawing(layup: GradedLayup, sheet: GradedSheet, pieces: list[Piece], 
         drawing.marks.append([(bx0 - 10.0, 0.0), (bx1 + 10.0, 0.0)])
     if len(pieces) > 1:                                                  # names inside, off the axis
         place_labels(drawing, [((p.label,), p.cut_path(layup.kerf_mm), None) for p in pieces])
+        drawing.pieces_named = True
     x0, y0, _, y1 = drawing.bounds()
     drawing.add_title([f"{title}: {sheet.label} 1:1 (sheet {sheet.index} of {layup.count}), foam grade "
                        f"{sheet.material.name}, sheet {layup.sheet_thickness_mm:g} mm, layer {sheet.layer} of "

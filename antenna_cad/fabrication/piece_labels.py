@@ -40,8 +40,11 @@ def pieces(drawing: Drawing) -> list[Polygon]:
 
 def name_pieces(drawing: Drawing) -> list[Polygon]:
     """Give each piece with no text inside it the drawing's label (:func:`place_labels`); returns
-    the pieces no label fits (too small for ``MIN_TEXT_MM`` text)."""
-    texts = [shapely.box(x, y, x + w, y + h) for _, (t, x, y, size) in drawing.page_items()[1]
+    the pieces no label fits (too small for ``MIN_TEXT_MM`` text). Nothing to do for a drawing
+    whose maker named its pieces (``pieces_named``)."""
+    if drawing.pieces_named:
+        return []
+    texts = [shapely.box(x, y, x + w, y + h) for _, (t, x, y, size) in drawing.page_texts()
              for w, h in [text_box(t, size)]]
     bare = []
     for piece in pieces(drawing):
@@ -57,36 +60,41 @@ Label = tuple[tuple[str, ...], Polygon, tuple[float, float] | None]
 
 def place_labels(drawing: Drawing, labels: list[Label]) -> list[bool]:
     """Per (texts, piece, spot) of ``labels`` add the first of ``texts`` that fits inside ``piece``
-    with its box (grown by :data:`CLEARANCE_MM`) crossing no line or text of the drawing (where
-    none fits so, no cut path or text: across a mark): at the largest of :data:`HEIGHTS` that
-    fits, centred at ``spot`` if it fits there, else at the spot of a grid over the piece nearest
-    its centroid. Per label: was one added. The pieces are disjoint, so their labels are too."""
-    if not labels:
-        return []
-    cuts = [shapely.linearrings(np.asarray(r, dtype=float)[:, :2]) for r in drawing.cut if len(r) >= 3]
-    cuts += [shapely.box(x, y, x + w, y + h) for _, (t, x, y, size) in drawing.page_items()[1]
+    (clear of its holes) with its box, grown by :data:`CLEARANCE_MM`, crossing no mark or text of
+    the drawing (where none fits so, no text: across a mark): at the largest of :data:`HEIGHTS`
+    that fits, centred at ``spot`` if it fits there, else at the spot of a grid over the piece
+    nearest its centroid. Per label: was one added. The pieces are disjoint, so their labels, each
+    inside its own, are too."""
+    bar = drawing.bar[0] if drawing.bar else slice(0, 0)
+    marks = [shapely.linestrings(np.asarray(m, dtype=float)[:, :2]) for k, m in enumerate(drawing.marks)
+             if len(m) >= 2 and not bar.start <= k < bar.stop]
+    texts = [shapely.box(x, y, x + w, y + h) for _, (t, x, y, size) in drawing.page_texts()
              for w, h in [text_box(t, size)]]
-    marks = [shapely.linestrings(np.asarray(m, dtype=float)[:, :2]) for m in drawing.page_items()[0] if len(m) >= 2]
-    trees = (shapely.STRtree(cuts + marks), shapely.STRtree(cuts))
+    trees = (shapely.STRtree(texts + marks), shapely.STRtree(texts))
     return [_place(drawing, trees[0], *label) or _place(drawing, trees[1], *label) for label in labels]
 
 
 def _place(drawing: Drawing, tree, texts: tuple[str, ...], piece: Polygon, spot) -> bool:
+    """:func:`place_labels` for one piece: the spot first, the grid (built only then) after."""
+    if spot and any(_fit(drawing, tree, text, piece, np.array([spot[0]]), np.array([spot[1]])) for text in texts):
+        return True
     shapely.prepare(piece)
     x0, y0, x1, y1 = piece.bounds
     gx, gy = np.meshgrid(np.linspace(x0, x1, GRID + 2)[1:-1], np.linspace(y0, y1, GRID + 2)[1:-1])
     centre = piece.centroid
     order = np.argsort(np.hypot(gx.ravel() - centre.x, gy.ravel() - centre.y), kind="stable")
-    grid = (gx.ravel()[order], gy.ravel()[order])
-    for text in texts:
-        for cx, cy in ([(np.array([spot[0]]), np.array([spot[1]]))] if spot else []) + [grid]:
-            for h in HEIGHTS:
-                w, c = text_box(text, h)[0], CLEARANCE_MM
-                boxes = shapely.box(cx - w / 2 - c, cy - h / 2 - c, cx + w / 2 + c, cy + h / 2 + c)
-                free = shapely.contains_properly(piece, boxes)
-                free[tree.query(boxes, predicate="intersects")[0]] = False
-                if free.any():
-                    k = int(np.argmax(free))
-                    drawing.texts.append((text, float(cx[k] - w / 2), float(cy[k] - h / 2), h))
-                    return True
+    return any(_fit(drawing, tree, text, piece, gx.ravel()[order], gy.ravel()[order]) for text in texts)
+
+
+def _fit(drawing: Drawing, tree, text: str, piece: Polygon, cx: np.ndarray, cy: np.ndarray) -> bool:
+    """Add ``text`` centred at the first of the spots (cx, cy) where it fits, largest height first."""
+    for h in HEIGHTS:
+        w, c = text_box(text, h)[0], CLEARANCE_MM
+        boxes = shapely.box(cx - w / 2 - c, cy - h / 2 - c, cx + w / 2 + c, cy + h / 2 + c)
+        free = shapely.contains_properly(piece, boxes)
+        free[tree.query(boxes, predicate="intersects")[0]] = False
+        if free.any():
+            k = int(np.argmax(free))
+            drawing.texts.append((text, float(cx[k] - w / 2), float(cy[k] - h / 2), h))
+            return True
     return False

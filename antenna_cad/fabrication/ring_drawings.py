@@ -125,6 +125,7 @@ def _ring_drawing(plan: RingLayupPlan, sheet: RingSheet, pieces: list[RingPiece]
     spots = [0.5 * (p.a0_rad + p.a1_rad) if ring.sectors > 1 else math.pi / 2 for p in pieces]
     place_labels(d, [((p.label, p.label.rsplit("-", 1)[1]) if ring.sectors > 1 else (p.label,), path,
                       (rm * math.cos(a), rm * math.sin(a))) for p, path, a in zip(pieces, paths, spots)])
+    d.pieces_named = True
     holes = _holes_text(ring.holes) if ring.holes else "no dowel holes"
     _title(d, [f"{title}  {ring.label}: sheet {sheet.label} (z {sheet.z_min_mm:g} to {sheet.z_max_mm:g} mm), "
                f"ring of shell {ring.shell_index:02d}; {where}",

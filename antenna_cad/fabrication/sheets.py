@@ -119,6 +119,7 @@ def _sheet_drawing(plan: LayupPlan, index: int, pieces: list[Piece], joints: tup
     for j in joints:
         drawing.marks.append([(j.at_mm, y_lo), (j.at_mm, y_hi)] if j.axis == "x" else [(-x_hi, j.at_mm), (x_hi, j.at_mm)])
     place_labels(drawing, [((p.label,), path, None) for p, path in zip(pieces, paths)])   # names inside, off the marks
+    drawing.pieces_named = True
     x0, y0, _, y1 = drawing.bounds()
     lines = [f"{title}  {sheet.label} of {plan.count}: {foam.name}, thickness {sheet.thickness_mm:g} mm, "
              f"z {sheet.z_min_mm:g}-{sheet.z_max_mm:g} mm",

@@ -4,8 +4,10 @@ A :class:`Drawing` is the one description of a template; the DXF (its entities i
 document ezdxf writes once), the SVG and the PDF are written directly from it (ezdxf's SVG
 rendering and matplotlib's PDF pages cost 80 ms per drawing and 90 ms per page;
 benchmarks/template_speed.py). The PDF holds each drawing
-once and tiles it onto A4 pages at exactly 1 mm = 1 mm, with overlap, registration crosses, page
-ids and a 100 mm check bar on every page (DESIGN.md pitfalls).
+once and places it on A4 pages at exactly 1 mm = 1 mm: small ones nested several to a page,
+larger ones tiled with overlap and registration crosses (:mod:`page_layout`), a page line and a
+100 mm check bar on every page (DESIGN.md pitfalls). The writers drop near-duplicate vertices
+(:func:`thinned`), which plotter and laser drivers read as extra moves.
 """
 
 from __future__ import annotations
@@ -68,6 +70,7 @@ class Drawing:
     title: list[str] = field(default_factory=list)
     title_texts: set[int] = field(default_factory=set)                         # their indices in texts
     bar: tuple[slice, int] | None = None
+    pieces_named: bool = False                   # its maker named every piece (``piece_labels``)
     _paths: tuple | None = field(default=None, repr=False, compare=False)
 
     def add_title(self, lines: list[str], x: float, y: float, height: float = TITLE_HEIGHT_MM) -> None:
@@ -144,9 +147,14 @@ class Drawing:
         """The marks and (index, text) the PDF draws: all but the check bar."""
         _, _, marks = self.paths()
         if self.bar is None:
-            return marks, list(enumerate(self.texts))
-        cut, i = self.bar
-        return marks[:cut.start] + marks[cut.stop:], [(k, t) for k, t in enumerate(self.texts) if k != i]
+            return marks, self.page_texts()
+        cut, _ = self.bar
+        return marks[:cut.start] + marks[cut.stop:], self.page_texts()
+
+    def page_texts(self) -> list[tuple[int, tuple[str, float, float, float]]]:
+        """(index, text) of the texts the PDF draws: all but the check bar's."""
+        skip = self.bar[1] if self.bar else -1
+        return [(k, t) for k, t in enumerate(self.texts) if k != skip]
 
     def page_extents(self) -> tuple[float, float, float, float]:
         """Extents of what the PDF draws (cut paths, marks, texts; no check bar)."""

@@ -418,7 +418,7 @@ def test_ctrl_c_on_a_local_sweep_ends_every_worker_and_resumes(tmp_path):
     _wait_for_rows(table, 1, cli, limit_s=600)
     started = psutil.Process(cli.pid).children(recursive=True)
     cli.send_signal(signal.SIGINT)
-    output, _ = cli.communicate(timeout=120)
+    output, _ = cli.communicate(timeout=900)           # closing the cluster, then the page of the rows done
     alive = [p for p in started if p.is_running() and p.status() != psutil.STATUS_ZOMBIE]
     rows = _rows(table.parent)
     print(f"Ctrl-C: exit {cli.returncode}, {len(rows)} of 8 rows kept, {len(started)} processes before, "

@@ -419,7 +419,7 @@ def test_ctrl_c_on_a_local_sweep_ends_every_worker_and_resumes(tmp_path):
     started = psutil.Process(cli.pid).children(recursive=True)
     cli.send_signal(signal.SIGINT)
     output, _ = cli.communicate(timeout=900)           # closing the cluster, then the page of the rows done
-    alive = [p for p in started if p.is_running() and p.status() != psutil.STATUS_ZOMBIE]
+    _, alive = psutil.wait_procs(started, timeout=60)  # multiprocessing's resource tracker ends after its parent
     rows = _rows(table.parent)
     print(f"Ctrl-C: exit {cli.returncode}, {len(rows)} of 8 rows kept, {len(started)} processes before, "
           f"{len(alive)} after; {output.strip()}")

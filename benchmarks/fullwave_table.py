@@ -1,5 +1,5 @@
 """Regenerate ``tests/data/fullwave_table.csv``: Meep's stepped − ideal phase on axis for the
-collimators of ``tests/fullwave_cases.py`` (issue 10).
+collimators of ``tests/fullwave_cases.py``.
 
 How each row is computed: a single-surface collimator (seed-000 §1.2) with a dipole feed at its focus,
 laid up from ``sheet_mm`` sheets by the project's layup planner (every disc = the lens radius at its far

@@ -1,4 +1,4 @@
-"""The obvious implementations of our geometry, timed beside ours (issue 16 item 3; not a test).
+"""The obvious implementations of our geometry, timed beside ours (not a test).
 
 Each function builds the same parts the pipeline builds, the way a first version would:
 - slotted lids: a plain plate, then one 3-D boolean cut per slot (ours: one face whose inner wires

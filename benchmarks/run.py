@@ -1,5 +1,5 @@
 """Every recipe end to end, split by stage, with import time and peak memory; scaling series with
-fitted exponents; the naive baseline; the budgets (issue 16). Not a unit test: run it on a quiet
+fitted exponents; the naive baseline; the budgets. Not a unit test: run it on a quiet
 machine and read the load average it records.
 
     PYTHONPATH=. python benchmarks/run.py [--runs 3] [--recipe NAME ...] [--series] [--naive [--naive-guides N]]

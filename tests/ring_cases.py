@@ -1,4 +1,4 @@
-"""A small two-grade Luneburg ring layup shared by the template tests (issue 16)."""
+"""A small two-grade Luneburg ring layup shared by the template tests."""
 
 from antenna_cad.fabrication.rings import fabricate_rings, plan_rings
 from antenna_cad.materials import Material

@@ -1,4 +1,4 @@
-"""As-built verification of the lenses of revolution (issue 6): the slab tracer against closed forms,
+"""As-built verification of the lenses of revolution: the slab tracer against closed forms,
 the ideal lens, the stair-step estimate, the focus shift, the stock choice, the tolerance study, the
 manifest and the spec errors."""
 
@@ -174,7 +174,7 @@ def test_layer_table_and_sanding_allowance(seed):
 # ------------------------------------------------------------------ stock thickness: auto
 
 def test_auto_picks_the_thickest_stock_within_budget():
-    """The choice follows the fast sub-wavelength model (issue 10), not GO: on the seed's f/8 lens most
+    """The choice follows the fast sub-wavelength model, not GO: on the seed's f/8 lens most
     zones are narrower than λ, so with a 12° budget GO passes only 30 mm (≈ 11.4° p-p) while the model
     (Meep: 50 mm sheets 8.6° p-p, tests/data/fullwave_table.csv) passes 60 mm (≈ 11°): 60 mm is chosen.
     With 2° none passes: the thinnest, and sand."""

@@ -1,4 +1,4 @@
-"""benchmarks/why.py: the reasons the benchmark prints beside a missed budget (issue 16)."""
+"""benchmarks/why.py: the reasons the benchmark prints beside a missed budget."""
 
 import cProfile
 import pstats

@@ -1,4 +1,4 @@
-"""``make-lens check`` (export/check.py) and the workshop-output fixes it measures (issue 11 items 2, 5, 7):
+"""``make-lens check`` (export/check.py) and the workshop-output fixes it measures:
 each reader on hand-made files that must pass and on broken ones that must fail, then the command
 on a real build, intact and tampered."""
 
@@ -104,7 +104,7 @@ def test_tiled_pdf_text_whole_and_drawing_named_on_every_tile(tmp_path):
 
 def test_text_beyond_the_outline_gets_its_own_tile_unmoved():
     """A gauge table set below the outline, past every tile that holds geometry, is printed on a
-    tile of its own at its true place, not pushed onto the outline (issue 16 review)."""
+    tile of its own at its true place, not pushed onto the outline."""
     d = Drawing("gauge")
     d.add_polygon(circle_polygon(0, 0, 60))
     d.texts += [(f"row {k}: z 12.5 mm  y 40.0 mm", -50.0, -400.0 - 8 * k, 4.0) for k in range(3)]

@@ -1,4 +1,4 @@
-"""The synthesis inner loops on floats (issue 16: validate in ≤ 1 s) reproduce the vectorized numpy
+"""The synthesis inner loops on floats (validate in ≤ 1 s) reproduce the vectorized numpy
 steps they replace: the Nikulina chain's one-point steps, the graded tracer's scalar spline and n²,
 and the layer ray's math path against its numpy path."""
 

@@ -1,4 +1,4 @@
-"""Full-wave check (issue 10): the Meep runner against analytic fields, its convergence, the cache, the
+"""Full-wave check: the Meep runner against analytic fields, its convergence, the cache, the
 fast sub-wavelength model against the stored Meep table, and the verdict plumbing.
 
 Tests that need Meep (Debian python3-meep; the ``meep`` fixture of tests/conftest.py) run in CI

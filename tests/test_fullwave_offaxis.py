@@ -1,4 +1,4 @@
-"""Off-axis feeds in the body-of-revolution solver (issue 10): the displaced feed's Huygens sheet as a sum
+"""Off-axis feeds in the body-of-revolution solver: the displaced feed's Huygens sheet as a sum
 of azimuthal orders, the mirror symmetry between m and −m, the summed Meep orders against the analytic
 field, the tilt-removed aperture statistics and the scan-edge stage's budget decision."""
 

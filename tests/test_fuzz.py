@@ -1,4 +1,4 @@
-"""Fuzz of the spec reader and the pipeline (issue 11, hypothesis; cases in tests/fuzz_specs.py).
+"""Fuzz of the spec reader and the pipeline (hypothesis; cases in tests/fuzz_specs.py).
 
 Default: a bounded, derandomised run (ANTENNA_FUZZ_EXAMPLES=40 validate cases, seconds). Long mode:
 ``ANTENNA_FUZZ_EXAMPLES=3000 ANTENNA_FUZZ_BUILD_EXAMPLES=20 pytest -s -m slow tests/test_fuzz.py``

@@ -1,4 +1,4 @@
-"""Foam sheet layup of the graded lens (issue 14 item 3): each slab cut from sheets of its grade,
+"""Foam sheet layup of the graded lens: each slab cut from sheets of its grade,
 stacked along the extrusion; the sheet solids read back against the slabs."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""``make-lens --help`` and ``make-lens validate`` load no CAD, DXF or plotting library (issue 16):
+"""``make-lens --help`` and ``make-lens validate`` load no CAD, DXF or plotting library:
 they answer in about a second because OCP (~1 s), trimesh, manifold3d, ezdxf and
 matplotlib are imported where a build uses them. Checked in a fresh interpreter by the modules it
 holds after the command, not by a timing."""

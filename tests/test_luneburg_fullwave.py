@@ -1,4 +1,4 @@
-"""Full-wave stage of the Luneburg kind (issue 10 item 7): the runner's point feed and graded sphere,
+"""Full-wave stage of the Luneburg kind: the runner's point feed and graded sphere,
 the sphere's variants as the runner sees them, the exact Mie focal gain, the stage on a small sphere
 (Meep against Mie), and auto declining a large sphere with its reason (no Meep needed)."""
 

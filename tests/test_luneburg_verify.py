@@ -1,4 +1,4 @@
-"""As-built verification of the Luneburg kind (issue 6): tracers against closed forms, the ideal
+"""As-built verification of the Luneburg kind: tracers against closed forms, the ideal
 lens against the focusing condition, stepping and grade quantization, first-order shortcuts
 against re-traces, and the figures in the manifest (seed-002 §2.1, §2.1b, §2.5)."""
 

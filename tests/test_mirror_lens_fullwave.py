@@ -1,5 +1,5 @@
-"""Full-wave check of the aplanatic mirror-lens with the feed on the axis (issue 13 item 6, the solver
-of issue 10): the runner's perfect conductor against plane-wave theory, the stage on a small scaled
+"""Full-wave check of the aplanatic mirror-lens with the feed on the axis (the
+body-of-revolution solver): the runner's perfect conductor against plane-wave theory, the stage on a small scaled
 body, its decisions without Meep, and (slow) the 346 mm recipe measured."""
 
 from __future__ import annotations

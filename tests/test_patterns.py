@@ -1,5 +1,5 @@
 """Collimator feed limits, Δl, the aut/test_zone spec and the pattern figures in every kind's
-verification (issue 12)."""
+verification."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Pattern figures of the mirror-lens, polyfocal and graded kinds (issue 12): every recipe's verify
+"""Pattern figures of the mirror-lens, polyfocal and graded kinds: every recipe's verify
 carries them, and the radiation model agrees with closed forms it does not use."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Speed-ups of issue 16 that must not change results: the σ(FOV) reference-curve cache, the
+"""Speed-ups that must not change results: the σ(FOV) reference-curve cache, the
 prism meshes of slotted plates, parallel plates and rings against BRepMesh on their B-reps, the profile validity
 test against BRepCheck, the STEP file written by a forked child."""
 

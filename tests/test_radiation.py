@@ -1,4 +1,4 @@
-"""Radiation models against closed forms and the seed digest (issue 12)."""
+"""Radiation models against closed forms and the seed digest."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Every recipe, built twice: byte-identical files (issue 11 item 5) and ``make-lens check`` passes
+"""Every recipe, built twice: byte-identical files and ``make-lens check`` passes
 on the build (item 2: gmsh re-reads the STEP with the manifest's solids, names and volumes, the
 STL/DXF/SVG/PDF readers agree with the manifest). Slow: full builds of every recipe, twice (the first shared with the other slow tests)."""
 

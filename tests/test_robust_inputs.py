@@ -1,4 +1,4 @@
-"""The inputs issue 11 found crashing, hanging or slipping through, now each one clean line (exit 2
+"""The inputs a hostile-input review found crashing, hanging or slipping through, now each one clean line (exit 2
 naming the field); numerical failures named; resource limits; the CLI's argument forms."""
 
 import warnings

@@ -246,7 +246,7 @@ def test_min_coupling_gap_is_enforced(tmp_path):
     assert result.exit_code == 2 and "beamformer.slot_line_offset_mm" in result.output
 
 
-# --- as-built verification (issue 6) -----------------------------------------------------------
+# --- as-built verification -----------------------------------------------------------
 
 def test_verification_figures_reach_the_manifest(x_build):
     import json

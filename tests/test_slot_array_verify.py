@@ -1,4 +1,4 @@
-"""As-built trace of the slot array (antenna_cad/raytrace/slot_array.py; issue 6, seed-003 §3.9)."""
+"""As-built trace of the slot array (antenna_cad/raytrace/slot_array.py; seed-003 §3.9)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Portable STEP (issue 11 item 1): OCCT-7 readers (gmsh from PyPI) see every solid of the collimator
+"""Portable STEP: OCCT-7 readers (gmsh from PyPI) see every solid of the collimator
 models with our labels and volumes, and the lens surface they read lies on the synthesized profile."""
 
 import math

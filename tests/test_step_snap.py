@@ -1,5 +1,5 @@
 """The STEP text clean-up (export/step.py): near-zero reals and −0. snapped to 0. line by line gives
-the same text as the patterns over the whole file (the reproducibility fix of issue 16, made fast)."""
+the same text as the patterns over the whole file (the reproducibility fix, made fast)."""
 
 import random
 

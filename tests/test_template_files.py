@@ -1,4 +1,4 @@
-"""Template files of a big sheet layup (issue 16): one PDF per sheet, written by two forked
+"""Template files of a big sheet layup: one PDF per sheet, written by two forked
 workers over disjoint sheets, byte for byte what one process writes, and checked by ``check``."""
 
 from __future__ import annotations

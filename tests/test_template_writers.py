@@ -1,4 +1,4 @@
-"""The template writers' fast paths (issue 16): the DXF written into ezdxf's empty document, bulk
+"""The template writers' fast paths: the DXF written into ezdxf's empty document, bulk
 number formatting, linear title wrapping, and one Luneburg template per ring."""
 
 from __future__ import annotations

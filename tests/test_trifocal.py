@@ -71,7 +71,7 @@ def assert_segments_join_monotone(former) -> None:
 
 
 def test_three_eikonals_hold_at_every_constructed_point(former):
-    assert worst_eikonal_residual(former) <= 1e-9   # issue 15: Ψ_j = const_j to ≤ 1e-9 D at every point
+    assert worst_eikonal_residual(former) <= 1e-9   # Ψ_j = const_j to ≤ 1e-9 D at every point
 
 
 def test_segments_join_continuously_with_monotone_x(former):

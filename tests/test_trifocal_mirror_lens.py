@@ -30,7 +30,7 @@ def former():
 def test_three_eikonals_hold_at_every_constructed_point(former):
     fo, _, G = former.params["construction"]
     assert fo.n2 == pytest.approx(math.sqrt(2.2)) and len(G) >= 2
-    assert worst_eikonal_residual(former) <= 1e-9   # issue 15: Ψ_j = const_j to ≤ 1e-9 D at every point
+    assert worst_eikonal_residual(former) <= 1e-9   # Ψ_j = const_j to ≤ 1e-9 D at every point
 
 
 def test_segments_join_continuously_monotone_and_cover_the_aperture(former):

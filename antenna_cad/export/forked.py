@@ -1,4 +1,4 @@
-"""Writers run in a forked child beside the rest of the build (issue 16).
+"""Writers run in a forked child beside the rest of the build.
 
 OCCT's STEP transfer (~1.5 ms a slot) and the template writers (ezdxf, ~1 ms an entity) are
 single-threaded and independent of the STL, cut list and report writers, so the build forks them

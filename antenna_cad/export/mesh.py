@@ -15,7 +15,7 @@ a flat ring (:class:`~antenna_cad.geometry.model.RingPrism`, the Luneburg layups
 meshed from its exact description instead (:func:`mesh_prism`): arcs divided by the same chord and
 angle criteria as BRepMesh, vertices on the exact curves, faces triangulated in numpy (rings) or
 once by manifold3d (plates), walls as quads — closed by construction and many times faster than
-BRepMesh on the B-rep (issue 16).
+BRepMesh on the B-rep.
 
 BRepMesh cannot be stopped once started, so its work is bounded before it starts: the triangles a
 shape needs are estimated from its curved faces' areas and radii and the chord tolerance
@@ -191,7 +191,7 @@ def x_prism(shape: Shape, tolerance_mm: float) -> SlottedPrism | None:
     :class:`SlottedPrism`: the cap's boundary divided by OCCT's edge criteria (sagitta ≤
     ``tolerance_mm``, turning ≤ the angular deflection; vertices on the exact edges), so the walls
     are quads between the caps. BRepMesh took 0.5 s on each 3.4 mm strip of spline wall of the
-    seed-001 lens (issue 16). None for any other shape."""
+    seed-001 lens. None for any other shape."""
     solids = kernel.solids(shape)
     if len(solids) != 1:
         return None
@@ -303,7 +303,7 @@ def _running(pid: int) -> bool:
 def _triangulate(shape: Shape, tolerance_mm: float, mesher: str, parallel: bool = True) -> bool:
     """(Re-)mesh ``shape`` in place; True when every face got a triangulation. Not ``parallel``: one
     face at a time — a part's STL (the 9 m lens: 130k triangles) then peaks 60 MB lower for the
-    same CPU time, ~0.4 s more wall time (issue 16: ≤ 500 MB)."""
+    same CPU time, ~0.4 s more wall time (≤ 500 MB)."""
     BRepTools.Clean_s(shape)
     BRepMesh_IncrementalMesh(shape, _parameters(tolerance_mm, MESHERS[mesher], parallel))
     return _fully_triangulated(shape)
@@ -312,7 +312,7 @@ def _triangulate(shape: Shape, tolerance_mm: float, mesher: str, parallel: bool 
 def _release(shape: Shape) -> None:
     """Drop the shape's triangulation once read (tens of MB for a spline lens, kept on the shape
     otherwise) and give the freed heap back to the system, so meshing part after part does not
-    raise the build's peak memory (issue 16: ≤ 500 MB)."""
+    raise the build's peak memory (≤ 500 MB)."""
     BRepTools.Clean_s(shape)
     trim = getattr(ctypes.CDLL(None), "malloc_trim", None)       # glibc; elsewhere nothing to do
     if trim is not None:

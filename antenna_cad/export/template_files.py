@@ -1,4 +1,4 @@
-"""The template files of a build (issue 16): DXF + SVG per drawing and the tiled PDF — one file, or
+"""The template files of a build: DXF + SVG per drawing and the tiled PDF — one file, or
 for a big sheet layup one PDF per sheet, written by two forked workers over disjoint sheets.
 
 A sheet layup's plan (``SheetDrawings``) groups its drawings by sheet. Above

@@ -1,4 +1,4 @@
-"""Foam sheet layup of the graded-index lens (seed-001 §3.2; issue 14 item 3): every slab of constant
+"""Foam sheet layup of the graded-index lens (seed-001 §3.2): every slab of constant
 permittivity cut from foam sheets of its grade, stacked along the extrusion.
 
 The lens is planar — its section n(y) extruded by the plate spacing (the seed's §3.1 parallel-plate

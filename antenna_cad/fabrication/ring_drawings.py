@@ -1,7 +1,7 @@
 """Templates of a Luneburg sheet layup: one assembly drawing per sheet, one 1:1 drawing per ring
 (its sectors' cut paths in place) and per stand foot, all in the sheet frame, with dowel hole
 marks and title blocks. :class:`SheetDrawings` builds them a sheet at a time, when a writer asks:
-a 3 m layup has 4,456 ring templates (issue 16) that a ``validate`` or a build without templates
+a 3 m layup has 4,456 ring templates that a ``validate`` or a build without templates
 never draws."""
 
 from __future__ import annotations
@@ -105,7 +105,7 @@ def _foot_drawing(plan: RingLayupPlan, sheet: RingSheet, piece: FootPiece, title
 def _ring_drawing(plan: RingLayupPlan, sheet: RingSheet, pieces: list[RingPiece], title: str) -> Drawing:
     """One ring's template in the sheet frame (centre cross, +X tick: the holes' reference): the
     whole ring, or every sector's own cut path where it lies in the ring, its letter inside it.
-    One drawing per ring, not per sector: a 3 m layup has 31,700 sectors (issue 16), and the
+    One drawing per ring, not per sector: a 3 m layup has 31,700 sectors, and the
     sectors of a ring differ only in their holes, all marked here."""
     ring = pieces[0].ring
     d = Drawing(ring.label)

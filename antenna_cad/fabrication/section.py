@@ -1,4 +1,4 @@
-"""A sheet layup seen in its meridional section: the slabs the as-built ray trace crosses (issue 6).
+"""A sheet layup seen in its meridional section: the slabs the as-built ray trace crosses.
 
 Section plane: x = 0 of the sheet frame (:mod:`antenna_cad.fabrication.layup`), the vertical plane
 that holds the pedestal foot and, with ``joining: neck``, the necks; the trace's y is the sheet's y

@@ -252,7 +252,7 @@ def dxf_text(drawing: Drawing) -> str:
     entities written into its ENTITIES section, group code by group code as ezdxf writes them
     (LWPOLYLINE: 10/20 per vertex, 42 for a non-zero bulge; TEXT at its insertion point), on
     handles from the document's handle seed up. ezdxf itself took 12 ms a file, a minute for the
-    4,500 templates of a 3 m Luneburg layup (issue 16); tests read these files back with ezdxf."""
+    4,500 templates of a 3 m Luneburg layup; tests read these files back with ezdxf."""
     head, seed, middle, owner, tail = _dxf_frame()
     out: list[str] = []
     handle = seed

@@ -51,7 +51,7 @@ def nums(points, sep: str, end) -> str:
     """"x{sep}y{end}" for every (x, y) of ``points`` (``end``: one string, or one per point),
     numbers as :func:`num` writes them (3 decimals, no trailing zeros, no "-0"; rounded half-way
     cases may differ by 0.001), formatted in bulk: drawings of a large layup hold millions of
-    vertices (issue 16)."""
+    vertices."""
     if isinstance(end, str) and len(points) < 16:     # short lines: the bulk set-up costs more than it saves
         return "".join(f"{num(x)}{sep}{num(y)}{end}" for x, y, *_ in points)
     v = np.rint(np.asarray(points, dtype=float).reshape(-1, 2) * 1000.0)
@@ -112,7 +112,7 @@ def text_width(text: str, size: float) -> float:
 def wrap_text(text: str, width: float, size: float) -> list[str]:
     """``text`` broken at spaces into lines no wider than ``width`` in Helvetica at ``size`` (a
     single word wider than that stands alone, broken by characters). Remembered: a drawing's title
-    block is wrapped again on each of its tiles (21,000 pages for a large layup, issue 16)."""
+    block is wrapped again on each of its tiles (21,000 pages for a large layup)."""
     return list(_wrapped(text, width, size))
 
 

@@ -1,4 +1,4 @@
-"""Aperture statistics of a full-wave (or fast-model) field on the plane behind the lens (issue 10).
+"""Aperture statistics of a full-wave (or fast-model) field on the plane behind the lens.
 
 Over 0.5 λ ≤ r ≤ 0.9 R: the exact body of revolution carries a physical caustic on its axis (ring-edge
 diffraction arriving in phase: ±15°, ±2 dB within r < 0.5 λ), so the axis is left out. Phase

@@ -1,4 +1,4 @@
-"""The runner's input (the deck) from the same profiles and sheet plan the CAD uses (issue 10).
+"""The runner's input (the deck) from the same profiles and sheet plan the CAD uses.
 
 A lens of revolution as (r, z) polygons in mm, one per part with its εr (seed-000 frame: +z the axis,
 toward the antenna): the ideal lens between its synthesized front and back faces; the stepped stack as

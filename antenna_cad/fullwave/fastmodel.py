@@ -1,4 +1,4 @@
-"""Fast sub-wavelength-aware model of a stair-stepped lens's phase error (issue 10).
+"""Fast sub-wavelength-aware model of a stair-stepped lens's phase error.
 
 A stack of flat sheets differs from the ideal lens by Δd(r), the foam it has in excess along the axis at
 radius r (zero where the lens is sanded to its profile). The thin phase screen k0(n−1)Δd (seed-000 §7.3)

@@ -1,4 +1,4 @@
-"""A lens of revolution as the full-wave and fast models see it (issue 10): the synthesized faces, the
+"""A lens of revolution as the full-wave and fast models see it: the synthesized faces, the
 stepped sections, the feed on the axis; and the two phase models of stepped − ideal built on it."""
 
 from __future__ import annotations

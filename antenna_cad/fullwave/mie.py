@@ -1,5 +1,5 @@
 """Exact fields of a multilayer sphere in a plane wave (Mie series, PyPI ``scattnlay``): the reference
-for full-wave runs of Luneburg spheres (issue 10, seed-002 §2.4), and the sphere as the runner's parts.
+for full-wave runs of Luneburg spheres (seed-002 §2.4), and the sphere as the runner's parts.
 
 Incident wave x̂·e^{ikz} (time e^{−iωt}, as Meep's and the runner's), sphere centred at the origin; shell
 i spans radii_mm[i−1] ≤ r ≤ radii_mm[i] with permittivity eps[i] (lossless or complex)."""

@@ -1,4 +1,4 @@
-"""A laterally displaced feed in the body-of-revolution solver (issue 10): its Huygens sheet as a sum of
+"""A laterally displaced feed in the body-of-revolution solver: its Huygens sheet as a sum of
 azimuthal orders e^{imφ}, one Meep run per order, and the aperture field rebuilt as their sum.
 
 The feed is the on-axis feed's pattern moved to (x, y) = (0, y_f) in the plane of its focus, its axis

@@ -1,4 +1,4 @@
-"""Meep runner: one body-of-revolution FDTD run, JSON in, npz out (issue 10).
+"""Meep runner: one body-of-revolution FDTD run, JSON in, npz out.
 
 Executed by the interpreter that has Debian's ``python3-meep`` (built against Debian's numpy, so never
 imported by the pipeline itself): ``python3 -m antenna_cad.fullwave.runner deck.json result.npz`` or

@@ -1,4 +1,4 @@
-"""The scan-edge feed's full-wave stage (issue 10): the ideal lens and the lens as built, lit by the feed
+"""The scan-edge feed's full-wave stage: the ideal lens and the lens as built, lit by the feed
 displaced to the edge of the scan range, as a sum over azimuthal orders (:mod:`.offaxis`; one Meep run
 per order, in parallel processes, cached per deck).
 

@@ -1,4 +1,4 @@
-"""Running the Meep runner (issue 10): finding Debian's interpreter, estimating the cost, caching.
+"""Running the Meep runner: finding Debian's interpreter, estimating the cost, caching.
 
 Meep (Debian ``python3-meep``) is built against Debian's numpy, so it never runs in the project's
 interpreter: :mod:`antenna_cad.fullwave.runner` is executed as a script by an interpreter that imports

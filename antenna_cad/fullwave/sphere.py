@@ -1,5 +1,5 @@
 """A graded or layered sphere with its feed on the axis, for the runner, and its exact plane-wave
-focusing from the multilayer Mie series (issue 10 item 7; seed-002 §2.4).
+focusing from the multilayer Mie series (seed-002 §2.4).
 
 Frame of seed-002: sphere centred at the origin, feed on the axis at z = −b, beam toward +z. The feed
 touches the sphere (b = R for the classic law), so the collimator's Huygens sheet in front of the lens

@@ -1,4 +1,4 @@
-"""The full-wave stage of the as-built check (issue 10) and the phase model the verdicts follow.
+"""The full-wave stage of the as-built check and the phase model the verdicts follow.
 
 :func:`full_wave_study` decides whether Meep runs (``verification.full_wave``: ``on``; ``auto`` when
 Meep is installed and the estimate at the measured throughput fits ``budget_s``; ``off``), runs the

@@ -108,7 +108,7 @@ def plate_parts(outline: Polygon, walls: list[Polygon], height_mm: float, plate_
     ``horn`` (its side walls between the plates), with the solids' volumes checked against the
     polygon areas × thickness. A plate carries its exact description (:class:`SlottedPrism` in
     (y, z), counter-clockwise there: clockwise in shapely's (z, y)), so its 3,300 edges are meshed
-    without OCCT (issue 16)."""
+    without OCCT."""
     yz = lambda poly: [(y, z) for z, y in list(orient(poly, -1.0).exterior.coords)[:-1]]    # noqa: E731
     h = height_mm
     ring = yz(outline)

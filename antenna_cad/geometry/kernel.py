@@ -3,7 +3,7 @@
 The one module (with :mod:`antenna_cad.export.step`) that builds OCCT shapes: edges, wires and faces
 from points, prisms and solids of revolution, primitives, booleans, placement and the read-backs
 (volume, area, bounding box, validity). Only the OCP modules used here are imported: build123d's
-import alone took ~165 MB more and ~2 s (issue 16). Booleans run in parallel and are cleaned
+import alone took ~165 MB more and ~2 s. Booleans run in parallel and are cleaned
 (faces of one surface unified) as build123d did, so the solids and their STEP stay the same.
 """
 

@@ -40,7 +40,7 @@ class ModelPart:
 class RingPrism:
     """A flat ring (or disc, ``r_inner_mm`` 0) about z from ``z0_mm`` to ``z1_mm`` — what
     :func:`geometry.luneburg.annulus_solid` revolves — turned −90° about x when ``axis_y`` (the
-    cylinder lenses' frame); meshed without OCCT by :func:`export.mesh.mesh_prism` (issue 16)."""
+    cylinder lenses' frame); meshed without OCCT by :func:`export.mesh.mesh_prism`."""
     r_inner_mm: float
     r_outer_mm: float
     z0_mm: float
@@ -61,7 +61,7 @@ class SlottedPrism:
     slotted_plate` builds with one face and one prism. Slots are rows (x, y, length, width, angle) with
     the angle from +y, as :func:`geometry.slot_array.slot_wire` draws them: a straight core of half-length
     max(length/2 − width/2, 1e-4) along u = (sin a, cos a) and semicircular ends of radius width/2.
-    It lets the part be meshed without OCCT (:func:`export.mesh.mesh_prism`, issue 16). With
+    It lets the part be meshed without OCCT (:func:`export.mesh.mesh_prism`). With
     ``axis_x`` the profile is drawn in (y, z) and extruded along x from ``z0_mm`` to ``z1_mm`` (the
     cyclic turn (u, v, w) → (w, u, v): the parallel plates of :func:`geometry.bifocal.plate_parts`)."""
     outer_mm: np.ndarray

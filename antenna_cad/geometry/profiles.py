@@ -45,5 +45,5 @@ def revolve_closed(edges: list) -> kernel.Shape:
 def yz_prism(points_yz, x0: float, height: float) -> kernel.Shape:
     """The closed polygon of (y, z) points in the plane x = x0, extruded by ``height`` along +X: one
     planar face swept by OCCT as it is (no unification of coplanar side faces, 1 ms an edge on the
-    parallel plates' 3,300-edge outlines; issue 16)."""
+    parallel plates' 3,300-edge outlines)."""
     return kernel.plate(kernel.polygon([(x0, float(y), float(z)) for y, z in points_yz]), (), (height, 0, 0))

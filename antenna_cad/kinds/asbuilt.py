@@ -1,4 +1,4 @@
-"""As-built verification of the lenses of revolution (issue 6), shared by the collimator and bifocal kinds.
+"""As-built verification of the lenses of revolution, shared by the collimator and bifocal kinds.
 
 Exact 2-D meridional traces (:mod:`antenna_cad.raytrace.trace2d`, vector Snell, seed-000 §4.2) from a
 feed to the antenna plane through (a) the ideal lens, (b) the stepped stack as cut (before sanding),
@@ -174,13 +174,13 @@ class Candidate:
     estimate_deg: float | None      # k0(n−1)Δd
     meets: bool
     note: str = ""
-    model: Stats | None = None      # the fast sub-wavelength model (issue 10): what ``meets`` follows
+    model: Stats | None = None      # the fast sub-wavelength model: what ``meets`` follows
 
 
 def stock_study(sheets: Callable[[float], LayupPlan], lens_for: Callable[[LayupPlan], Lens],
                 stocks: tuple[float, ...], settings: VerificationSpec = VerificationSpec()) -> tuple[Candidate, ...]:
     """Every stock thickness laid up and judged unsanded (stepped stack as cut) at the nominal feed:
-    GO trace (for reference) and the fast sub-wavelength model, whose p-p decides (issue 10)."""
+    GO trace (for reference) and the fast sub-wavelength model, whose p-p decides."""
     out = []
     for t in stocks:
         try:
@@ -252,7 +252,7 @@ def verify_lens(lens: Lens, feeds: tuple[tuple[str, float, float], ...], toleran
                 settings: VerificationSpec = VerificationSpec()) -> Verification:
     """Figures, checks, tables and plots of the as-built lens. ``feeds``: (name, z, y), the first at
     the nominal feed; ``study``: the stock candidates (layups); ``settings``: the full-wave stage
-    (issue 10), whose phase model the sanding check and the tolerance budget follow."""
+    whose phase model the sanding check and the tolerance budget follow."""
     n = lens.n
     variants = lens_variants(lens, layup, fab)
     section = (Taper(lens, layup) if layup.edge == "taper" else variants[-1][1]) if layup is not None else None
@@ -347,7 +347,7 @@ def _sensitivity(lens: Lens, section: Slabs | Taper | None, tol: TolerancesSpec,
                  model: Stats | None = None):
     """Phase error against εr spread, sheet (or lens) thickness and feed position, each at ± its
     tolerance (GO: the changes are smooth); the added errors combined by root-sum-square with the
-    nominal as-built error, which is ``model``'s (full-wave or fast model, issue 10) when given."""
+    nominal as-built error, which is ``model``'s (full-wave or fast model) when given."""
     t_ref = layup.sheet_thickness_mm if layup is not None else float(lens.back_z(0.0) - lens.front_z(0.0))
     z0, y0 = lens.feed
     nominal = _as_built(lens, section, lens.eps_r, 1.0)

@@ -1,5 +1,5 @@
 """Glue between the as-built GO check (:mod:`antenna_cad.kinds.asbuilt`) and the full-wave stage
-(:mod:`antenna_cad.fullwave`, issue 10): the lens of revolution handed to Meep, and aperture statistics of
+(:mod:`antenna_cad.fullwave`): the lens of revolution handed to Meep, and aperture statistics of
 the stack as GO of the ideal lens plus the phase the stack adds (full-wave when it ran, else the fast
 sub-wavelength model). GO is exact for the smooth lens; on a staircase of sub-wavelength zones it is not
 (only the zone-averaged phase propagates), hence this split."""

@@ -207,8 +207,8 @@ def _sigma_view(spec: BifocalSpec, design: BifocalDesign) -> Verification:
 
 
 def verify(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None, fab) -> Verification:
-    """As-built verification (issue 6, :mod:`antenna_cad.kinds.asbuilt`) at the design focus O1 and at
-    the edge of the usable scan range, plus the defocus study of issue 5 (seed-000 §5.9): p-p phase
+    """As-built verification (:mod:`antenna_cad.kinds.asbuilt`) at the design focus O1 and at
+    the edge of the usable scan range, plus the defocus study (seed-000 §5.9): p-p phase
     error against the feed displacement along the focal line, bifocal vs the single-surface lens of
     the same aperture and focal distance."""
     if design.image_points_mm is not None:     # a point-image lens is no collimator: σ only

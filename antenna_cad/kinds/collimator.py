@@ -101,7 +101,7 @@ def fabrication_checks(spec: CollimatorSpec, design: CollimatorDesign, layup: La
 
 
 def verify(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | None, fab) -> Verification:
-    """As-built verification (issue 6, :mod:`antenna_cad.kinds.asbuilt`) on axis and at the edge of the
+    """As-built verification (:mod:`antenna_cad.kinds.asbuilt`) on axis and at the edge of the
     scan range: the transverse feed displacement where the ideal lens reaches the phase budget
     (seed-000 §5.5); the full-wave stage solves that feed too when its budget allows
     (:mod:`antenna_cad.fullwave.scan`)."""

@@ -35,8 +35,8 @@ def plan_sheets(fab: SheetLayupSpec, sheet_thickness_mm: float, *, lens_radius_m
 
 def plan_layup_and_box(fab, sheets, lens_for, settings: VerificationSpec = VerificationSpec()):
     """(LayupPlan, box panels) for a sheet layup; (None, ()) for a machined lens. ``sheets(t)`` plans
-    t mm boards; with ``sheet_thickness_mm: auto`` the stock study (issue 6) picks t, judging each
-    candidate ``lens_for(layup)`` by the fast sub-wavelength model (issue 10; ``settings``: the spec's
+    t mm boards; with ``sheet_thickness_mm: auto`` the stock study picks t, judging each
+    candidate ``lens_for(layup)`` by the fast sub-wavelength model (``settings``: the spec's
     ``verification`` block)."""
     if not isinstance(fab, SheetLayupSpec):
         return None, ()

@@ -1,4 +1,4 @@
-"""Full-wave stage of the Luneburg verification (issue 10 item 7; seed-002 §2.4).
+"""Full-wave stage of the Luneburg verification (seed-002 §2.4).
 
 The sphere with its feed on the axis, in Meep's body-of-revolution solver (:mod:`antenna_cad.fullwave`),
 in three variants named as the collimator's so that the manifest keys read the same for every kind:

@@ -1,4 +1,4 @@
-"""As-built verification of the multilayer Luneburg lens (issue 6; seed-002 §2.1b, §2.5, §2.8).
+"""As-built verification of the multilayer Luneburg lens (seed-002 §2.1b, §2.5, §2.8).
 
 Three lenses are traced from the feed to the aperture in a meridional plane (2-D: exact for
 shells and the cylinder, the in-plane fan for a sheet stack):

@@ -1,4 +1,4 @@
-"""Full-wave check of the aplanatic mirror-lens (seed-004) with the feed on the axis (issues 10, 13).
+"""Full-wave check of the aplanatic mirror-lens (seed-004) with the feed on the axis.
 
 The body of revolution in Meep (:mod:`antenna_cad.fullwave.runner`, cylindrical m = +1): the
 dielectric between the front face and the mirror, the mirror a perfect conductor behind the back

@@ -1,4 +1,4 @@
-"""Patterns, test zone and AUT pattern distortion of the lenses of revolution (issue 12), shared
+"""Patterns, test zone and AUT pattern distortion of the lenses of revolution, shared
 by the collimator and bifocal kinds; the radiation models are in :mod:`antenna_cad.radiation`.
 
 Aperture field: the exact meridional GO trace of :mod:`antenna_cad.kinds.asbuilt` (ideal lens,

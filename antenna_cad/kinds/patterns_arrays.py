@@ -1,4 +1,4 @@
-"""Patterns of the kinds whose aperture field comes as plain arrays (issue 12): the aplanatic
+"""Patterns of the kinds whose aperture field comes as plain arrays: the aplanatic
 mirror-lens (seed-004), the polyfocal constrained lens (seed-001 §1–§2) and the graded-index lens
 (seed-001 §3.2), per lens variant at the nominal and the field-edge feed. The radiation model is
 :mod:`antenna_cad.radiation.aperture` through :func:`antenna_cad.kinds.patterns.cut_aperture`.

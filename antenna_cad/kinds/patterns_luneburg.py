@@ -1,5 +1,5 @@
-"""Patterns, directivity and aperture efficiency of the Luneburg lenses per lens and feed (issue 12;
-seed-002 §2.5–§2.6), from the GO fans :mod:`antenna_cad.kinds.luneburg_verify` already traced.
+"""Patterns, directivity and aperture efficiency of the Luneburg lenses per lens and feed
+(seed-002 §2.5–§2.6), from the GO fans :mod:`antenna_cad.kinds.luneburg_verify` already traced.
 
 Aperture field of a fan (on the plane u·p = 2R across the beam, :mod:`antenna_cad.raytrace.luneburg`):
 power density from the rays' feed-power weights binned over the aperture — per annulus of |s|

@@ -1,5 +1,5 @@
 """Array factor, directivity, gain and beam direction of the waveguide-slot arrays over the band,
-every feed (issue 12; seed-003 §3.9, (3.8)–(3.11)).
+every feed (seed-003 §3.9, (3.8)–(3.11)).
 
 Each radiating cell of the slot table as written is an element at its reference point (x, y):
 phase Φ_gm of :mod:`antenna_cad.raytrace.slot_array` (feed → beam former → guide → cell, the −1st

@@ -112,7 +112,7 @@ def design_cells(design: SlotArrayDesign) -> Cells:
 
 
 def verify(spec: SlotArraySpec, design: SlotArrayDesign, layup, fab) -> Verification:
-    """As-built verification (issue 6; seed-003 §3.9, (3.41)): every feed traced through the beam
+    """As-built verification (seed-003 §3.9, (3.41)): every feed traced through the beam
     former as modelled to the slot centres as written to slots.csv, ideal vs as-built, over the
     band; sensitivity to the spec tolerances (:mod:`antenna_cad.raytrace.slot_array`)."""
     b, tol, bf = spec.band, spec.tolerances, design.beamformer

@@ -1,7 +1,7 @@
 """Report block of the slot array: σ against field angle for this design and the reference formers
 (seed-003 §3.8, Fig. 3.15), with the σ(80°) values next to the thesis's.
 
-The reference formers' curves do not depend on the spec (4–8 s of ray tracing, issue 16): they are
+The reference formers' curves do not depend on the spec (4–8 s of ray tracing): they are
 kept in ``ANTENNA_CAD_CACHE`` (default ``$XDG_CACHE_HOME`` or ``~/.cache``, ``/antenna_cad``) under
 the SHA-256 of the synthesis sources and the numpy/scipy versions, so any change to the formers or
 the σ optimiser computes them afresh; the values are stored exactly (JSON floats round-trip).

@@ -1,4 +1,4 @@
-"""Aperture field → far-field cuts, beam figures, directivity and the efficiency split (issue 12).
+"""Aperture field → far-field cuts, beam figures, directivity and the efficiency split.
 
 Scalar aperture theory, no obliquity factor (as the seed's own pattern integral, seed-000 (1.19)),
 time dependence e^{−jωt} (a field arriving by the optical path L is A·e^{+jkL}): the far field in

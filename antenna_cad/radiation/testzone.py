@@ -1,5 +1,5 @@
-"""Propagation of an aperture field to the antenna-under-test plane, and the test zone (issue 12;
-seed-000 §4.6, §5.10).
+"""Propagation of an aperture field to the antenna-under-test plane, and the test zone
+(seed-000 §4.6, §5.10).
 
 Method: the **angular spectrum of plane waves** (exact scalar propagation between parallel planes,
 Rayleigh–Sommerfeld; no Fresnel approximation, which fails at the seed's 10 cm spacing from a

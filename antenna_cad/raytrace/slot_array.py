@@ -159,14 +159,14 @@ class ToleranceEffect:
 def tolerance_effects(bf: BeamFormer, cells: Cells, sources_mm: np.ndarray, aims: np.ndarray, f_ghz: float, *,
                       eps_r_tol: float, width_tol_mm: float, feed_tol_mm: float,
                       scale: float = 1.0) -> tuple[ToleranceEffect, ...]:
-    """Sensitivity of the as-built beam to the spec tolerances (issue 6), each alone.
+    """Sensitivity of the as-built beam to the spec tolerances, each alone.
 
     Fill εr and guide width act through n = γ/k of every guide (width → λg): common to all guides
     (moves the frequency-scanned beam; a mirror–lens lens of the same dielectric gets n² + Δε)
     and alternating guide to guide (the worst-case spread: a phase error growing along the
     guides). The feed moves ± along and across its axis. ``scale`` multiplies every tolerance.
     The rays of a feed through a beam former are traced once: εr and width change only the guides
-    (the same guide axes), so those cases refit the same paths (issue 16).
+    (the same guide axes), so those cases refit the same paths.
     """
     alt = np.where(np.arange(cells.guide_x_mm.size) % 2, -1.0, 1.0)
     sides = np.stack([-aims[:, 1], aims[:, 0]], -1)

@@ -1,4 +1,4 @@
-"""Physical ranges of spec numbers (issue 11): no number reaches synthesis unless it is finite
+"""Physical ranges of spec numbers: no number reaches synthesis unless it is finite
 (``StrictModel`` refuses nan/inf) and inside the bounds its field declares.
 
 A field declares both ends — ``Field(ge=MIN_MM, le=5000)`` — and a lower bound with a physical

@@ -152,7 +152,7 @@ class OutputsSpec(StrictModel):
 
 
 class TolerancesSpec(StrictModel):
-    """Build tolerances for the sensitivity study of the as-built verification (issue 6)."""
+    """Build tolerances for the sensitivity study of the as-built verification."""
     eps_r_tolerance: float = Field(0.01, ge=0, le=1, description="± spread of the material's εr (absolute)")
     thickness_tolerance_mm: float = Field(0.5, ge=0, le=20,
                                           description="± stock board / sheet / machining thickness")
@@ -161,7 +161,7 @@ class TolerancesSpec(StrictModel):
 
 
 class VerificationSpec(StrictModel):
-    """Full-wave check of the as-built lens (issue 10): Meep in cylindrical coordinates, on-axis feed; the
+    """Full-wave check of the as-built lens: Meep in cylindrical coordinates, on-axis feed; the
     collimator's scan-edge feed as a sum of azimuthal orders when the budget allows."""
     full_wave: Literal["auto", "on", "off"] = Field(
         "auto", description="auto: run when Meep is installed and the estimated time fits budget_s (the "

@@ -4,7 +4,7 @@ A 2-D (cylindrical) lens whose index varies across the aperture only, n = n(y), 
 seed's normalised units (D = 1) and scaled by ``design.unit_mm`` (= D in millimetres). ``material``
 is the base dielectric whose loss and density the slabs carry; each slab's εr comes from the
 synthesized law. Fabrication ``solid``: the slabs are machined from blanks of their permittivity;
-``sheet_layup``: each slab cut from foam sheets of its grade, stacked along the extrusion (issue 14).
+``sheet_layup``: each slab cut from foam sheets of its grade, stacked along the extrusion.
 """
 
 from __future__ import annotations

@@ -427,7 +427,7 @@ def test_ctrl_c_on_a_local_sweep_ends_every_worker_and_resumes(tmp_path):
     assert len(started) >= 2 and alive == []
     assert f"interrupted: {len(rows)} rows done are in {table}" in output
     assert re.search(r"sweep.yaml: \d of 8 variants", output)
-    assert list(scratch.iterdir()) == []
+    assert [p.name for p in scratch.iterdir() if p.name != "dask-scratch-space"] == []   # dask's own shared folder
     assert (table.parent / "index.html").exists() and (table.parent / "pareto.csv").exists()
     done = subprocess.run(command, capture_output=True, text=True, env=env, timeout=1200)
     assert done.returncode == 0, done.stderr

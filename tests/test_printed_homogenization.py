@@ -97,8 +97,8 @@ def test_table_rows_within_wiener_bounds():
 
 def test_cubic_rows_near_maxwell_garnett_at_low_fill():
     """At fill 0.1 the rods' εeff is within 10 % of (εMG − 1) of Maxwell Garnett (measured 6 % at εf 2.7,
-    9.8 % at 4.0; at 0.05, 13–19 %: the rods' crossings, a tenth of the solid there, are outside the dilute model and the rods
-    are 2 px wide). The gyroid rows are not held to it: at 16 px per cell a sheet of fill ≤ 0.2 is thinner
+    9.8 % at 4.0; at 0.05, 13–19 %: the rods' crossings, a tenth of the solid there, are outside the dilute
+    model and the rods are 2 px wide). The gyroid rows are not held to it: at 16 px per cell a sheet of fill ≤ 0.2 is thinner
     than a pixel, and the averaged grid puts it at the Wiener upper bound (docs: printed lattices)."""
     for r in hz.table_rows():
         if r["lattice"] == "cubic" and r["fill"] == 0.1:

@@ -168,8 +168,9 @@ class VerificationSpec(StrictModel):
         "report says why not otherwise); on: always (error without Meep); off: the fast model only")
     resolution_px_per_lambda: float = Field(16.0, ge=6, le=64, description="grid cells per free-space wavelength")
     plane_offset_lambda: float = Field(2.0, ge=2, le=20, description="aperture plane behind the back face (λ)")
-    budget_s: float = Field(120.0, ge=1, le=86400, description="largest estimated full-wave time for auto "
-                            "(the scan edge runs only when the on-axis and all its orders fit)")
+    budget_s: float = Field(120.0, ge=1, le=86400, description="hard cap on the full-wave solver's wall time "
+                            "per build (s): auto starts only what fits at the throughput measured on this machine; "
+                            "whatever runs stops here, and what did not finish keeps the fast model")
     feed_pattern: Literal["dipole", "cos_q"] = Field(
         "dipole", description="feed far field: short dipole (E-plane cos θ, H-plane 1) or cos^q θ")
     feed_q: float = Field(1.0, ge=MIN_RATIO, le=50, description="q of the cos_q feed pattern")

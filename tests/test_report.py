@@ -207,3 +207,17 @@ def test_pdf_keeps_greek_letters_and_powers_of_ten_readable():
     assert pdf_text("εr 1.05, tanδ 2.5 × 10⁻⁵, λ/16, 12\u202f345 mm") == "εr 1.05, tanδ 2.5e-5, lambda/16, 12 345 mm"
     lines = format_table(("figure", "value"), [("D/λ", "13.34"), ("Grade εr", "1.9")])
     assert lines[2].index("13.34") == lines[3].index("1.9")           # columns aligned after spelling
+
+
+def test_pdf_headings_keep_greek_letters():
+    """A heading holding εr is drawn as outlines (it reads εr, never "er"); a plain one stays text."""
+    from matplotlib.figure import Figure
+    from matplotlib.patches import PathPatch
+
+    from antenna_cad.export.report_pdf import _heading
+    greek, plain = Figure(), Figure()
+    _heading(greek, "Layup: εr per sheet")
+    _heading(plain, "Cut list")
+    assert [type(a) for a in greek.artists] == [PathPatch] and not greek.texts
+    assert len(greek.artists[0].get_path().vertices) > 100                      # every glyph's outline
+    assert [t.get_text() for t in plain.texts] == ["Cut list"] and not plain.artists

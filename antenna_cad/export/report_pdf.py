@@ -125,7 +125,7 @@ def _text_pages(pdf: PdfPages, heading: str, lines: list[str]) -> None:
     with matplotlib.rc_context({"pdf.use14corefonts": True}):
         for start in range(0, max(len(rows), 1), per_page):
             fig = Figure(figsize=A4_INCH)
-            fig.text(MARGIN, 0.965, spelled(heading), fontsize=12, weight="bold")
+            _heading(fig, heading)
             page = rows[start:start + per_page]
             if any(c in GREEK for row in page for c in row):
                 _lines_with_greek(fig, page, size)
@@ -133,6 +133,17 @@ def _text_pages(pdf: PdfPages, heading: str, lines: list[str]) -> None:
                 fig.text(MARGIN, TEXT_TOP, "\n".join(page), family="monospace",
                          weight="medium", fontsize=size, va="top", linespacing=LINE_SPACING)
             pdf.savefig(fig)
+
+
+def _heading(fig: Figure, heading: str, size: float = 12.0) -> None:
+    """A page heading in bold Helvetica; one holding a :data:`GREEK` letter is drawn whole as outlines
+    (DejaVu Sans Bold), so "εr" reads εr, not "er"."""
+    if not any(c in GREEK for c in heading):
+        fig.text(MARGIN, 0.965, spelled(heading), fontsize=size, weight="bold")
+        return
+    path = TextPath((0, 0), heading, size=size, prop=FontProperties(family="DejaVu Sans", weight="bold"))
+    place = Affine2D().scale(1 / 72).translate(MARGIN * A4_INCH[0], 0.965 * A4_INCH[1]) + fig.dpi_scale_trans
+    fig.add_artist(PathPatch(path, transform=place, facecolor="black", linewidth=0))
 
 
 def pdf_text(text: str) -> str:

@@ -61,7 +61,7 @@ def test_console_script_builds_machined_lens(tmp_path):
     done = subprocess.run([exe, str(PTFE), "-o", str(tmp_path)], capture_output=True, text=True, timeout=600,
                           env=fresh)
     assert done.returncode == 0, done.stderr
-    assert "overall: warn" in done.stdout          # only because the full-wave stage did not run (Meep hidden)
+    assert "overall: pass" in done.stdout          # the full-wave stages did not run (Meep hidden): skipped
     out = tmp_path / "ptfe-lens-120mm"
     manifest = json.loads((out / "manifest.json").read_text())
     assert {c["name"] for c in manifest["checks"] if c["status"] != "pass"} == {"full_wave", "full_wave_scan_edge"}

@@ -66,8 +66,8 @@ def on_axis_decks(lens: RevolvedLens, settings) -> list[dict]:
 @dataclass(frozen=True)
 class Decision:
     """Whether a stage runs Meep: the interpreter (None: it does not), why, the estimate, the budget
-    it runs within, and the check status a stage that does not run gets (skip when off in the spec; warn
-    when Meep is missing or the estimate is over budget: the verdicts then rest on the fast model)."""
+    it runs within, and the check status of a stage that does not run: skip (its own status, never a
+    pass; the message says why and which model the verdicts follow). Runs cut at the budget warn."""
     python: str | None
     why: str
     estimate_s: float
@@ -86,14 +86,14 @@ def budget_decision(settings, decks: list[dict], jobs: int) -> Decision:
     if python is None:
         if settings.full_wave == "on":
             raise DesignError("verification.full_wave", f"on, but {solver.MISSING}")
-        return Decision(None, f"skipped: {solver.MISSING}", 0.0, within, "warn")
+        return Decision(None, f"skipped: {solver.MISSING}", 0.0, within, "skip")
     if solver.estimate_s(decks, jobs) > 0.0:
         solver.calibrate(python, within)
     estimate, left = solver.estimate_s(decks, jobs), within.left()
     if settings.full_wave == "auto" and estimate > left:
         spent = f"the {left:.0f} s left of " if left < settings.budget_s else ""
         return Decision(None, f"skipped: estimated {estimate:.0f} s > {spent}budget_s {settings.budget_s:g} s (raise "
-                        "it, or lower resolution_px_per_lambda)", estimate, within, "warn")
+                        "it, or lower resolution_px_per_lambda)", estimate, within, "skip")
     return Decision(python, f"ran (estimated {estimate:.0f} s, at most budget_s {settings.budget_s:g} s)",
                     estimate, within)
 

@@ -108,7 +108,7 @@ def test_machined_dielectric_lens_end_to_end(diel_build):
 def test_worked_example_sheet_layup_end_to_end(nik_build):
     res, man = nik_build
     spec, d = _design(NIK)
-    warned = {c["name"] for c in man["checks"] if c["status"] != "pass"}
+    warned = {c["name"] for c in man["checks"] if c["status"] not in ("pass", "skip")}     # skip: full-wave
     assert warned <= {"unsanded_step_phase_error", "tolerance_budget"} and res.status == "warn"  # sand the steps
     f = man["figures"]
     assert f["focus_offset_mm"] == pytest.approx(630.3, abs=0.1)

@@ -137,7 +137,9 @@ def _lists(build: Build) -> list[Finding]:
                         f"{len(tfiles)} template files, {len(named - {None})} named by template entries"
                         + (f"; unnamed: {sorted(tfiles - named)[:3]}" if tfiles - named else "")
                         + (f"; named, not listed: {sorted(named - tfiles - {None})[:3]}" if named - tfiles - {None} else "")))
-    rows.append(_masses(m, bool(m.sheets)))
+    fabrication = (m.spec.model_extra or {}).get("fabrication")
+    taper = isinstance(fabrication, dict) and fabrication.get("edge") == "taper"   # discs cut, then coned
+    rows.append(_masses(m, bool(m.sheets) and not taper))
     cutlist = build.path("cutlist.csv")
     if cutlist is not None:
         text = cutlist.read_text(encoding="utf-8", errors="replace")
@@ -150,7 +152,8 @@ def _lists(build: Build) -> list[Finding]:
 def _masses(m: Manifest, layup: bool) -> Finding:
     """Σ fabricated parts' volume × density against the cut list's total mass (``mass_kg.all``):
     never above it (machining and sanding only remove stock), and equal within MASS_RTOL for a
-    sheet layup (its pieces are cut to the parts' outlines)."""
+    sheet layup with stepped edges (its pieces are cut to the parts' outlines; a taper-cut sheet is cut
+    as its disc, then coned by the wire)."""
     from antenna_cad.materials import LIBRARY
     densities = {name: mat.density_kg_m3 for name, mat in LIBRARY.items()} | {m.material.name: m.material.density_kg_m3}
     densities |= _metals(m.spec.model_extra or {})

@@ -14,7 +14,7 @@ import shapely
 from shapely.geometry import LineString, box
 from shapely.ops import polylabel, unary_union
 
-from antenna_cad.export import check
+from antenna_cad.export import check_readers
 from antenna_cad.fabrication.outline import circle_polygon
 from antenna_cad.fabrication.page_layout import MARGIN_MM, layout
 from antenna_cad.fabrication.piece_labels import CLEARANCE_MM, name_pieces, pieces
@@ -128,10 +128,10 @@ def test_pdf_places_every_part_at_one_to_one_inside_the_window(tmp_path):
             assert bottom - 1e-3 <= float(cy) and float(cy) + float(ch) <= bottom + WINDOW_MM[1] * k + 2e-3
         sizes = [float(s) for s in re.findall(r"/F1 ([\d.]+) Tf", content)]
         assert min(sizes) * 0.72 / k >= MIN_TEXT_MM - 1e-3                      # no text under 2.5 mm caps
-    findings = {f.check: f for f in check._pdf(tmp_path, "t.pdf", templates=True)}
+    findings = {f.check: f for f in check_readers.pdf_findings(tmp_path / "t.pdf", "t.pdf", templates=True)}
     assert all(f.ok for f in findings.values()), findings
     pdf = pypdfium2.PdfDocument(tmp_path / "t.pdf")
-    assert check.check_bar_mm(pdf[0]) == pytest.approx(100.0, abs=check.BAR_TOL_MM)
+    assert check_readers.check_bar_mm(pdf[0]) == pytest.approx(100.0, abs=check_readers.BAR_TOL_MM)
 
 
 def test_near_duplicate_vertices_dropped_alike_in_dxf_and_svg(tmp_path):
@@ -208,5 +208,6 @@ def test_recipe_templates_nest_name_and_read_at_2_5_mm(recipe, tmp_path):
         for piece in pieces(d):
             assert any(piece.contains(t) for t in texts) or piece in unfit, (d.label, piece.bounds)
     assert thin == THIN_WALLS[recipe]
-    findings = {f.check: f for f in check._pdf(tmp_path, entries[-1]["pdf"], templates=True)}
+    findings = {f.check: f for f in check_readers.pdf_findings(tmp_path / entries[-1]["pdf"], entries[-1]["pdf"],
+                                                               templates=True)}
     assert all(f.ok for f in findings.values()), findings

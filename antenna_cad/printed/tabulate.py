@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from antenna_cad.fullwave import unitcell
-from antenna_cad.fullwave.solver import meep_python
+from antenna_cad.fullwave.solver import _clean_env, meep_python
 from antenna_cad.printed.homogenization import TABLE, maxwell_garnett, retrieve, slab_coefficients
 from antenna_cad.printed.lattice import LATTICES, fill_fraction, parameter_for
 
@@ -50,7 +50,8 @@ def run_deck(python: str, deck: dict) -> dict:
     with tempfile.TemporaryDirectory(prefix="unitcell-") as tmp:
         src, out = Path(tmp) / "deck.json", Path(tmp) / "out.json"
         src.write_text(json.dumps(deck), encoding="utf-8")
-        subprocess.run([python, unitcell.__file__, str(src), str(out)], check=True, capture_output=True, cwd=tmp)
+        subprocess.run([python, unitcell.__file__, str(src), str(out)], check=True, capture_output=True, cwd=tmp,
+                       env=_clean_env())     # Debian's Meep with Debian's numpy: no venv on its path
         return json.loads(out.read_text(encoding="utf-8"))
 
 

@@ -21,6 +21,17 @@ ROOT = Path(__file__).resolve().parents[1]
 RECIPES = ["xps-collimator-0.5m", "ptfe-lens-120mm"]
 
 
+def _open(browser, page: Path, until: str = "document.getElementById('spec') !== null") -> None:
+    """Navigate to ``page`` and wait (≤ 60 s) for the whole document and for ``until`` (JS) to hold:
+    a navigation to the URL already shown may hand back control before the new page is parsed."""
+    from selenium.webdriver.support.ui import WebDriverWait
+    browser.execute_script("window.staleReport = true")
+    browser.get(page.as_uri())
+    WebDriverWait(browser, 60).until(lambda b: b.execute_script(
+        f"return !window.staleReport && document.readyState === 'complete' && ({until})"),
+        f"{page.name}: {until}")
+
+
 @pytest.fixture(scope="module")
 def reports(tmp_path_factory):
     out = tmp_path_factory.mktemp("reports")
@@ -46,7 +57,7 @@ def test_report_is_self_contained_and_listed(reports, name):
 @pytest.mark.parametrize("name", RECIPES)
 def test_report_renders_in_chromium_without_errors(reports, browser, name):
     result = reports[name]
-    browser.get((result.out_dir / "report.html").as_uri())
+    _open(browser, result.out_dir / "report.html")
     assert browser.title.startswith(name)
     errors = [e for e in browser.get_log("browser") if e["level"] in ("SEVERE", "ERROR")]
     assert errors == []
@@ -146,9 +157,7 @@ PIXELS = """
 
 
 def _view(browser, result):
-    browser.get((result.out_dir / "report.html").as_uri())
-    ready = browser.execute_script("return document.getElementById('v3d').dataset.ready === '1'")
-    assert ready, [e["message"] for e in browser.get_log("browser")]
+    _open(browser, result.out_dir / "report.html", until="document.getElementById('v3d').dataset.ready === '1'")
     return browser.execute_script(PIXELS)
 
 
@@ -190,7 +199,7 @@ def test_glb_has_one_named_node_per_part_coloured_by_material(reports):
 
 def test_printed_report_shows_every_collapsed_table(reports, browser):
     result = reports["xps-collimator-0.5m"]
-    browser.get((result.out_dir / "report.html").as_uri())
+    _open(browser, result.out_dir / "report.html")
     hidden = "return Array.from(document.querySelectorAll('details table')).filter(t => !t.checkVisibility()).length"
     assert browser.execute_script(hidden) > 0                         # on screen: collapsed
     browser.execute_cdp_cmd("Emulation.setEmulatedMedia", {"media": "print"})

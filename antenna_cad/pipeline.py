@@ -230,8 +230,9 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
         done = True
         stage("manifest")
     except OSError as exc:
-        raise OutputError(f"{out_root}: writing the build failed ({exc.strerror or exc}); "
-                          "the previous build is untouched") from None
+        where = f" writing {Path(exc.filename).name}" if exc.filename else ""
+        kept_note = "the previous build is untouched" if final.exists() else "nothing was written"
+        raise OutputError(f"{out_root}: writing the build failed ({exc.strerror or exc}{where}); {kept_note}") from None
     finally:
         for job in jobs.values():
             job.finish(wait=False)

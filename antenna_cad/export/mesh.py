@@ -27,6 +27,7 @@ processes no longer running (killed while meshing) are removed when the next one
 from __future__ import annotations
 
 import ctypes
+import errno
 import functools
 import math
 import os
@@ -356,7 +357,8 @@ def _write_triangulation(shape, path: str) -> str:
     writer = StlAPI_Writer()
     writer.ASCIIMode = False
     if not writer.Write(shape, path):
-        raise RuntimeError(f"OCCT could not write the triangulation to {path}")
+        raise OSError(errno.EIO, f"OCCT could not write the triangulation to {path} (disk full or a file-size "
+                      "limit?)")
     return path
 
 

@@ -25,7 +25,7 @@ import yaml
 
 from antenna_cad.catalog import CatalogError, Recipe, recipes, starting_spec
 from antenna_cad.catalog import recipe as _recipe
-from antenna_cad.pipeline import OutputError, Plan, check_output, prepare
+from antenna_cad.pipeline import OutputError, Plan, check_output, prepare, solid_checks
 from antenna_cad.pipeline import build as _build
 from antenna_cad.spec import SpecError, load_spec, parse_spec
 from antenna_cad.spec.common import SpecBase
@@ -133,15 +133,16 @@ def with_changes(spec: SpecLike, changes: Mapping[str, Any]) -> Spec:
     return parse_spec(data, "<changes>")
 
 
-def validate(spec: SpecLike, out: str | Path | None = None) -> Validation:
-    """Everything ``build`` can refuse, without CAD or files: synthesis, layup plan, resource limits,
-    fabrication plan, and with ``out`` the output folder (checked first, as ``build`` does). Raises
-    SpecError, OutputError or DesignError; check failures are in the result."""
+def validate(spec: SpecLike, out: str | Path | None = None, solids: bool = False) -> Validation:
+    """Everything ``build`` can refuse, writing nothing: synthesis, layup plan, resource limits,
+    fabrication plan, with ``solids`` the solid model (CAD in memory) and the STL triangles it needs,
+    and with ``out`` the output folder (checked first, as ``build`` does). Raises SpecError,
+    OutputError or DesignError; check failures are in the result."""
     loaded = load(spec)
     if out is not None:
         check_output(Path(out), loaded.name)
     plan = prepare(loaded)
-    return Validation(loaded, list(plan.checks), plan)
+    return Validation(loaded, list(plan.checks) + (solid_checks(loaded, plan) if solids else []), plan)
 
 
 def build(spec: SpecLike | Validation, out: str | Path = "exports", progress: Progress | None = None) -> Build:

@@ -2,7 +2,7 @@
 
     make-lens SPEC [-o OUT] [-q|-v]  build everything into OUT/<name>/ (default exports/)
     make-lens build SPEC [-o OUT]    the same; options may come before or after SPEC
-    make-lens validate SPEC          every rule a build applies, before any CAD work; writes nothing
+    make-lens validate SPEC          every rule a build applies (the solid model in memory); writes nothing
     make-lens schema [-o FILE]       the JSON Schema of specs (stdout unless -o)
     make-lens check OUT              re-read every file of a build folder with independent readers
     make-lens sweep SWEEP [-o OUT] [--scheduler tcp://HOST:PORT|tls://HOST:PORT] [--workers N] [-q|-v]
@@ -70,12 +70,12 @@ def _fail(lines: list[str]) -> None:
     raise typer.Exit(2)
 
 
-def _load(spec_path: Path, out: Path | None = None):
-    """Spec, output folder check (when building), then everything before CAD (api.validate);
+def _load(spec_path: Path, out: Path | None = None, solids: bool = False):
+    """Spec, output folder check (when building), then everything before writing (api.validate);
     or a clean exit 2 naming the field and the rule."""
     from antenna_cad import api
     try:
-        checked = api.validate(spec_path, out)
+        checked = api.validate(spec_path, out, solids)
         return checked.spec, checked
     except api.SpecError as exc:
         _fail(exc.lines)
@@ -88,11 +88,11 @@ def _load(spec_path: Path, out: Path | None = None):
 @app.command(epilog=EXIT_CODES)
 def validate(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML (or a bundled recipe's name)")) -> None:
     """Check the spec and run every rule a build applies (synthesis, layup, limits, fabrication
-    plan) before any CAD work; writes nothing."""
+    plan, the solid model and the STL triangles it needs); writes nothing."""
     # numpy is not imported yet: its BLAS in one thread (a thread pool costs more than it saves on
     # validate's small problems — 100× on a busy 2-core machine for one 400×400 eigvalsh)
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
-    spec, plan = _load(spec_path)
+    spec, plan = _load(spec_path, solids=True)
     stdout_console().print(checks_table(plan.checks))
     failed = [c.name for c in plan.checks if c.status == "fail"]
     if failed:                      # as build: exit 1 when a check fails

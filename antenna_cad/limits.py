@@ -1,7 +1,7 @@
-"""Resource limits of a build: how many sheets, shells, slots, pieces, drawings and template
-pages a design may make. Above ``soft`` the build goes on with a warning check (a workshop job of that size
+"""Resource limits of a build: how many sheets, shells, slots, pieces, drawings, template
+pages and STL triangles a design may make. Above ``soft`` the build goes on with a warning check (a workshop job of that size
 is unusual — often a unit slip); above ``hard`` it stops with a DesignError naming the spec field to
-change, before any CAD work. New kinds need nothing: :func:`counts` reads the plans generically."""
+change, before any CAD work (triangles: after the solid model, before meshing). New kinds need nothing: :func:`counts` reads the plans generically."""
 
 from __future__ import annotations
 
@@ -24,7 +24,7 @@ class Limit:
             raise DesignError(self.field, f"{count} {self.what} exceed the limit of {self.hard} "
                                           f"(a unit slip? change {self.field})")
         if count > self.soft:
-            return [Check(f"{self.what}_count", "warn", float(count), float(self.soft), "",
+            return [Check(f"{self.what.lower().replace(' ', '_')}_count", "warn", float(count), float(self.soft), "",
                           f"{count} {self.what} (more than the usual {self.soft}; check {self.field})")]
         return []
 
@@ -36,6 +36,7 @@ LIMITS = {
     "pieces": Limit("pieces", "fabrication.board", soft=400, hard=4000),
     "drawings": Limit("drawings", "fabrication.board", soft=300, hard=3000),
     "pages": Limit("template pages", "outputs.templates", soft=5000, hard=100_000),
+    "triangles": Limit("STL triangles", "outputs.mesh_tolerance_mm", soft=5_000_000, hard=60_000_000),
 }
 
 

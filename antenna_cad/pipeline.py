@@ -35,7 +35,7 @@ from antenna_cad.limits import counts, limit_checks, template_pages
 from antenna_cad.progress import Progress, reporting
 from antenna_cad.registry import adapter
 from antenna_cad.spec.common import SpecBase, resolve_material
-from antenna_cad.synthesis.checks import Check, solving
+from antenna_cad.synthesis.checks import Check, DesignError, solving
 
 STAGES = ("synthesize", "fabricate", "model", "verify", "step", "stl", "templates", "report", "manifest")
 IN_PROGRESS: set[Path] = set()      # temporary folders being written (removed on Ctrl-C by the CLI)
@@ -91,6 +91,32 @@ def prepare(spec: SpecBase) -> Plan:
             checks += limit_checks({"pages": template_pages(fab.drawings)})
         checks += list(kind.fabrication_checks(spec, design, layup)) + list(fab.checks)
     return Plan(design, layup, panels, fab, checks)
+
+
+def solid_checks(spec: SpecBase, plan: Plan) -> list[Check]:
+    """What the CAD stage can refuse, for ``validate``: the solid model built (in memory, nothing
+    written), its checks and :func:`mesh_checks`."""
+    with solving(_design_field(spec), "solid model"):
+        model = adapter(spec.kind).model(spec, plan.design, plan.layup, plan.panels)
+    return list(model.checks) + mesh_checks(spec, model)
+
+
+def mesh_checks(spec: SpecBase, model) -> list[Check]:
+    """The STL triangles of every part, estimated before any meshing (BRepMesh cannot be stopped
+    once started): a part over ``MAX_TRIANGLES`` or a build over the hard limit is refused naming
+    ``outputs.mesh_tolerance_mm``; above the soft limit a warning check."""
+    if not spec.outputs.stl:
+        return []
+    from antenna_cad.export.mesh import MAX_TRIANGLES, part_triangles
+    tolerance, total = spec.outputs.mesh_tolerance_mm, 0
+    for part in model.parts:
+        count = part_triangles(part.shape, tolerance, part.prism)
+        if count > MAX_TRIANGLES:
+            raise DesignError("outputs.mesh_tolerance_mm", f"part {part.label} needs about {count:.3g} triangles "
+                              f"at {tolerance:g} mm, over the limit of {MAX_TRIANGLES:.3g} a part (a coarser "
+                              "tolerance?)")
+        total += count
+    return limit_checks({"triangles": total})
 
 
 def _design_field(spec: SpecBase) -> str:
@@ -184,7 +210,7 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
             jobs["templates"] = Job(write_templates, (spec, p.fab, tmp), template_files(spec, p.fab, tmp))
         with solving(_design_field(spec), "solid model"):
             model = kind.model(spec, p.design, p.layup, p.panels)
-        checks = p.checks + list(model.checks)
+        checks = p.checks + list(model.checks) + mesh_checks(spec, model)
         stage("model")
         if spec.outputs.step:     # the STEP needs only the model: written beside verification, STL, report
             step_file = tmp / f"{spec.name}.step"

@@ -7,11 +7,18 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
+import yaml
+from typer.testing import CliRunner
 
+from antenna_cad.cli import app
 from antenna_cad.export import mesh
 from antenna_cad.geometry import kernel
+from antenna_cad.geometry.model import RingPrism, SlottedPrism
 from antenna_cad.synthesis.checks import DesignError
+
+ROOT = Path(__file__).resolve().parents[1]
 
 
 def test_triangle_estimate_is_near_what_brepmesh_makes():
@@ -42,3 +49,35 @@ def test_scratch_is_named_by_pid_and_stale_ones_are_removed():
     with mesh._scratch() as scratch:
         assert Path(scratch).name.startswith(f"{mesh.SCRATCH_PREFIX}{os.getpid()}-")
         assert not stale.exists()
+
+
+@pytest.mark.parametrize("prism", [
+    RingPrism(40.0, 120.0, 0.0, 20.0), RingPrism(0.0, 75.0, 5.0, 25.0),
+    SlottedPrism(np.array([[0, 0], [200, 0], [200, 100], [0, 100]], float),
+                 np.array([[50, 50, 16, 3, 0.0], [120, 40, 20, 4, 1.0]]), 0.0, 2.0)])
+def test_prism_triangles_are_counted_exactly_without_meshing(prism):
+    for tolerance in (0.05, 0.01):
+        assert mesh.prism_triangles(prism, tolerance) == len(mesh.mesh_prism(prism, tolerance).faces)
+
+
+def _scaled_sphere(tmp_path: Path, tolerance_mm: float) -> Path:
+    """The Luneburg recipe scaled to Ø15.9 m (its five shells ~2 M triangles each at 0.05 mm)."""
+    spec = yaml.safe_load((ROOT / "recipes" / "luneburg-classic-5.yaml").read_text())
+    spec["design"]["diameter_mm"] = 15900
+    spec["outputs"]["mesh_tolerance_mm"] = tolerance_mm
+    path = tmp_path / "big.yaml"
+    path.write_text(yaml.safe_dump(spec))
+    return path
+
+
+def test_validate_counts_the_triangles_a_build_would_mesh(tmp_path):
+    """``validate`` builds the solid model in memory and estimates every part's STL: a warning above
+    5 M triangles in all, a one-line refusal (exit 2, naming the part and the field) above 20 M a part
+    — the same rules ``build`` applies before it meshes."""
+    done = CliRunner().invoke(app, ["validate", str(_scaled_sphere(tmp_path, 0.05))])
+    assert done.exit_code == 0, done.output
+    assert "stl_triangles_count" in done.output and "warning" in done.output
+    done = CliRunner().invoke(app, ["validate", str(_scaled_sphere(tmp_path, 0.001))])
+    assert done.exit_code == 2
+    assert done.output.count("\n") == 1 and "outputs.mesh_tolerance_mm: part shell-" in done.output
+    assert list(tmp_path.iterdir()) == [tmp_path / "big.yaml"]             # nothing written

@@ -257,6 +257,25 @@ def estimate_triangles(shape: Shape, tolerance_mm: float) -> int:
     return int(BREPMESH_DENSITY * total)
 
 
+def prism_triangles(prism: SlottedPrism | RingPrism, tolerance_mm: float) -> int:
+    """Triangles :func:`mesh_prism` makes on ``prism``, counted without meshing: a ring 8 per chord
+    (a disc 4); a plate of m boundary vertices and h slots m + 2h − 2 on each face (a polygon with
+    holes) and two per wall quad."""
+    if isinstance(prism, RingPrism):
+        return (8 if prism.r_inner_mm > 0 else 4) * 2 * _arc_chords(prism.r_outer_mm, tolerance_mm)
+    vertices, holes = len(prism.outer_mm), len(prism.slots)
+    if holes:
+        radius = float(np.min(prism.slots[:, 3])) / 2
+        vertices += holes * 2 * (_arc_chords(radius, tolerance_mm) + 1)
+    return 2 * (vertices + 2 * holes - 2) + 2 * vertices
+
+
+def part_triangles(shape: Shape, tolerance_mm: float, prism: SlottedPrism | RingPrism | None = None) -> int:
+    """A part's STL triangles at ``tolerance_mm``, estimated before meshing (the count of its prism,
+    else :func:`estimate_triangles`)."""
+    return prism_triangles(prism, tolerance_mm) if prism is not None else estimate_triangles(shape, tolerance_mm)
+
+
 def _wire_count(face) -> int:
     walk, count = TopExp_Explorer(face, TopAbs_WIRE), 0
     while walk.More():

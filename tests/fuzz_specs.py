@@ -25,7 +25,7 @@ RECIPES = sorted((ROOT / "recipes").glob("*.yaml"))
 EXAMPLES = int(os.environ.get("ANTENNA_FUZZ_EXAMPLES", "40"))        # long mode: e.g. 3000
 BUILD_EXAMPLES = int(os.environ.get("ANTENNA_FUZZ_BUILD_EXAMPLES", "3"))
 LONG = EXAMPLES > 40
-TIMEOUT_S = 60                    # one validate; a hang is an outcome of its own
+TIMEOUT_S = 60                    # one validate's CPU seconds; a hang is an outcome of its own
 TALLY: Counter = Counter()        # outcome → count, over the session (printed by the test's teardown)
 
 FUZZ_SETTINGS = settings(max_examples=EXAMPLES, deadline=None, database=None, derandomize=not LONG,
@@ -134,7 +134,8 @@ def mutated_spec(draw) -> bytes:
 
 
 class Hang(BaseException):
-    """Raised by the alarm: a case that took longer than TIMEOUT_S (never caught by the code under test)."""
+    """Raised by the alarms: a case over its CPU time or ten times that of wall time (never caught by the
+    code under test)."""
 
 
 def _alarm(*_):
@@ -146,16 +147,21 @@ LINE = re.compile(r"^[^\s:][^\n]*?: \S")          # where (a field, "line N, col
 
 def outcome(args: list[str], spec_path: Path, timeout_s: int = TIMEOUT_S) -> tuple[str, str]:
     """("valid" | "built" | "clean" | "traceback" | "unclean" | "hang", output) of ``make-lens ARGS``.
-    clean: exit 2 and every line ``SPEC: field-or-line: rule``, nothing else (no warning either)."""
-    previous = signal.signal(signal.SIGALRM, _alarm)
-    signal.alarm(timeout_s)
+    clean: exit 2 and every line ``SPEC: field-or-line: rule``, nothing else (no warning either).
+    hang: over ``timeout_s`` of this process's CPU time (work that does not end: a busy machine slows
+    the wall clock, not the work) or over ten times that of wall time (a blocked read)."""
+    previous = {sig: signal.signal(sig, _alarm) for sig in (signal.SIGALRM, signal.SIGPROF)}
+    signal.setitimer(signal.ITIMER_PROF, timeout_s)
+    signal.alarm(10 * timeout_s)
     try:
         result = CliRunner().invoke(app, args)
     except Hang:
         return "hang", ""
     finally:
         signal.alarm(0)
-        signal.signal(signal.SIGALRM, previous)
+        signal.setitimer(signal.ITIMER_PROF, 0)
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
     out = result.output
     if result.exception is not None and not isinstance(result.exception, SystemExit):
         return "traceback", f"{type(result.exception).__name__}: {result.exception}"

@@ -92,8 +92,8 @@ def test_feet_are_straight_cuts_and_dowel_holes_go_to_drilling_files(taper):
 
 
 def test_a_disc_in_board_strips_is_cut_to_its_cone_as_a_glued_blank(tmp_path):
-    spec = _spec("xps-collimator-1.1m.yaml", sheet_thickness_mm=100, edge="taper",
-                 cam={"travel_mm": [1600, 1600], "tower_span_mm": 200})
+    """The Ø1.1 m lens on the built-in 4-axis profile: its towers set as close as the foam allows."""
+    spec = _spec("xps-collimator-1.1m.yaml", sheet_thickness_mm=100, edge="taper", joining="dowels", cam={})
     plan = prepare(spec)
     split = {p.sheet_index for p in plan.fab.pieces if p.label.endswith("-a")}
     assert split                                                            # strips on a 600 mm board
@@ -104,6 +104,14 @@ def test_a_disc_in_board_strips_is_cut_to_its_cone_as_a_glued_blank(tmp_path):
     assert findings and all(f.ok for f in findings), [f for f in findings if not f.ok][:3]
     assert len(_surface_errors(findings)) == plan.layup.count
     assert max(_surface_errors(findings)) <= CAM_TOL_MM
+    assert {e["tower_span_mm"] for e in manifest["cam"] if "faces" in e} == {200.0}   # 100 mm foam + 2 × 50
+
+
+def test_a_piece_longer_than_a_fixed_bow_is_refused_by_name():
+    bow = {"kind": "hotwire", "axes": "XYUV", "span_mm": 40, "travel_mm": [1500, 1500]}
+    spec = _spec("xps-collimator-0.5m-taper.yaml", cam={"machine": bow})
+    with pytest.raises(DesignError, match=r"fabrication.cam: part sheet-\d\d\S*: 50 mm of foam does not fit .*span 40"):
+        prepare(spec)
 
 
 def test_a_piece_beyond_the_travel_is_refused_by_name():

@@ -22,6 +22,7 @@ from antenna_cad.cam.router import board_program
 from antenna_cad.synthesis.checks import DesignError
 
 MARGIN_MM = 10.0
+TOWER_GAP_MM = 50.0         # foam clear of each tower when the towers are set close
 DRILL_CLEARANCE_MM = 5.0
 
 
@@ -60,21 +61,29 @@ def _face_path(cut: RuledCut, lead_mm: float) -> tuple[np.ndarray, np.ndarray]:
     return path(cut.front), path(cut.back)
 
 
+def span_of(thickness_mm: float, m: Machine, cam) -> float:
+    """The towers' span for a cut: the spec's ``tower_span_mm``, else as close as the foam allows
+    (``TOWER_GAP_MM`` each side) on a machine with movable towers, else its fixed bow."""
+    if cam.tower_span_mm is not None or not m.min_span_mm:
+        return m.span_mm
+    return float(min(m.span_mm, max(m.min_span_mm, thickness_mm + 2 * TOWER_GAP_MM)))
+
+
 def place_cut(cut: RuledCut, m: Machine, cam) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, float,
-                                                       tuple[float, float]]:
-    """(xy, uv, front, back, front_wire_mm, center) of a cut placed on machine ``m``; raises
+                                                       tuple[float, float], float]:
+    """(xy, uv, front, back, front_wire_mm, center, span) of a cut placed on machine ``m``; raises
     DesignError naming the part when it does not fit the span or the travel."""
-    t = cut.thickness_mm
-    if t >= m.span_mm:
+    t, span = cut.thickness_mm, span_of(cut.thickness_mm, m, cam)
+    if t >= span:
         raise DesignError("fabrication.cam", f"part {cut.part}: {t:g} mm of foam does not fit between the "
-                          f"towers of {m.name} (span {m.span_mm:g} mm)")
-    w0 = (m.span_mm - t) / 2
+                          f"towers of {m.name} (span {span:g} mm)")
+    w0 = (span - t) / 2
     front, back = _face_path(cut, cam.lead_in_mm)
     top = max(front[:, 1].max(), back[:, 1].max()) + cam.safe_height_mm    # the wire clear of the foam
     lift = np.array([0.0, top - min(front[0, 1], back[0, 1])])
     front = np.concatenate([[front[0] + lift], front, [front[-1] + lift]])
     back = np.concatenate([[back[0] + lift], back, [back[-1] + lift]])
-    xy, uv = tower_paths_open(front, back, t, w0, m.span_mm)
+    xy, uv = tower_paths_open(front, back, t, w0, span)
     both = np.concatenate([xy, uv])
     center = (float(MARGIN_MM - both[:, 0].min()), float(MARGIN_MM - both[:, 1].min()))
     xy, uv = xy + center, uv + center
@@ -82,7 +91,7 @@ def place_cut(cut: RuledCut, m: Machine, cam) -> tuple[np.ndarray, np.ndarray, n
     if reach[0] > m.travel_mm[0] or reach[1] > m.travel_mm[1]:
         raise DesignError("fabrication.cam", f"part {cut.part} needs {reach[0]:.0f} × {reach[1]:.0f} mm of tower "
                           f"travel; {m.name} has {m.travel_mm[0]:g} × {m.travel_mm[1]:g} mm")
-    return xy, uv, front, back, w0, center
+    return xy, uv, front, back, w0, center, span
 
 
 def tower_paths_open(front: np.ndarray, back: np.ndarray, t: float, w0: float, span: float):
@@ -92,11 +101,11 @@ def tower_paths_open(front: np.ndarray, back: np.ndarray, t: float, w0: float, s
 
 
 def _hotwire_file(cut: RuledCut, m: Machine, cam, material: str) -> tuple[str, dict, np.ndarray, np.ndarray]:
-    xy, uv, front, back, w0, center = place_cut(cut, m, cam)
+    xy, uv, front, back, w0, center, span = place_cut(cut, m, cam)
     name = f"cam/{cut.part}.gcode"
     kind = "cone (taper-cut rim)" if cut.cone else "straight (vertical edges, XY = UV)"
     header = [f"antenna_cad hot-wire cut of {cut.part}: {kind}, {material}",
-              f"machine {m.name}, axes {m.axes}, tower span {m.span_mm:g} mm",
+              f"machine {m.name}, axes {m.axes}, towers set {span:g} mm apart",
               f"foam faces: z {cut.z_front_mm:g} mm (feed side) at {w0:g} mm, z {cut.z_back_mm:g} mm at "
               f"{w0 + cut.thickness_mm:g} mm from the first tower along the wire",
               f"lens axis at X {center[0]:.3f} Y {center[1]:.3f} (first tower); sheet +y up",
@@ -106,7 +115,7 @@ def _hotwire_file(cut: RuledCut, m: Machine, cam, material: str) -> tuple[str, d
                            cam.heat_power, m.dwell_s)
     text = prog.text.replace("(antenna_cad hot-wire", f"(estimated cut time {prog.seconds:.0f} s)\n(antenna_cad hot-wire", 1)
     entry = {"file": name, "part": cut.part, "machine": m.name, "axes": m.axes, "kerf_mm": cut.kerf_mm,
-             "feed_mm_min": cam.feed_mm_min, "seconds": round(float(prog.seconds), 1), "tower_span_mm": m.span_mm,
+             "feed_mm_min": cam.feed_mm_min, "seconds": round(float(prog.seconds), 1), "tower_span_mm": span,
              "faces": [{"z_mm": cut.z_front_mm, "wire_mm": w0},
                        {"z_mm": cut.z_back_mm, "wire_mm": w0 + cut.thickness_mm}],
              "center_mm": [round(center[0], 6), round(center[1], 6)]}

@@ -31,6 +31,8 @@ class MachineSpec(StrictModel):
     heat_on: str = Field("M3 S{power}", pattern=r"^[A-Z0-9 .{}\n]*$")
     heat_off: str = Field("M5", pattern=r"^[A-Z0-9 .\n]*$")
     dwell_s: float = Field(2.0, ge=0, le=600)
+    min_span_mm: float = Field(0.0, ge=0, le=10000, description="towers movable down to this span (the plan "
+                               "sets them as close as the foam allows); 0: a fixed bow of span_mm")
 
 
 MachineRef = Annotated[
@@ -64,7 +66,8 @@ class CamSpec(StrictModel):
         None, description="G93 inverse time (synchronized towers) or G94 units per minute; default: the profile's")
     heat_power: float = Field(100.0, ge=0, le=100000, description="the {power} of the heat-on template")
     dwell_s: float | None = Field(None, ge=0, le=600)
-    tower_span_mm: float | None = Field(None, ge=10, le=10000)
+    tower_span_mm: float | None = Field(None, ge=10, le=10000, description="set the towers this far apart for "
+                                        "every cut (default: as close as the foam allows, on movable towers)")
     travel_mm: tuple[Annotated[float, Field(ge=1, le=20000)], Annotated[float, Field(ge=1, le=20000)]] | None = None
     foam_grade: str | None = Field(None, pattern=r"^[a-z0-9_-]+$", description="kerf table key; default the material name")
     kerf_table: dict[Annotated[str, Field(pattern=r"^[a-z0-9_-]+$")], KerfTable] = Field(

@@ -211,3 +211,23 @@ def test_box_panels_get_one_router_file_per_board(taper):
     assert np.any(np.isclose(m[:, 2], -depth + spec.fabrication.cam.router.tab_height_mm + 0.3))   # tabs
     holes = [line for line in text.splitlines() if line.startswith("G81")]
     assert holes and all(f"Z{-depth:g}" in line for line in holes)
+
+
+def test_each_face_of_a_cone_is_compensated_by_the_kerf_at_its_own_speed(taper):
+    """Hand computation on sheet-03 with the built-in xps table (100 → 1.6, 300 → 0.9 mm) at 300 mm/min:
+    the back (larger) face runs at the feed, the front at feed × its path radius / the back's."""
+    from antenna_cad.export.check_cam import _faces
+    spec, plan, folder, manifest = taper
+    sheet = next(s for s in plan.layup.sheets if s.label == "sheet-03")
+    t, r0, r1 = sheet.thickness_mm, sheet.front_radius_mm, sheet.radius_mm
+    sec = np.hypot(t, r1 - r0) / t
+    k1 = 0.9
+    v0 = 300 * (r0 + k1 / 2 * sec) / (r1 + k1 / 2 * sec)
+    assert 100 < v0 < 300
+    k0 = 1.6 + (v0 - 100) * (0.9 - 1.6) / 200
+    entry = next(e for e in manifest["cam"] if e["part"] == "sheet-03")
+    assert [f["kerf_mm"] for f in entry["faces"]] == pytest.approx([k0, k1], abs=1e-4)
+    moves, cutting = parse_moves((folder / entry["file"]).read_text(), entry["axes"])
+    front, back = _faces(entry, [p for p, g in zip(moves, cutting) if g][1:-2])
+    assert np.hypot(*front.T) == pytest.approx(r0 + k0 / 2 * sec, abs=2e-3)
+    assert np.hypot(*back.T) == pytest.approx(r1 + k1 / 2 * sec, abs=2e-3)

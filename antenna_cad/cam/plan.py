@@ -45,11 +45,26 @@ def machine_of(cam) -> Machine:
                    dwell_s=m.dwell_s if cam.dwell_s is None else cam.dwell_s)
 
 
-def kerf_of(cam, material_name: str) -> float:
-    """Kerf at the spec's feed from the grade's table (the spec's, else the built-in one)."""
+def kerf_table_of(cam, material_name: str) -> tuple[tuple[float, float], ...]:
+    """The grade's kerf table (the spec's, else the built-in one)."""
     grade = cam.foam_grade or material_name
-    table = cam.kerf_table.get(grade) or DEFAULT_KERF.get(grade) or DEFAULT_KERF[FALLBACK_GRADE]
-    return kerf_at(table, cam.feed_mm_min)
+    return cam.kerf_table.get(grade) or DEFAULT_KERF.get(grade) or DEFAULT_KERF[FALLBACK_GRADE]
+
+
+def kerf_of(cam, material_name: str) -> float:
+    """Kerf at the spec's feed."""
+    return kerf_at(kerf_table_of(cam, material_name), cam.feed_mm_min)
+
+
+def face_kerfs(sheet, table, feed_mm_min: float) -> tuple[float, float]:
+    """(front, back) kerf of a taper cut: the faster face moves at the feed, the other at the feed times
+    the ratio of their path radii (both ends sweep the same angle per move), each face's kerf the
+    table's at its own speed (FreeCAD FoamCut scales kerf with speed). The radii are the paths
+    compensated by the feed's kerf (one step: the correction of the radii is a fraction of a mm)."""
+    t, r0, r1 = sheet.thickness_mm, sheet.front_radius_mm, sheet.radius_mm
+    g = kerf_at(table, feed_mm_min) / 2 * np.hypot(t, r1 - r0) / t
+    fast = max(r0 + g, r1 + g)
+    return kerf_at(table, feed_mm_min * (r0 + g) / fast), kerf_at(table, feed_mm_min * (r1 + g) / fast)
 
 
 def _face_path(cut: RuledCut, lead_mm: float) -> tuple[np.ndarray, np.ndarray]:
@@ -109,15 +124,16 @@ def _hotwire_file(cut: RuledCut, m: Machine, cam, material: str) -> tuple[str, d
               f"foam faces: z {cut.z_front_mm:g} mm (feed side) at {w0:g} mm, z {cut.z_back_mm:g} mm at "
               f"{w0 + cut.thickness_mm:g} mm from the first tower along the wire",
               f"lens axis at X {center[0]:.3f} Y {center[1]:.3f} (first tower); sheet +y up",
-              f"kerf {cut.kerf_mm:g} mm (compensated), feed {cam.feed_mm_min:g} mm/min at the faster face",
+              f"kerf {cut.kerfs[0]:.3f} / {cut.kerfs[1]:.3f} mm at the two faces' speeds (compensated), feed "
+              f"{cam.feed_mm_min:g} mm/min at the faster face",
               "dowel holes are not cut here: see the drilling file"]
     prog = hotwire_program(header, m, m.axes, cam.units, m.feed_mode, [(xy, uv, front, back, cam.feed_mm_min)],
                            cam.heat_power, m.dwell_s)
     text = prog.text.replace("(antenna_cad hot-wire", f"(estimated cut time {prog.seconds:.0f} s)\n(antenna_cad hot-wire", 1)
     entry = {"file": name, "part": cut.part, "machine": m.name, "axes": m.axes, "kerf_mm": cut.kerf_mm,
              "feed_mm_min": cam.feed_mm_min, "seconds": round(float(prog.seconds), 1), "tower_span_mm": span,
-             "faces": [{"z_mm": cut.z_front_mm, "wire_mm": w0},
-                       {"z_mm": cut.z_back_mm, "wire_mm": w0 + cut.thickness_mm}],
+             "faces": [{"z_mm": cut.z_front_mm, "wire_mm": w0, "kerf_mm": round(cut.kerfs[0], 4)},
+                       {"z_mm": cut.z_back_mm, "wire_mm": w0 + cut.thickness_mm, "kerf_mm": round(cut.kerfs[1], 4)}],
              "center_mm": [round(center[0], 6), round(center[1], 6)]}
     return text, entry, xy, uv
 
@@ -159,14 +175,16 @@ def plan_cam(layup, pieces, cam, material: str, panels=(), placements=None) -> C
     """Hot-wire and drilling programs of every piece of ``layup`` (``pieces``: the fabrication plan's),
     and router programs of the box ``panels`` per board (``placements``: the nesting)."""
     m = machine_of(cam)
-    kerf = kerf_of(cam, material)
+    table = kerf_table_of(cam, material)
+    kerf = kerf_at(table, cam.feed_mm_min)
     sheets = sorted(layup.sheets, key=lambda s: s.index, reverse=cam.order == "flat_first")
     files, entries, cuts = {}, [], []
     for sheet in sheets:
         own = sorted((p for p in pieces if p.sheet_index == sheet.index), key=lambda p: p.label)
         blank = sheet.tapered and not any(p.label == sheet.label for p in own)   # the disc is in board strips
         for piece in own:
-            text, entry, xy, uv = _hotwire_file(piece_cut(piece, sheet, kerf), m, cam, material)
+            text, entry, xy, uv = _hotwire_file(piece_cut(piece, sheet, kerf, face_kerfs(sheet, table, cam.feed_mm_min)),
+                                                m, cam, material)
             files[entry["file"]] = text
             entries.append(entry)
             cuts.append((entry, xy, uv))
@@ -175,7 +193,8 @@ def plan_cam(layup, pieces, cam, material: str, panels=(), placements=None) -> C
                 files[drill[1]["file"]] = drill[0]
                 entries.append(drill[1])
         if blank:                                   # the glued strips cut to the cone
-            text, entry, xy, uv = _hotwire_file(cone_cut(sheet, kerf, f"{sheet.label}-blank"), m, cam, material)
+            text, entry, xy, uv = _hotwire_file(cone_cut(sheet, kerf, f"{sheet.label}-blank",
+                                                         face_kerfs(sheet, table, cam.feed_mm_min)), m, cam, material)
             files[entry["file"]] = text
             entries.append(entry)
             cuts.append((entry, xy, uv))

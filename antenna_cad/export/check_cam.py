@@ -77,18 +77,20 @@ def _profile(manifest: dict):
 
 
 def cone_error_mm(entry: dict, front: np.ndarray, back: np.ndarray, radius_at) -> float:
-    """Largest |distance − kerf/2| between the wire and the cone through r(z) at the two faces, in the
-    meridional plane, over the rulings on the cone and the midpoints of chords between them."""
+    """Largest |distance − kerf/2| between the wire and the cone through r(z) at the two faces (each
+    face's kerf, ``faces[].kerf_mm``), in the meridional plane, over the rulings on the cone and the midpoints of chords between them."""
     z0, z1 = (f["z_mm"] for f in entry["faces"])
     a, b = np.array([radius_at(z0), z0]), np.array([radius_at(z1), z1])
     u = (b - a) / np.linalg.norm(b - a)
     normal = np.array([u[1], -u[0]])                     # outward (+r) side of the cone line
     vertical = np.all(np.abs(front - back) < 1e-6, axis=1) & (np.abs(a[0] - b[0]) > 1e-6)
 
+    kerfs = [f.get("kerf_mm", entry["kerf_mm"]) for f in entry["faces"]]     # each face's own kerf
+
     def dist(p0, p1):
         rho = np.stack([np.hypot(*p0.T), np.hypot(*p1.T)])
-        return np.abs(np.stack([(np.stack([rho[i], np.full(len(p0), z)], -1) - a) @ normal
-                                for i, z in enumerate((z0, z1))]) - entry["kerf_mm"] / 2).max(axis=0)
+        return np.abs(np.stack([(np.stack([rho[i], np.full(len(p0), z)], -1) - a) @ normal - kerfs[i] / 2
+                                for i, z in enumerate((z0, z1))])).max(axis=0)
     on = ~vertical
     err = dist(front[on], back[on])
     pair = on[:-1] & on[1:]

@@ -1,6 +1,7 @@
 """The ``fabrication.cam`` block: the machine that cuts the sheets and how (DESIGN.md ``cam/``).
 
-A built-in profile by name (``hotwire-4axis`` XYUV, ``hotwire-grbl`` XYZA, ``router-3axis``) or an
+A built-in profile by name (``hotwire-4axis`` XYUV, ``hotwire-grbl`` XYZA, ``router-3axis``), a
+profile file (put inline when the spec is loaded, :mod:`antenna_cad.spec.machine_file`) or an
 inline profile; any profile value can be overridden here. Kerf: a table of (feed mm/min, kerf mm)
 per foam grade, interpolated at the feed (built-in tables for xps and eps).
 """
@@ -9,7 +10,7 @@ from __future__ import annotations
 
 from typing import Annotated, Literal, Union
 
-from pydantic import Discriminator, Field, Tag, field_validator, model_validator
+from pydantic import AfterValidator, Discriminator, Field, Tag, field_validator, model_validator
 
 from antenna_cad.cam.machines import BUILT_IN
 from antenna_cad.spec.common import StrictModel
@@ -28,17 +29,28 @@ class MachineSpec(StrictModel):
     span_mm: float = Field(0.0, ge=0, le=10000)
     travel_mm: tuple[Annotated[float, Field(ge=1, le=20000)], Annotated[float, Field(ge=1, le=20000)]]
     rapid_mm_min: float = Field(1000.0, ge=1, le=100000)
-    heat_on: str = Field("M3 S{power}", pattern=r"^[A-Z0-9 .{}\n]*$")
+    heat_on: str = Field("M3 S{power}", pattern=r"^([A-Z0-9 .\n]|\{power\})*$",
+                         description="G-code line(s) switching the wire's heat on; {power}: cam.heat_power")
     heat_off: str = Field("M5", pattern=r"^[A-Z0-9 .\n]*$")
     dwell_s: float = Field(2.0, ge=0, le=600)
     min_span_mm: float = Field(0.0, ge=0, le=10000, description="towers movable down to this span (the plan "
                                "sets them as close as the foam allows); 0: a fixed bow of span_mm")
 
 
+def _unread_file(v: str) -> str:
+    raise ValueError(f"fabrication.cam.machine: the profile file {v} is read when the spec is loaded from its file "
+                     "(make-lens SPEC), not from a document")
+
+
+ProfileFile = Annotated[str, Field(pattern=r"\.ya?ml$", description="a profile file (YAML, the keys of an inline "
+                                   "profile), relative to the spec's folder"), AfterValidator(_unread_file)]
 MachineRef = Annotated[
-    Union[Annotated[Literal[tuple(BUILT_IN)], Tag("name")], Annotated[MachineSpec, Tag("inline")]],
-    Discriminator(lambda v: "name" if isinstance(v, str) else "inline"),
-    Field(description="a built-in profile name, or an inline profile")]
+    Union[Annotated[Literal[tuple(BUILT_IN)], Tag("builtin")], Annotated[ProfileFile, Tag("profile_file")],
+          Annotated[MachineSpec, Tag("inline")]],
+    Discriminator(lambda v: ("profile_file" if v.lower().endswith((".yaml", ".yml")) else "builtin") if isinstance(v, str)
+                  else "inline"),
+    Field(description="a built-in profile name, a profile file (.yaml, relative to the spec's folder), or an "
+          "inline profile")]
 
 
 class RouterSpec(StrictModel):

@@ -18,7 +18,7 @@ from shapely.geometry import Point, Polygon
 from antenna_cad.cam.gcode import drill_program, hotwire_program
 from antenna_cad.cam.hotwire import RuledCut, cone_cut, piece_cut, tower_paths
 from antenna_cad.cam.machines import BUILT_IN, DEFAULT_KERF, FALLBACK_GRADE, Machine, kerf_at
-from antenna_cad.cam.router import board_program
+from antenna_cad.cam.boards import panel_parts, router_files
 from antenna_cad.synthesis.checks import DesignError
 
 MARGIN_MM = 10.0
@@ -154,23 +154,6 @@ def _drill_file(piece, sheet, cam) -> tuple[str, dict] | None:
     return prog.text, entry
 
 
-def _router_files(panels, placements, cam) -> tuple[dict[str, str], list[dict]]:
-    """One router program per board the box panels are nested on."""
-    boards: dict[str, list] = {}
-    for panel in panels:
-        boards.setdefault(placements[panel.label].board_id, []).append((panel, placements[panel.label]))
-    files, entries = {}, []
-    router = BUILT_IN["router-3axis"]
-    for board_id, parts in sorted(boards.items()):
-        prog = board_program(board_id, parts, cam.router)
-        name = f"cam/board-{board_id}.gcode"
-        files[name] = prog.text
-        entries.append({"file": name, "part": ", ".join(p.label for p, _ in parts), "machine": router.name,
-                        "axes": router.axes, "kerf_mm": cam.router.tool_diameter_mm,
-                        "feed_mm_min": cam.router.feed_mm_min, "seconds": round(float(prog.seconds), 1)})
-    return files, entries
-
-
 def plan_cam(layup, pieces, cam, material: str, panels=(), placements=None) -> CamPlan:
     """Hot-wire and drilling programs of every piece of ``layup`` (``pieces``: the fabrication plan's),
     and router programs of the box ``panels`` per board (``placements``: the nesting)."""
@@ -199,11 +182,21 @@ def plan_cam(layup, pieces, cam, material: str, panels=(), placements=None) -> C
             entries.append(entry)
             cuts.append((entry, xy, uv))
     if cam.router is not None and panels:
-        router_files, router_entries = _router_files(panels, placements, cam)
-        files |= router_files
-        entries += router_entries
+        board_files, board_entries = router_files(panel_parts(panels, placements), cam.router, BUILT_IN["router-3axis"])
+        files |= board_files
+        entries += board_entries
+    files["cam/cut-order.csv"] = cut_order_csv(entries)
+    return CamPlan(files, tuple(entries), tuple(cuts))
+
+
+def plan_board_cam(boards, router) -> CamPlan:
+    """Router programs only (``boards``: board → its parts, :mod:`antenna_cad.cam.boards`)."""
+    files, entries = router_files(boards, router, BUILT_IN["router-3axis"])
+    return CamPlan(files | {"cam/cut-order.csv": cut_order_csv(entries)}, tuple(entries), ())
+
+
+def cut_order_csv(entries: list[dict]) -> str:
     rows = ["order,file,part,machine,seconds"] + [f"{i},{e['file']},\"{e['part']}\",{e['machine']},{e['seconds']:g}"
                                                   for i, e in enumerate(entries, 1)]
     rows.append(f",total,,,{sum(e['seconds'] for e in entries):.1f}")
-    files["cam/cut-order.csv"] = "\n".join(rows) + "\n"
-    return CamPlan(files, tuple(entries), tuple(cuts))
+    return "\n".join(rows) + "\n"

@@ -85,9 +85,9 @@ def ring_parts(fab, tool_diameter_mm: float) -> dict[str, list[BoardPart]]:
                 other_side.append(xy)
             else:
                 drills.append((*xy, piece.thickness_mm + THROUGH_MM if hole.face == "through" else hole.depth_mm))
-        label = piece.label + (f" (drill from the bottom face: {', '.join(f'X{x:.2f} Y{y:.2f}' for x, y in other_side)})"
-                               if other_side else "")
-        part = BoardPart(label, _on_board(outline, frame, w, h, pl), piece.thickness_mm, tuple(drills))
+        note = ("drill from the bottom face: " + ", ".join(f"X{x:.2f} Y{y:.2f}" for x, y in other_side)
+                if other_side else "")
+        part = BoardPart(piece.label, _on_board(outline, frame, w, h, pl), piece.thickness_mm, tuple(drills), note)
         boards.setdefault(pl.board_id, []).append((piece.polygon.area, part))
     return {b: [p for _, p in sorted(items, key=lambda t: t[0])] for b, items in boards.items()}
 
@@ -105,7 +105,7 @@ def router_files(boards: dict[str, list[BoardPart]], router, machine) -> tuple[d
         prog = board_program(board_id, parts, router)
         name = f"cam/board-{board_id}.gcode"
         files[name] = prog.text
-        entries.append({"file": name, "part": ", ".join(p.label.split(" (")[0] for p in parts),
+        entries.append({"file": name, "part": ", ".join(p.label for p in parts),
                         "machine": machine.name, "axes": machine.axes, "kerf_mm": router.tool_diameter_mm,
                         "feed_mm_min": router.feed_mm_min, "seconds": round(float(prog.seconds), 1)})
     return files, entries

@@ -37,6 +37,7 @@ class BoardPart:
     polygon: Polygon
     thickness_mm: float
     drills: tuple[tuple[float, float, float], ...] = ()
+    note: str = ""                  # for the operator, in the file
 
 
 def tool_paths(part: BoardPart, radius_mm: float) -> list[tuple[np.ndarray, bool]]:
@@ -115,7 +116,7 @@ def board_program(board_id: str, parts: list[BoardPart], router) -> Program:
         lines.append(f"{g} X{_num(x)} Y{_num(y)} Z{_num(z)}" + (f" F{_num(f)}" if f else ""))
 
     for part in parts:
-        lines.append(f"({part.label})")
+        lines.append(f"({part.label}{'; ' + part.note if part.note else ''})")
         for x, y, depth in part.drills:
             lines.append(f"G81 X{_num(x)} Y{_num(y)} Z{_num(-depth)} R{_num(SAFE_Z_MM)} F{_num(router.plunge_mm_min)}")
             seconds += 60 * (float(np.hypot(x - at[0], y - at[1])) / router.rapid_mm_min

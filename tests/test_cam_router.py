@@ -97,3 +97,37 @@ def test_a_move_shifted_by_a_tenth_of_a_millimetre_fails_the_check(rings):
 def test_a_tool_wider_than_the_nesting_gap_is_refused_by_field():
     with pytest.raises(DesignError, match=r"fabrication.cam.router.tool_diameter_mm.*Ø12 mm tool"):
         prepare(_spec(router={"tool_diameter_mm": 12}))
+
+
+def _slot_spec(**router):
+    data = yaml.safe_load((ROOT / "recipes/x-slot-array-ellipse.yaml").read_text())
+    data["fabrication"]["router"] = {"tool_diameter_mm": 1.0, "pass_depth_mm": 0.5, "feed_mm_min": 600,
+                                     "plunge_mm_min": 100, "ramp_length_mm": 5, "tab_width_mm": 2,
+                                     "tab_height_mm": 0.4} | router
+    data["outputs"] = {"step": False, "stl": False, "templates": False}
+    return parse_spec(data)
+
+
+def test_slot_array_lids_and_plates_are_milled_each_from_its_plate(tmp_path):
+    """Every slotted lid and beam-former plate gets a file; every slot and coupling slot is profiled
+    inside (one inner contour each), and the check holds each file to its drawing's cut lines."""
+    spec = _slot_spec()
+    plan = prepare(spec)
+    names = {d.label for d in plan.fab.drawings if d.label.startswith(("top-", "plate-"))}
+    entries = list(plan.fab.cam.entries)
+    assert {e["file"] for e in entries if e["file"].startswith("cam/board-")} == {f"cam/board-{n}.gcode" for n in names}
+    for name, text in plan.fab.files.items():
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text(text)
+    findings = check_cam(tmp_path, {"spec": json.loads(spec.model_dump_json()), "cam": entries})
+    assert len(findings) == len(names) and all(f.ok for f in findings), [f for f in findings if not f.ok][:3]
+    lid = next(d for d in plan.fab.drawings if d.label == "top-00")
+    text = (tmp_path / "cam/board-top-00.gcode").read_text()
+    plunges = [line for line in text.splitlines() if line.startswith("G1 ") and line.endswith("Z0 F100")]
+    assert len(plunges) == len(lid.cut)                  # one contour per slot, plus the outline
+
+
+def test_a_slot_narrower_than_the_tool_is_refused_by_part_and_field():
+    with pytest.raises(DesignError, match=r"fabrication.router.tool_diameter_mm: part top-\d\d: a hole narrower "
+                                          r"than the Ø2 mm tool"):
+        prepare(_slot_spec(tool_diameter_mm=2.0))

@@ -1,6 +1,7 @@
 """The flat parts as they lie on their boards (the cut list's nesting), for the router: box panels
-(rectangles with face screw holes) and Luneburg ring pieces and stand feet (rings, discs, ring
-sectors, cradles with registration holes); one router program per board.
+(rectangles with face screw holes), Luneburg ring pieces and stand feet (rings, discs, ring
+sectors, cradles with registration holes), and slot-array lids and plates (each on its own plate,
+slots and coupling slots profiled inside); one router program per board.
 
 Placement (the cut list's): a part's bounding box has its lower-left corner at the placement's
 (x, y); a ring sector is first turned so its bisector points to +Y (the nesting orientation), and
@@ -92,17 +93,34 @@ def ring_parts(fab, tool_diameter_mm: float) -> dict[str, list[BoardPart]]:
     return {b: [p for _, p in sorted(items, key=lambda t: t[0])] for b, items in boards.items()}
 
 
+def drawing_parts(drawings, prefixes: tuple[str, ...], thickness_mm: float) -> dict[str, list[BoardPart]]:
+    """Parts milled each from its own plate (slot-array lids and beam-former plates): the 1:1
+    drawing's cut lines (the largest ring the outline, the rings inside it its holes: slots,
+    coupling slots), the part's lower-left corner ``NEST_SPACING_MM`` in from the plate's."""
+    boards = {}
+    for d in drawings:
+        if not d.label.startswith(prefixes) or not d.cut:
+            continue
+        rings = sorted((Polygon(r) for r in d.cut if len(r) >= 3), key=lambda r: -r.area)
+        part = Polygon(rings[0].exterior, [r.exterior for r in rings[1:] if rings[0].contains(r)])
+        x0, y0, _, _ = part.bounds
+        boards[d.label] = [BoardPart(d.label, affinity.translate(part, NEST_SPACING_MM - x0, NEST_SPACING_MM - y0),
+                                     thickness_mm)]
+    return boards
+
+
 def _is_dowel(ring, holes) -> bool:
     """A polygon hole that is one of the piece's dowel holes (drilled, not profiled)."""
     c = Polygon(ring).centroid
     return any(math.hypot(c.x - h.x_mm, c.y - h.y_mm) < 1e-3 for h in holes)
 
 
-def router_files(boards: dict[str, list[BoardPart]], router, machine) -> tuple[dict[str, str], list[dict]]:
-    """One router program per board, and its manifest entry."""
+def router_files(boards: dict[str, list[BoardPart]], router, machine, field: str = "fabrication.cam.router"
+                 ) -> tuple[dict[str, str], list[dict]]:
+    """One router program per board, and its manifest entry (``field``: where the spec sets ``router``)."""
     files, entries = {}, []
     for board_id, parts in sorted(boards.items()):
-        prog = board_program(board_id, parts, router)
+        prog = board_program(board_id, parts, router, field)
         name = f"cam/board-{board_id}.gcode"
         files[name] = prog.text
         entries.append({"file": name, "part": ", ".join(p.label for p in parts),

@@ -189,9 +189,9 @@ def plan_cam(layup, pieces, cam, material: str, panels=(), placements=None) -> C
     return CamPlan(files, tuple(entries), tuple(cuts))
 
 
-def plan_board_cam(boards, router) -> CamPlan:
+def plan_board_cam(boards, router, field: str = "fabrication.cam.router") -> CamPlan:
     """Router programs only (``boards``: board → its parts, :mod:`antenna_cad.cam.boards`)."""
-    files, entries = router_files(boards, router, BUILT_IN["router-3axis"])
+    files, entries = router_files(boards, router, BUILT_IN["router-3axis"], field)
     return CamPlan(files | {"cam/cut-order.csv": cut_order_csv(entries)}, tuple(entries), ())
 
 

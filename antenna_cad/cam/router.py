@@ -40,13 +40,13 @@ class BoardPart:
     note: str = ""                  # for the operator, in the file
 
 
-def tool_paths(part: BoardPart, radius_mm: float) -> list[tuple[np.ndarray, bool]]:
+def tool_paths(part: BoardPart, radius_mm: float, field: str = "fabrication.cam.router") -> list[tuple[np.ndarray, bool]]:
     """The part's tool-centre contours (closed, counter-clockwise, first point not repeated) and
     whether each is an inner one: inner contours first, then the outline. Raises DesignError naming
     the part when a hole is narrower than the tool."""
     path = part.polygon.buffer(radius_mm, quad_segs=QUAD_SEGS).simplify(SIMPLIFY_MM, preserve_topology=True)
     if not isinstance(path, Polygon) or len(path.interiors) != len(part.polygon.interiors):
-        raise DesignError("fabrication.cam.router.tool_diameter_mm",
+        raise DesignError(f"{field}.tool_diameter_mm",
                           f"part {part.label}: a hole narrower than the Ø{2 * radius_mm:g} mm tool")
     path = orient(path, 1.0)
     inner = [np.asarray(r.coords)[:-1][::-1] for r in path.interiors]     # holes run clockwise in shapely
@@ -99,8 +99,9 @@ def contour_walk(points: np.ndarray, depth_mm: float, router) -> np.ndarray:
     return out
 
 
-def board_program(board_id: str, parts: list[BoardPart], router) -> Program:
-    """The program of one board (``parts`` in cutting order; ``router``: the spec's router settings)."""
+def board_program(board_id: str, parts: list[BoardPart], router, field: str = "fabrication.cam.router") -> Program:
+    """The program of one board (``parts`` in cutting order; ``router``: the spec's router settings,
+    at ``field``)."""
     d, feed = router.tool_diameter_mm, router.feed_mm_min
     lines = [f"(antenna_cad router: board {board_id}, {len(parts)} parts; tool Ø{d:g} mm, "
              f"{router.direction} milling, ramps {router.ramp_length_mm:g} mm, tabs {router.tab_width_mm:g} × "
@@ -125,7 +126,7 @@ def board_program(board_id: str, parts: list[BoardPart], router) -> Program:
         if part.drills:
             lines.append("G80")
         depth = part.thickness_mm + THROUGH_MM
-        for points, inner in tool_paths(part, d / 2):
+        for points, inner in tool_paths(part, d / 2, field):
             if (router.direction == "climb") != inner:                  # climb: clockwise round an outline
                 points = points[::-1]
             k = int(np.argmax(points[:, 1] - 1e-9 * points[:, 0]))     # start at the top

@@ -125,11 +125,12 @@ def check_cam(folder: Path, manifest: dict) -> list[Finding]:
     entries = manifest.get("cam", [])
     if not entries:
         return []
-    from antenna_cad.cam.plan import machine_of
-    from antenna_cad.spec.cam import CamSpec
-    travel = machine_of(CamSpec(**manifest["spec"]["fabrication"]["cam"])).travel_mm
-    radius_at = _profile(manifest) if any("faces" in e for e in entries) else None
     findings = []
+    if any("faces" in e for e in entries):
+        from antenna_cad.cam.plan import machine_of
+        from antenna_cad.spec.cam import CamSpec
+        travel = machine_of(CamSpec(**manifest["spec"]["fabrication"]["cam"])).travel_mm
+        radius_at = _profile(manifest)
     for entry in entries:
         if "faces" in entry:
             findings += hotwire_findings(folder, manifest, entry, radius_at, travel)

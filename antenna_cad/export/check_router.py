@@ -22,7 +22,7 @@ CAM_TOL_MM = 0.05
 
 def board_parts(manifest: dict) -> tuple[dict, float]:
     """(board id → its parts, tool diameter) of the manifest's spec, planned again."""
-    from antenna_cad.cam.boards import panel_parts, ring_parts
+    from antenna_cad.cam.boards import drawing_parts, panel_parts, ring_parts
     from antenna_cad.registry import adapter
     from antenna_cad.spec import parse_spec
     spec = parse_spec(manifest["spec"])
@@ -30,6 +30,9 @@ def board_parts(manifest: dict) -> tuple[dict, float]:
     design = kind.synthesize(spec)
     layup, panels = kind.plan(spec, design)
     fab = kind.fabricate(spec, design, layup, panels)
+    if spec.kind == "slot_array":
+        router = spec.fabrication.router
+        return drawing_parts(fab.drawings, kind.PLATE_PARTS, spec.fabrication.broad_wall_mm), router.tool_diameter_mm
     d = spec.fabrication.cam.router.tool_diameter_mm
     return (ring_parts(fab, d) if spec.kind == "luneburg" else panel_parts(panels, fab.placements)), d
 

@@ -64,7 +64,7 @@ class RouterSpec(StrictModel):
     ramp_length_mm: float = Field(30.0, ge=1, le=1000, description="each pass enters on a ramp this long")
     tabs_per_edge: int = Field(1, ge=0, le=10)
     tab_width_mm: float = Field(8.0, ge=1, le=200)
-    tab_height_mm: float = Field(3.0, ge=0.5, le=50)
+    tab_height_mm: float = Field(3.0, ge=0.1, le=50)
 
 
 class CamSpec(StrictModel):

@@ -17,6 +17,7 @@ from shapely.geometry import Point, Polygon
 
 from antenna_cad.cam.gcode import drill_program, hotwire_program
 from antenna_cad.cam.hotwire import RuledCut, cone_cut, piece_cut, tower_paths
+from antenna_cad.cam.leadin import UP, entry_direction, lead_path
 from antenna_cad.cam.machines import BUILT_IN, DEFAULT_KERF, FALLBACK_GRADE, Machine, kerf_at
 from antenna_cad.cam.boards import panel_parts, router_files
 from antenna_cad.synthesis.checks import DesignError
@@ -67,15 +68,6 @@ def face_kerfs(sheet, table, feed_mm_min: float) -> tuple[float, float]:
     return kerf_at(table, feed_mm_min * (r0 + g) / fast), kerf_at(table, feed_mm_min * (r1 + g) / fast)
 
 
-def _face_path(cut: RuledCut, lead_mm: float) -> tuple[np.ndarray, np.ndarray]:
-    """Face points of the whole cut: lead point above the entry, the contour, back to the lead point."""
-    up = np.array([0.0, lead_mm])
-
-    def path(c):
-        return np.concatenate([[c[0] + up], c, c[:1], [c[0] + up]])
-    return path(cut.front), path(cut.back)
-
-
 def span_of(thickness_mm: float, m: Machine, cam) -> float:
     """The towers' span for a cut: the spec's ``tower_span_mm``, else as close as the foam allows
     (``TOWER_GAP_MM`` each side) on a machine with movable towers, else its fixed bow."""
@@ -84,20 +76,17 @@ def span_of(thickness_mm: float, m: Machine, cam) -> float:
     return float(min(m.span_mm, max(m.min_span_mm, thickness_mm + 2 * TOWER_GAP_MM)))
 
 
-def place_cut(cut: RuledCut, m: Machine, cam) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, float,
-                                                       tuple[float, float], float]:
-    """(xy, uv, front, back, front_wire_mm, center, span) of a cut placed on machine ``m``; raises
+def place_cut(cut: RuledCut, m: Machine, cam, entry=UP) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray,
+                                                                 float, tuple[float, float], float]:
+    """(xy, uv, front, back, front_wire_mm, center, span) of a cut placed on machine ``m``, entering
+    its contour along the direction ``entry`` (:mod:`antenna_cad.cam.leadin`); raises
     DesignError naming the part when it does not fit the span or the travel."""
     t, span = cut.thickness_mm, span_of(cut.thickness_mm, m, cam)
     if t >= span:
         raise DesignError("fabrication.cam", f"part {cut.part}: {t:g} mm of foam does not fit between the "
                           f"towers of {m.name} (span {span:g} mm)")
     w0 = (span - t) / 2
-    front, back = _face_path(cut, cam.lead_in_mm)
-    top = max(front[:, 1].max(), back[:, 1].max()) + cam.safe_height_mm    # the wire clear of the foam
-    lift = np.array([0.0, top - min(front[0, 1], back[0, 1])])
-    front = np.concatenate([[front[0] + lift], front, [front[-1] + lift]])
-    back = np.concatenate([[back[0] + lift], back, [back[-1] + lift]])
+    front, back = lead_path(cut.front, cut.back, entry, cam.lead_in_mm, cam.safe_height_mm, cut.cone)
     xy, uv = tower_paths_open(front, back, t, w0, span)
     both = np.concatenate([xy, uv])
     center = (float(MARGIN_MM - both[:, 0].min()), float(MARGIN_MM - both[:, 1].min()))
@@ -115,8 +104,8 @@ def tower_paths_open(front: np.ndarray, back: np.ndarray, t: float, w0: float, s
     return xy, uv
 
 
-def _hotwire_file(cut: RuledCut, m: Machine, cam, material: str) -> tuple[str, dict, np.ndarray, np.ndarray]:
-    xy, uv, front, back, w0, center, span = place_cut(cut, m, cam)
+def _hotwire_file(cut: RuledCut, m: Machine, cam, material: str, entry=UP) -> tuple[str, dict, np.ndarray, np.ndarray]:
+    xy, uv, front, back, w0, center, span = place_cut(cut, m, cam, entry)
     name = f"cam/{cut.part}.gcode"
     kind = "cone (taper-cut rim)" if cut.cone else "straight (vertical edges, XY = UV)"
     header = [f"antenna_cad hot-wire cut of {cut.part}: {kind}, {material}",
@@ -167,7 +156,7 @@ def plan_cam(layup, pieces, cam, material: str, panels=(), placements=None) -> C
         blank = sheet.tapered and not any(p.label == sheet.label for p in own)   # the disc is in board strips
         for piece in own:
             text, entry, xy, uv = _hotwire_file(piece_cut(piece, sheet, kerf, face_kerfs(sheet, table, cam.feed_mm_min)),
-                                                m, cam, material)
+                                                m, cam, material, entry_direction(cam.lead_in_at, sheet, piece, own))
             files[entry["file"]] = text
             entries.append(entry)
             cuts.append((entry, xy, uv))
@@ -177,7 +166,8 @@ def plan_cam(layup, pieces, cam, material: str, panels=(), placements=None) -> C
                 entries.append(drill[1])
         if blank:                                   # the glued strips cut to the cone
             text, entry, xy, uv = _hotwire_file(cone_cut(sheet, kerf, f"{sheet.label}-blank",
-                                                         face_kerfs(sheet, table, cam.feed_mm_min)), m, cam, material)
+                                                         face_kerfs(sheet, table, cam.feed_mm_min)), m, cam, material,
+                                                entry_direction(cam.lead_in_at, sheet, None, own))
             files[entry["file"]] = text
             entries.append(entry)
             cuts.append((entry, xy, uv))

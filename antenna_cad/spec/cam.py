@@ -85,6 +85,9 @@ class CamSpec(StrictModel):
     kerf_table: dict[Annotated[str, Field(pattern=r"^[a-z0-9_-]+$")], KerfTable] = Field(
         default_factory=dict, description="grade → ((feed mm/min, kerf mm), …), over the built-in tables")
     lead_in_mm: float = Field(10.0, ge=0, le=500, description="straight entry from above the piece's top")
+    lead_in_at: Literal["top", "foot", "dowel_line", "butt_joint"] = Field(
+        "top", description="where the wire enters each piece: its top, its foot (the bottom, under the cradle), "
+        "on the radial line through a dowel hole, or at a butt joint of a sheet cut from strips")
     safe_height_mm: float = Field(20.0, ge=1, le=1000, description="wire height above the foam at start/stop")
     order: Literal["flat_first", "vertex_first"] = Field(
         "flat_first", description="cut order of the sheets (flat_first follows the assembly order)")

@@ -84,7 +84,7 @@ class CamSpec(StrictModel):
     foam_grade: str | None = Field(None, pattern=r"^[a-z0-9_-]+$", description="kerf table key; default the material name")
     kerf_table: dict[Annotated[str, Field(pattern=r"^[a-z0-9_-]+$")], KerfTable] = Field(
         default_factory=dict, description="grade → ((feed mm/min, kerf mm), …), over the built-in tables")
-    lead_in_mm: float = Field(10.0, ge=0, le=500, description="straight entry from above the piece's top")
+    lead_in_mm: float = Field(10.0, ge=0, le=500, description="straight lead from the entry point outward (see lead_in_at)")
     lead_in_at: Literal["top", "foot", "dowel_line", "butt_joint"] = Field(
         "top", description="where the wire enters each piece: its top, its foot (the bottom, under the cradle), "
         "on the radial line through a dowel hole, or at a butt joint of a sheet cut from strips")

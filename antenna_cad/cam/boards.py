@@ -24,9 +24,9 @@ from antenna_cad.fabrication.ring_pieces import RingPiece
 from antenna_cad.synthesis.checks import DesignError
 
 
-def _on_board(polygon: Polygon, frame: tuple[float, float, float], w: float, h: float, placement) -> Polygon:
-    """``polygon`` (part frame) turned by frame[2] degrees about the origin, moved by frame[:2] into
-    its bounding box (0..w, 0..h), then turned 90° when the placement says so, then placed."""
+def _on_board(polygon, frame: tuple[float, float, float], w: float, h: float, placement):
+    """``polygon`` (any geometry, part frame) turned by frame[2] degrees about the origin, moved by
+    frame[:2] into its bounding box (0..w, 0..h), turned 90° when the placement says so, placed."""
     p = affinity.translate(affinity.rotate(polygon, frame[2], origin=(0, 0)), frame[0], frame[1])
     if placement.rotated:
         p = affinity.translate(affinity.rotate(p, 90.0, origin=(0, 0)), h, 0.0)
@@ -34,7 +34,7 @@ def _on_board(polygon: Polygon, frame: tuple[float, float, float], w: float, h: 
 
 
 def _point(x: float, y: float, frame, w: float, h: float, placement) -> tuple[float, float]:
-    q = _on_board(Point(x, y).buffer(1e-3, 4), frame, w, h, placement).centroid
+    q = _on_board(Point(x, y), frame, w, h, placement)
     return float(q.x), float(q.y)
 
 

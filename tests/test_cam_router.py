@@ -123,8 +123,12 @@ def test_slot_array_lids_and_plates_are_milled_each_from_its_plate(tmp_path):
     assert len(findings) == len(names) and all(f.ok for f in findings), [f for f in findings if not f.ok][:3]
     lid = next(d for d in plan.fab.drawings if d.label == "top-00")
     text = (tmp_path / "cam/board-top-00.gcode").read_text()
-    plunges = [line for line in text.splitlines() if line.startswith("G1 ") and line.endswith("Z0 F100")]
+    lines = text.splitlines()
+    plunges = [i for i, line in enumerate(lines) if line.startswith("G1 ") and line.endswith("Z0 F100")]
     assert len(plunges) == len(lid.cut)                  # one contour per slot, plus the outline
+    tab_z = -spec.fabrication.broad_wall_mm - 0.3 + 0.4 + 0.3
+    tabs = [i for i, line in enumerate(lines) if line.startswith("G1 ") and f" Z{tab_z:g} " in line]
+    assert tabs and min(tabs) > plunges[-1]              # tabs hold the lid's outline; a slot's waste is cut free
 
 
 def test_a_slot_narrower_than_the_tool_is_refused_by_part_and_field():

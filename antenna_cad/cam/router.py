@@ -7,7 +7,8 @@ centre one tool radius off the part (outlines outward, inner contours inward; th
 in the path, not G41), climb or conventional (with an M3 spindle, climb runs clockwise round an
 outline and counter-clockwise round a hole). Each pass ramps down along the contour over the ramp
 length, runs the full contour, and the last pass walks the ramp again at depth; the last pass leaves
-holding tabs on every contour (a hole's waste holds the parts nested in it). Board frame: X along
+holding tabs on every outline and on a hole that other parts are nested in (its waste holds them);
+the waste of any other hole (a slot) is cut free. Board frame: X along
 the board's width, Y along its length from its lower-left corner, Z 0 on the board's top face.
 """
 
@@ -63,7 +64,7 @@ def _tab_count(points: np.ndarray, per_edge: int) -> int:
     return per_edge * (corners if corners >= 2 else 4)
 
 
-def contour_walk(points: np.ndarray, depth_mm: float, router) -> np.ndarray:
+def contour_walk(points: np.ndarray, depth_mm: float, router, tabbed: bool = True) -> np.ndarray:
     """(x, y, z) rows of the tool along a closed contour: every pass ramps from the previous depth over
     ``ramp_length_mm`` and runs once round; then the ramp again at full depth; tabs on the last pass
     (the tool steps up and down at each tab's ends)."""
@@ -72,7 +73,7 @@ def contour_walk(points: np.ndarray, depth_mm: float, router) -> np.ndarray:
     perimeter = float(s_vert[-1])
     passes = int(np.ceil(depth_mm / router.pass_depth_mm - 1e-9))
     ramp = min(router.ramp_length_mm, perimeter)
-    tabs = _tab_count(points, router.tabs_per_edge)
+    tabs = _tab_count(points, router.tabs_per_edge) if tabbed else 0
     half = (router.tab_width_mm + router.tool_diameter_mm) / 2
     centres = perimeter * (np.arange(tabs) + 0.5) / max(tabs, 1)
     last, total = (passes - 1) * perimeter, passes * perimeter + ramp
@@ -86,12 +87,12 @@ def contour_walk(points: np.ndarray, depth_mm: float, router) -> np.ndarray:
     k = np.minimum(s // perimeter, passes - 1)
     z = -depth_mm * (k + np.minimum(1.0, (s - k * perimeter) / ramp)) / passes
 
-    def tabbed(probe):
+    def lift(probe):
         near = np.abs((probe[:, None] % perimeter - centres + perimeter / 2) % perimeter - perimeter / 2) < half - 1e-9
         lifted = np.maximum(z, -depth_mm + router.tab_height_mm + THROUGH_MM)
         return np.where((s >= last) & near.any(axis=1), lifted, z) if tabs else z
 
-    before, after = tabbed(s - 1e-6), tabbed(s + 1e-6)
+    before, after = lift(s - 1e-6), lift(s + 1e-6)
     xy = np.stack([np.interp(u, s_vert, loop[:, 0]), np.interp(u, s_vert, loop[:, 1])], -1)
     rows = np.column_stack([xy, before])
     step = (np.abs(after - before) > 1e-9) & (s < total - 1e-9)
@@ -133,7 +134,8 @@ def board_program(board_id: str, parts: list[BoardPart], router, field: str = "f
             points = np.roll(points, -k, axis=0)
             move("G0", *points[0], SAFE_Z_MM)
             move("G1", *points[0], 0.0, router.plunge_mm_min)
-            for x, y, z in contour_walk(points, depth, router).tolist():
+            holds = not inner or any(Polygon(points).contains(q.polygon) for q in parts if q is not part)
+            for x, y, z in contour_walk(points, depth, router, holds).tolist():
                 move("G1", x, y, z, feed)
             move("G0", at[0], at[1], SAFE_Z_MM)
     lines += ["M5", "M2"]

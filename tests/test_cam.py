@@ -92,8 +92,8 @@ def test_feet_are_straight_cuts_and_dowel_holes_go_to_drilling_files(taper):
 
 
 def test_a_disc_in_board_strips_is_cut_to_its_cone_as_a_glued_blank(tmp_path):
-    spec = _spec("xps-collimator-1.1m.yaml", sheet_thickness_mm=100, edge="taper",
-                 cam={"travel_mm": [1600, 1600], "tower_span_mm": 200})
+    """The Ø1.1 m lens on the built-in 4-axis profile: its towers set as close as the foam allows."""
+    spec = _spec("xps-collimator-1.1m.yaml", sheet_thickness_mm=100, edge="taper", joining="dowels", cam={})
     plan = prepare(spec)
     split = {p.sheet_index for p in plan.fab.pieces if p.label.endswith("-a")}
     assert split                                                            # strips on a 600 mm board
@@ -104,6 +104,14 @@ def test_a_disc_in_board_strips_is_cut_to_its_cone_as_a_glued_blank(tmp_path):
     assert findings and all(f.ok for f in findings), [f for f in findings if not f.ok][:3]
     assert len(_surface_errors(findings)) == plan.layup.count
     assert max(_surface_errors(findings)) <= CAM_TOL_MM
+    assert {e["tower_span_mm"] for e in manifest["cam"] if "faces" in e} == {200.0}   # 100 mm foam + 2 × 50
+
+
+def test_a_piece_longer_than_a_fixed_bow_is_refused_by_name():
+    bow = {"kind": "hotwire", "axes": "XYUV", "span_mm": 40, "travel_mm": [1500, 1500]}
+    spec = _spec("xps-collimator-0.5m-taper.yaml", cam={"machine": bow})
+    with pytest.raises(DesignError, match=r"fabrication.cam: part sheet-\d\d\S*: 50 mm of foam does not fit .*span 40"):
+        prepare(spec)
 
 
 def test_a_piece_beyond_the_travel_is_refused_by_name():
@@ -179,27 +187,45 @@ def test_kerf_coupon_cuts_three_squares_and_the_table_reads_them_back():
 
 def test_box_panels_get_one_router_file_per_board(taper):
     """Each panel's outline pass runs the tool centre one tool radius outside the panel (climb: clockwise
-    round it), every pass ramps in, the last pass leaves tabs, face holes are drilled through."""
+    round it), the last pass leaves tabs, face holes are drilled through, the check passes."""
     spec, plan, folder, manifest = taper
     boards = [e for e in manifest["cam"] if e["file"].startswith("cam/board-")]
-    panels = [p for p in plan.panels]
-    assert {b.board_id for b in (plan.fab.placements[p.label] for p in panels)} == \
+    assert {plan.fab.placements[p.label].board_id for p in plan.panels} == \
         {e["file"].removeprefix("cam/board-").removesuffix(".gcode") for e in boards}
     text = (folder / boards[0]["file"]).read_text()
-    moves, cutting = parse_moves(text, "XYZ")
-    m = np.array(moves)
+    first = next(p for p in plan.panels if f"({p.label})" in text)
+    block = text.split(f"({first.label})")[1].split("\n(")[0]             # the first panel's lines
+    m = np.array(parse_moves(block, "XYZ")[0])
     d = spec.fabrication.cam.router.tool_diameter_mm
-    first = plan.panels[0] if plan.fab.placements[plan.panels[0].label].board_id in boards[0]["file"] else None
-    assert first is not None
     w, h = first.face_mm
-    loop = m[(m[:, 2] < 0)][:12]                                          # the first panel's first pass
-    assert np.ptp(loop[:, 0]) == pytest.approx(max(w, h) + d) or np.ptp(loop[:, 0]) == pytest.approx(min(w, h) + d)
-    assert np.ptp(loop[:, 0]) + np.ptp(loop[:, 1]) == pytest.approx(w + h + 2 * d)
-    xy = loop[1:6, :2]                                                    # corner, then round the rectangle
-    area = 0.5 * np.sum(xy[:-1, 0] * xy[1:, 1] - xy[1:, 0] * xy[:-1, 1])
-    assert area < 0                                                       # clockwise: climb with M3
+    assert sorted(np.ptp(m[:, :2], axis=0)) == pytest.approx(sorted((w + d, h + d)), abs=0.01)
     depth = first.thickness_mm + 0.3
+    bottom = m[np.isclose(m[:, 2], -depth), :2]
+    area = 0.5 * np.sum(bottom[:-1, 0] * bottom[1:, 1] - bottom[1:, 0] * bottom[:-1, 1])
+    assert area < 0                                                       # clockwise: climb with M3
     assert m[:, 2].min() == pytest.approx(-depth)
     assert np.any(np.isclose(m[:, 2], -depth + spec.fabrication.cam.router.tab_height_mm + 0.3))   # tabs
-    holes = [line for line in text.splitlines() if line.startswith("G81")]
+    holes = [line for line in block.splitlines() if line.startswith("G81")]
     assert holes and all(f"Z{-depth:g}" in line for line in holes)
+    findings = [f for f in check_cam(folder, manifest) if f.file.startswith("cam/board-")]
+    assert findings and all(f.ok for f in findings), findings
+
+
+def test_each_face_of_a_cone_is_compensated_by_the_kerf_at_its_own_speed(taper):
+    """Hand computation on sheet-03 with the built-in xps table (100 → 1.6, 300 → 0.9 mm) at 300 mm/min:
+    the back (larger) face runs at the feed, the front at feed × its path radius / the back's."""
+    from antenna_cad.export.check_cam import _faces
+    spec, plan, folder, manifest = taper
+    sheet = next(s for s in plan.layup.sheets if s.label == "sheet-03")
+    t, r0, r1 = sheet.thickness_mm, sheet.front_radius_mm, sheet.radius_mm
+    sec = np.hypot(t, r1 - r0) / t
+    k1 = 0.9
+    v0 = 300 * (r0 + k1 / 2 * sec) / (r1 + k1 / 2 * sec)
+    assert 100 < v0 < 300
+    k0 = 1.6 + (v0 - 100) * (0.9 - 1.6) / 200
+    entry = next(e for e in manifest["cam"] if e["part"] == "sheet-03")
+    assert [f["kerf_mm"] for f in entry["faces"]] == pytest.approx([k0, k1], abs=1e-4)
+    moves, cutting = parse_moves((folder / entry["file"]).read_text(), entry["axes"])
+    front, back = _faces(entry, [p for p, g in zip(moves, cutting) if g][1:-2])
+    assert np.hypot(*front.T) == pytest.approx(r0 + k0 / 2 * sec, abs=2e-3)
+    assert np.hypot(*back.T) == pytest.approx(r1 + k1 / 2 * sec, abs=2e-3)

@@ -9,7 +9,8 @@ meet in a conic, which no single wire pass follows.
 
 Kerf: the wire melts a slot ``kerf`` wide centred on it, so the wire runs kerf/2 outside the part,
 measured normal to the cut surface: on a cone of slope Δr/t that is (kerf/2)·√(t² + Δr²)/t in the
-face planes. Chords: an arc of radius r is cut in steps whose sagitta is at most ``CHORD_MM``.
+face planes. On a cone the two faces' wire ends move at different speeds and melt different slots
+(FreeCAD FoamCut scales kerf with speed): each face is compensated by its own kerf. Chords: an arc of radius r is cut in steps whose sagitta is at most ``CHORD_MM``.
 """
 
 from __future__ import annotations
@@ -38,6 +39,11 @@ class RuledCut:
     z_back_mm: float
     kerf_mm: float
     cone: bool              # a taper-cut lens piece (else vertical edges)
+    face_kerf_mm: tuple[float, float] | None = None     # (front, back) kerf of a cone's faces; None: kerf_mm
+
+    @property
+    def kerfs(self) -> tuple[float, float]:
+        return self.face_kerf_mm or (self.kerf_mm, self.kerf_mm)
 
     @property
     def thickness_mm(self) -> float:
@@ -60,17 +66,20 @@ def _from_top(front: np.ndarray, back: np.ndarray) -> tuple[np.ndarray, np.ndarr
     return np.roll(front, -k, axis=0), np.roll(back, -k, axis=0)
 
 
-def cone_cut(sheet: SheetPlan, kerf_mm: float, part: str | None = None) -> RuledCut:
+def cone_cut(sheet: SheetPlan, kerf_mm: float, part: str | None = None,
+             face_kerf_mm: tuple[float, float] | None = None) -> RuledCut:
     """A taper-cut lens disc: the cone r0 → r1 over the sheet with radial rulings, the wire kerf/2
-    outside it normal to the cone. A disc wider than a board is cut so from the blank its board
-    strips are glued into (the strips' own cuts are straight)."""
+    outside it normal to the cone (``face_kerf_mm``: each face's own kerf). A disc wider than a board
+    is cut so from the blank its board strips are glued into (the strips' own cuts are straight)."""
     t, r0, r1 = sheet.thickness_mm, sheet.front_radius_mm, sheet.radius_mm
-    grow = kerf_mm / 2 * math.hypot(t, r1 - r0) / t
-    count = _arc_count(r1 + grow, 2 * math.pi)
+    k0, k1 = face_kerf_mm or (kerf_mm, kerf_mm)
+    sec = math.hypot(t, r1 - r0) / t
+    g0, g1 = k0 / 2 * sec, k1 / 2 * sec
+    count = _arc_count(max(r0 + g0, r1 + g1), 2 * math.pi)
     a = math.pi / 2 + 2 * math.pi * np.arange(count) / count          # from the top, counter-clockwise
     ring = np.stack([np.cos(a), np.sin(a)], -1)
-    return RuledCut(part or sheet.label, (r0 + grow) * ring, (r1 + grow) * ring, sheet.z_min_mm, sheet.z_max_mm,
-                    kerf_mm, True)
+    return RuledCut(part or sheet.label, (r0 + g0) * ring, (r1 + g1) * ring, sheet.z_min_mm, sheet.z_max_mm,
+                    kerf_mm, True, face_kerf_mm)
 
 
 def straight_cut(piece: Piece, sheet: SheetPlan, kerf_mm: float) -> RuledCut:
@@ -86,11 +95,12 @@ def straight_cut(piece: Piece, sheet: SheetPlan, kerf_mm: float) -> RuledCut:
     return RuledCut(piece.label, front, back, sheet.z_min_mm, sheet.z_max_mm, kerf_mm, False)
 
 
-def piece_cut(piece: Piece, sheet: SheetPlan, kerf_mm: float) -> RuledCut:
+def piece_cut(piece: Piece, sheet: SheetPlan, kerf_mm: float,
+              face_kerf_mm: tuple[float, float] | None = None) -> RuledCut:
     """The ruled cut of a sheet's piece: the cone of a taper-cut lens disc, else vertical edges (feet,
     stepped discs, and the board strips of a taper-cut disc, whose cone is cut once they are glued)."""
     if sheet.tapered and piece.label == sheet.label:
-        return cone_cut(sheet, kerf_mm)
+        return cone_cut(sheet, kerf_mm, face_kerf_mm=face_kerf_mm)
     return straight_cut(piece, sheet, kerf_mm)
 
 

@@ -19,18 +19,20 @@ class Machine:
     kind: str                       # "hotwire" or "router"
     axes: str                       # "XYUV" (hot wire: tower 1 h/v, tower 2 h/v) or "XYZ" (router)
     feed_mode: str                  # "inverse_time" (G93) or "per_minute" (G94)
-    span_mm: float                  # hot wire: distance the towers are set apart along the wire (set
-                                    # them close: a steep cone swings the towers by Δr·(span − t)/2t)
+    span_mm: float                  # hot wire: the widest the towers go apart along the wire (the bow)
     travel_mm: tuple[float, float]  # each tower's (horizontal, vertical) travel; router (x, y)
     rapid_mm_min: float
     heat_on: str                    # G-code line(s); {power} is replaced
     heat_off: str
     dwell_s: float                  # after heat on, before the first move into foam
+    min_span_mm: float = 0.0        # towers movable on the base beam down to this span (0: a fixed bow);
+                                    # a steep cone swings the towers by Δr·(span − t)/2t, so the plan
+                                    # sets them as close as the foam allows
 
 
 BUILT_IN = {
-    "hotwire-4axis": Machine("hotwire-4axis", "hotwire", "XYUV", "inverse_time", 300.0, (1000.0, 1000.0),
-                             1500.0, "M3 S{power}", "M5", 2.0),
+    "hotwire-4axis": Machine("hotwire-4axis", "hotwire", "XYUV", "inverse_time", 1300.0, (1500.0, 1500.0),
+                             1500.0, "M3 S{power}", "M5", 2.0, 150.0),
     "hotwire-grbl": Machine("hotwire-grbl", "hotwire", "XYZA", "per_minute", 300.0, (800.0, 500.0),
                             1200.0, "M3 S{power}", "M5", 2.0),
     "router-3axis": Machine("router-3axis", "router", "XYZ", "per_minute", 0.0, (1250.0, 2500.0),

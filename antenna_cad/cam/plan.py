@@ -17,11 +17,13 @@ from shapely.geometry import Point, Polygon
 
 from antenna_cad.cam.gcode import drill_program, hotwire_program
 from antenna_cad.cam.hotwire import RuledCut, cone_cut, piece_cut, tower_paths
+from antenna_cad.cam.leadin import UP, entry_direction, lead_path
 from antenna_cad.cam.machines import BUILT_IN, DEFAULT_KERF, FALLBACK_GRADE, Machine, kerf_at
-from antenna_cad.cam.router import board_program
+from antenna_cad.cam.boards import panel_parts, router_files
 from antenna_cad.synthesis.checks import DesignError
 
 MARGIN_MM = 10.0
+TOWER_GAP_MM = 50.0         # foam clear of each tower when the towers are set close
 DRILL_CLEARANCE_MM = 5.0
 
 
@@ -44,37 +46,48 @@ def machine_of(cam) -> Machine:
                    dwell_s=m.dwell_s if cam.dwell_s is None else cam.dwell_s)
 
 
-def kerf_of(cam, material_name: str) -> float:
-    """Kerf at the spec's feed from the grade's table (the spec's, else the built-in one)."""
+def kerf_table_of(cam, material_name: str) -> tuple[tuple[float, float], ...]:
+    """The grade's kerf table (the spec's, else the built-in one)."""
     grade = cam.foam_grade or material_name
-    table = cam.kerf_table.get(grade) or DEFAULT_KERF.get(grade) or DEFAULT_KERF[FALLBACK_GRADE]
-    return kerf_at(table, cam.feed_mm_min)
+    return cam.kerf_table.get(grade) or DEFAULT_KERF.get(grade) or DEFAULT_KERF[FALLBACK_GRADE]
 
 
-def _face_path(cut: RuledCut, lead_mm: float) -> tuple[np.ndarray, np.ndarray]:
-    """Face points of the whole cut: lead point above the entry, the contour, back to the lead point."""
-    up = np.array([0.0, lead_mm])
-
-    def path(c):
-        return np.concatenate([[c[0] + up], c, c[:1], [c[0] + up]])
-    return path(cut.front), path(cut.back)
+def kerf_of(cam, material_name: str) -> float:
+    """Kerf at the spec's feed."""
+    return kerf_at(kerf_table_of(cam, material_name), cam.feed_mm_min)
 
 
-def place_cut(cut: RuledCut, m: Machine, cam) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, float,
-                                                       tuple[float, float]]:
-    """(xy, uv, front, back, front_wire_mm, center) of a cut placed on machine ``m``; raises
+def face_kerfs(sheet, table, feed_mm_min: float) -> tuple[float, float]:
+    """(front, back) kerf of a taper cut: the faster face moves at the feed, the other at the feed times
+    the ratio of their path radii (both ends sweep the same angle per move), each face's kerf the
+    table's at its own speed (FreeCAD FoamCut scales kerf with speed). The radii are the paths
+    compensated by the feed's kerf (one step: the correction of the radii is a fraction of a mm)."""
+    t, r0, r1 = sheet.thickness_mm, sheet.front_radius_mm, sheet.radius_mm
+    g = kerf_at(table, feed_mm_min) / 2 * np.hypot(t, r1 - r0) / t
+    fast = max(r0 + g, r1 + g)
+    return kerf_at(table, feed_mm_min * (r0 + g) / fast), kerf_at(table, feed_mm_min * (r1 + g) / fast)
+
+
+def span_of(thickness_mm: float, m: Machine, cam) -> float:
+    """The towers' span for a cut: the spec's ``tower_span_mm``, else as close as the foam allows
+    (``TOWER_GAP_MM`` each side) on a machine with movable towers, else its fixed bow."""
+    if cam.tower_span_mm is not None or not m.min_span_mm:
+        return m.span_mm
+    return float(min(m.span_mm, max(m.min_span_mm, thickness_mm + 2 * TOWER_GAP_MM)))
+
+
+def place_cut(cut: RuledCut, m: Machine, cam, entry=UP) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray,
+                                                                 float, tuple[float, float], float]:
+    """(xy, uv, front, back, front_wire_mm, center, span) of a cut placed on machine ``m``, entering
+    its contour along the direction ``entry`` (:mod:`antenna_cad.cam.leadin`); raises
     DesignError naming the part when it does not fit the span or the travel."""
-    t = cut.thickness_mm
-    if t >= m.span_mm:
+    t, span = cut.thickness_mm, span_of(cut.thickness_mm, m, cam)
+    if t >= span:
         raise DesignError("fabrication.cam", f"part {cut.part}: {t:g} mm of foam does not fit between the "
-                          f"towers of {m.name} (span {m.span_mm:g} mm)")
-    w0 = (m.span_mm - t) / 2
-    front, back = _face_path(cut, cam.lead_in_mm)
-    top = max(front[:, 1].max(), back[:, 1].max()) + cam.safe_height_mm    # the wire clear of the foam
-    lift = np.array([0.0, top - min(front[0, 1], back[0, 1])])
-    front = np.concatenate([[front[0] + lift], front, [front[-1] + lift]])
-    back = np.concatenate([[back[0] + lift], back, [back[-1] + lift]])
-    xy, uv = tower_paths_open(front, back, t, w0, m.span_mm)
+                          f"towers of {m.name} (span {span:g} mm)")
+    w0 = (span - t) / 2
+    front, back = lead_path(cut.front, cut.back, entry, cam.lead_in_mm, cam.safe_height_mm, cut.cone)
+    xy, uv = tower_paths_open(front, back, t, w0, span)
     both = np.concatenate([xy, uv])
     center = (float(MARGIN_MM - both[:, 0].min()), float(MARGIN_MM - both[:, 1].min()))
     xy, uv = xy + center, uv + center
@@ -82,7 +95,7 @@ def place_cut(cut: RuledCut, m: Machine, cam) -> tuple[np.ndarray, np.ndarray, n
     if reach[0] > m.travel_mm[0] or reach[1] > m.travel_mm[1]:
         raise DesignError("fabrication.cam", f"part {cut.part} needs {reach[0]:.0f} × {reach[1]:.0f} mm of tower "
                           f"travel; {m.name} has {m.travel_mm[0]:g} × {m.travel_mm[1]:g} mm")
-    return xy, uv, front, back, w0, center
+    return xy, uv, front, back, w0, center, span
 
 
 def tower_paths_open(front: np.ndarray, back: np.ndarray, t: float, w0: float, span: float):
@@ -91,24 +104,25 @@ def tower_paths_open(front: np.ndarray, back: np.ndarray, t: float, w0: float, s
     return xy, uv
 
 
-def _hotwire_file(cut: RuledCut, m: Machine, cam, material: str) -> tuple[str, dict, np.ndarray, np.ndarray]:
-    xy, uv, front, back, w0, center = place_cut(cut, m, cam)
+def _hotwire_file(cut: RuledCut, m: Machine, cam, material: str, entry=UP) -> tuple[str, dict, np.ndarray, np.ndarray]:
+    xy, uv, front, back, w0, center, span = place_cut(cut, m, cam, entry)
     name = f"cam/{cut.part}.gcode"
     kind = "cone (taper-cut rim)" if cut.cone else "straight (vertical edges, XY = UV)"
     header = [f"antenna_cad hot-wire cut of {cut.part}: {kind}, {material}",
-              f"machine {m.name}, axes {m.axes}, tower span {m.span_mm:g} mm",
+              f"machine {m.name}, axes {m.axes}, towers set {span:g} mm apart",
               f"foam faces: z {cut.z_front_mm:g} mm (feed side) at {w0:g} mm, z {cut.z_back_mm:g} mm at "
               f"{w0 + cut.thickness_mm:g} mm from the first tower along the wire",
               f"lens axis at X {center[0]:.3f} Y {center[1]:.3f} (first tower); sheet +y up",
-              f"kerf {cut.kerf_mm:g} mm (compensated), feed {cam.feed_mm_min:g} mm/min at the faster face",
+              f"kerf {cut.kerfs[0]:.3f} / {cut.kerfs[1]:.3f} mm at the two faces' speeds (compensated), feed "
+              f"{cam.feed_mm_min:g} mm/min at the faster face",
               "dowel holes are not cut here: see the drilling file"]
     prog = hotwire_program(header, m, m.axes, cam.units, m.feed_mode, [(xy, uv, front, back, cam.feed_mm_min)],
                            cam.heat_power, m.dwell_s)
     text = prog.text.replace("(antenna_cad hot-wire", f"(estimated cut time {prog.seconds:.0f} s)\n(antenna_cad hot-wire", 1)
     entry = {"file": name, "part": cut.part, "machine": m.name, "axes": m.axes, "kerf_mm": cut.kerf_mm,
-             "feed_mm_min": cam.feed_mm_min, "seconds": round(float(prog.seconds), 1), "tower_span_mm": m.span_mm,
-             "faces": [{"z_mm": cut.z_front_mm, "wire_mm": w0},
-                       {"z_mm": cut.z_back_mm, "wire_mm": w0 + cut.thickness_mm}],
+             "feed_mm_min": cam.feed_mm_min, "seconds": round(float(prog.seconds), 1), "tower_span_mm": span,
+             "faces": [{"z_mm": cut.z_front_mm, "wire_mm": w0, "kerf_mm": round(cut.kerfs[0], 4)},
+                       {"z_mm": cut.z_back_mm, "wire_mm": w0 + cut.thickness_mm, "kerf_mm": round(cut.kerfs[1], 4)}],
              "center_mm": [round(center[0], 6), round(center[1], 6)]}
     return text, entry, xy, uv
 
@@ -129,35 +143,20 @@ def _drill_file(piece, sheet, cam) -> tuple[str, dict] | None:
     return prog.text, entry
 
 
-def _router_files(panels, placements, cam) -> tuple[dict[str, str], list[dict]]:
-    """One router program per board the box panels are nested on."""
-    boards: dict[str, list] = {}
-    for panel in panels:
-        boards.setdefault(placements[panel.label].board_id, []).append((panel, placements[panel.label]))
-    files, entries = {}, []
-    router = BUILT_IN["router-3axis"]
-    for board_id, parts in sorted(boards.items()):
-        prog = board_program(board_id, parts, cam.router)
-        name = f"cam/board-{board_id}.gcode"
-        files[name] = prog.text
-        entries.append({"file": name, "part": ", ".join(p.label for p, _ in parts), "machine": router.name,
-                        "axes": router.axes, "kerf_mm": cam.router.tool_diameter_mm,
-                        "feed_mm_min": cam.router.feed_mm_min, "seconds": round(float(prog.seconds), 1)})
-    return files, entries
-
-
 def plan_cam(layup, pieces, cam, material: str, panels=(), placements=None) -> CamPlan:
     """Hot-wire and drilling programs of every piece of ``layup`` (``pieces``: the fabrication plan's),
     and router programs of the box ``panels`` per board (``placements``: the nesting)."""
     m = machine_of(cam)
-    kerf = kerf_of(cam, material)
+    table = kerf_table_of(cam, material)
+    kerf = kerf_at(table, cam.feed_mm_min)
     sheets = sorted(layup.sheets, key=lambda s: s.index, reverse=cam.order == "flat_first")
     files, entries, cuts = {}, [], []
     for sheet in sheets:
         own = sorted((p for p in pieces if p.sheet_index == sheet.index), key=lambda p: p.label)
         blank = sheet.tapered and not any(p.label == sheet.label for p in own)   # the disc is in board strips
         for piece in own:
-            text, entry, xy, uv = _hotwire_file(piece_cut(piece, sheet, kerf), m, cam, material)
+            text, entry, xy, uv = _hotwire_file(piece_cut(piece, sheet, kerf, face_kerfs(sheet, table, cam.feed_mm_min)),
+                                                m, cam, material, entry_direction(cam.lead_in_at, sheet, piece, own))
             files[entry["file"]] = text
             entries.append(entry)
             cuts.append((entry, xy, uv))
@@ -166,16 +165,28 @@ def plan_cam(layup, pieces, cam, material: str, panels=(), placements=None) -> C
                 files[drill[1]["file"]] = drill[0]
                 entries.append(drill[1])
         if blank:                                   # the glued strips cut to the cone
-            text, entry, xy, uv = _hotwire_file(cone_cut(sheet, kerf, f"{sheet.label}-blank"), m, cam, material)
+            text, entry, xy, uv = _hotwire_file(cone_cut(sheet, kerf, f"{sheet.label}-blank",
+                                                         face_kerfs(sheet, table, cam.feed_mm_min)), m, cam, material,
+                                                entry_direction(cam.lead_in_at, sheet, None, own))
             files[entry["file"]] = text
             entries.append(entry)
             cuts.append((entry, xy, uv))
     if cam.router is not None and panels:
-        router_files, router_entries = _router_files(panels, placements, cam)
-        files |= router_files
-        entries += router_entries
+        board_files, board_entries = router_files(panel_parts(panels, placements), cam.router, BUILT_IN["router-3axis"])
+        files |= board_files
+        entries += board_entries
+    files["cam/cut-order.csv"] = cut_order_csv(entries)
+    return CamPlan(files, tuple(entries), tuple(cuts))
+
+
+def plan_board_cam(boards, router, field: str = "fabrication.cam.router") -> CamPlan:
+    """Router programs only (``boards``: board → its parts, :mod:`antenna_cad.cam.boards`)."""
+    files, entries = router_files(boards, router, BUILT_IN["router-3axis"], field)
+    return CamPlan(files | {"cam/cut-order.csv": cut_order_csv(entries)}, tuple(entries), ())
+
+
+def cut_order_csv(entries: list[dict]) -> str:
     rows = ["order,file,part,machine,seconds"] + [f"{i},{e['file']},\"{e['part']}\",{e['machine']},{e['seconds']:g}"
                                                   for i, e in enumerate(entries, 1)]
     rows.append(f",total,,,{sum(e['seconds'] for e in entries):.1f}")
-    files["cam/cut-order.csv"] = "\n".join(rows) + "\n"
-    return CamPlan(files, tuple(entries), tuple(cuts))
+    return "\n".join(rows) + "\n"

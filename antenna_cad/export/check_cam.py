@@ -77,18 +77,20 @@ def _profile(manifest: dict):
 
 
 def cone_error_mm(entry: dict, front: np.ndarray, back: np.ndarray, radius_at) -> float:
-    """Largest |distance − kerf/2| between the wire and the cone through r(z) at the two faces, in the
-    meridional plane, over the rulings on the cone and the midpoints of chords between them."""
+    """Largest |distance − kerf/2| between the wire and the cone through r(z) at the two faces (each
+    face's kerf, ``faces[].kerf_mm``), in the meridional plane, over the rulings on the cone and the midpoints of chords between them."""
     z0, z1 = (f["z_mm"] for f in entry["faces"])
     a, b = np.array([radius_at(z0), z0]), np.array([radius_at(z1), z1])
     u = (b - a) / np.linalg.norm(b - a)
     normal = np.array([u[1], -u[0]])                     # outward (+r) side of the cone line
     vertical = np.all(np.abs(front - back) < 1e-6, axis=1) & (np.abs(a[0] - b[0]) > 1e-6)
 
+    kerfs = [f.get("kerf_mm", entry["kerf_mm"]) for f in entry["faces"]]     # each face's own kerf
+
     def dist(p0, p1):
         rho = np.stack([np.hypot(*p0.T), np.hypot(*p1.T)])
-        return np.abs(np.stack([(np.stack([rho[i], np.full(len(p0), z)], -1) - a) @ normal
-                                for i, z in enumerate((z0, z1))]) - entry["kerf_mm"] / 2).max(axis=0)
+        return np.abs(np.stack([(np.stack([rho[i], np.full(len(p0), z)], -1) - a) @ normal - kerfs[i] / 2
+                                for i, z in enumerate((z0, z1))])).max(axis=0)
     on = ~vertical
     err = dist(front[on], back[on])
     pair = on[:-1] & on[1:]
@@ -123,30 +125,30 @@ def check_cam(folder: Path, manifest: dict) -> list[Finding]:
     entries = manifest.get("cam", [])
     if not entries:
         return []
-    from antenna_cad.cam.plan import machine_of
-    from antenna_cad.spec.cam import CamSpec
-    travel = machine_of(CamSpec(**manifest["spec"]["fabrication"]["cam"])).travel_mm
-    radius_at = _profile(manifest) if any("faces" in e for e in entries) else None
     findings = []
+    if any("faces" in e for e in entries):
+        from antenna_cad.cam.plan import machine_of
+        from antenna_cad.spec.cam import CamSpec
+        travel = machine_of(CamSpec(**manifest["spec"]["fabrication"]["cam"])).travel_mm
+        radius_at = _profile(manifest)
     for entry in entries:
         if "faces" in entry:
             findings += hotwire_findings(folder, manifest, entry, radius_at, travel)
-        else:
-            findings.append(_router_finding(folder, entry))
+        elif not entry["file"].startswith("cam/board-"):
+            findings.append(_drill_finding(folder, entry))
+    boards = [e for e in entries if e["file"].startswith("cam/board-")]
+    if boards:
+        from antenna_cad.cam.machines import BUILT_IN
+        from antenna_cad.export.check_router import board_parts, router_findings
+        parts, tool_mm = board_parts(manifest)
+        findings += router_findings(folder, boards, parts, tool_mm, BUILT_IN["router-3axis"].travel_mm)
     return findings
 
 
-def _router_finding(folder: Path, entry: dict) -> Finding:
-    """A router file: its drilling cycles go down, and a board program stays on the router's travel
-    (the tool centre at most a tool diameter off the board's corner)."""
-    from antenna_cad.cam.machines import BUILT_IN
+def _drill_finding(folder: Path, entry: dict) -> Finding:
+    """A drilling file: its cycles go down."""
     text = (folder / entry["file"]).read_text(encoding="utf-8")
-    moves, _ = parse_moves(text, "XYZ")
     cycles = drill_cycles(text)
-    ok = all(z < 0 for _, _, z in cycles) and (len(cycles) > 0 or len(moves) > 1)
-    if entry["file"].startswith("cam/board-") and moves:
-        m = np.array(moves)
-        travel = np.array(BUILT_IN["router-3axis"].travel_mm)
-        ok = ok and bool(np.all(m[:, :2] >= -entry["kerf_mm"]) and np.all(m[:, :2] <= travel))
-    return Finding(entry["file"], "cam_router", ok, f"{len(moves)} moves and {len(cycles)} drilling cycles parsed"
-                   + ("" if ok else ": a cycle that does not go down, or a move off the travel"))
+    ok = len(cycles) > 0 and all(z < 0 for _, _, z in cycles)
+    return Finding(entry["file"], "cam_router", ok, f"{len(cycles)} drilling cycles parsed"
+                   + ("" if ok else ": none, or a cycle that does not go down"))

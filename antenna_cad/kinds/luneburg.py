@@ -8,6 +8,7 @@ rings per grade (``fabrication.rings``). CAD imports stay inside ``model``.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -68,9 +69,16 @@ def model(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | Non
 
 
 def fabricate(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | None, panels):
-    if layup is not None:
-        return fabricate_rings(layup, spec.name, drawings=spec.outputs.templates)
-    return _fabricate_blanks(spec, design)
+    if layup is None:
+        return _fabricate_blanks(spec, design)
+    plan = fabricate_rings(layup, spec.name, drawings=spec.outputs.templates)
+    cam = spec.fabrication.cam
+    if cam is None or cam.router is None:
+        return plan
+    from antenna_cad.cam.boards import ring_parts
+    from antenna_cad.cam.plan import plan_board_cam
+    toolpaths = plan_board_cam(ring_parts(plan, cam.router.tool_diameter_mm), cam.router)
+    return replace(plan, files=plan.files | toolpaths.files, cam=toolpaths)
 
 
 def _fabricate_blanks(spec: LuneburgSpec, design: LuneburgDesign) -> FabPlanRings:

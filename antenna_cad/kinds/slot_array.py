@@ -7,6 +7,7 @@ CAD imports are lazy (model stage only).
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -21,6 +22,9 @@ from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.slot_array import (FEED_RMS_WARN, BeamFormer, SlotArrayDesign, harmonic_direction_cosine,
                                               synthesize_slot_array, traced_rays, with_surfaces)
 from antenna_cad.verification import Plot, Series, Table, Verification
+
+
+PLATE_PARTS = ("top-", "plate-")     # the drawings of the flat metal parts the router mills
 
 
 def synthesize(spec: SlotArraySpec) -> SlotArrayDesign:
@@ -68,8 +72,16 @@ def model(spec: SlotArraySpec, design: SlotArrayDesign, layup, panels):
 
 def fabricate(spec: SlotArraySpec, design: SlotArrayDesign, layup, panels):
     from antenna_cad.fabrication.slot_array import fabricate_slot_array
-    return fabricate_slot_array(design, resolve_material(spec.material), _metal(spec),
+    plan = fabricate_slot_array(design, resolve_material(spec.material), _metal(spec),
                                 resolve_material(spec.waveguide.load_material), _sizes(spec), title=spec.name)
+    router = spec.fabrication.router
+    if router is None:
+        return plan
+    from antenna_cad.cam.boards import drawing_parts
+    from antenna_cad.cam.plan import plan_board_cam
+    cam = plan_board_cam(drawing_parts(plan.drawings, PLATE_PARTS, spec.fabrication.broad_wall_mm), router,
+                         "fabrication.router")
+    return replace(plan, files=plan.files | cam.files, cam=cam)
 
 
 def summary(spec: SlotArraySpec, design: SlotArrayDesign, layup) -> dict[str, float]:

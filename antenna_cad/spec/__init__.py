@@ -105,12 +105,17 @@ def parse_spec(data: object, source: str = "<spec>") -> BaseModel:
 
 
 def load_spec(path: str | Path) -> BaseModel:
-    """Read and validate a spec file (bounded strict YAML, :mod:`antenna_cad.spec.reader`)."""
+    """Read and validate a spec file (bounded strict YAML, :mod:`antenna_cad.spec.reader`), with a
+    machine profile file it names put inline (:mod:`antenna_cad.spec.machine_file`)."""
+    from antenna_cad.spec.machine_file import inline_machine_file
     path = Path(path)
     try:
         data = read_yaml(path)
     except ReadError as exc:
         raise SpecError([f"{path}: {exc}"]) from None
+    data, problems = inline_machine_file(data, path.parent, str(path))
+    if problems:
+        raise SpecError(problems)
     return parse_spec(data, str(path))
 
 

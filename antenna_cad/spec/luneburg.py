@@ -11,6 +11,7 @@ from typing import Annotated, Literal, Union
 from pydantic import Field, model_validator
 
 from antenna_cad.spec.bounds import MAX_LIST, MIN_RATIO, MIN_SHEET_MM
+from antenna_cad.spec.cam import CamSpec
 from antenna_cad.spec.common import BoardSpec, SpecBase, StrictModel, or_auto
 
 
@@ -98,6 +99,8 @@ class LuneburgLayupSpec(StrictModel):
         "the aperture circle down this far below the lens (a cradle, outside the aperture cylinder, feet "
         "dowelled to each other); none: no stand")
     pedestal_width_mm: float | None = Field(None, ge=1, le=20000, description="stand width; default 60 % of the diameter")
+    cam: CamSpec | None = Field(None, description="router G-code for the ring pieces and feet, one file per board "
+                                "(cam.router)")
 
 
 class LuneburgSpec(SpecBase):

@@ -13,6 +13,7 @@ from typing import Annotated, Literal
 
 from pydantic import Field, field_validator, model_validator
 
+from antenna_cad.spec.cam import RouterSpec
 from antenna_cad.spec.bounds import MAX_LIST, MIN_GHZ, MIN_MM, MIN_RATIO
 from antenna_cad.spec.common import (InlineMaterial, MaterialRef, SpecBase, StrictModel, _library_name, or_auto,
                                      resolve_material)
@@ -197,6 +198,8 @@ class MachinedPlatesSpec(StrictModel):
     mirror_wall_mm: float = Field(2.0, ge=MIN_MM, le=100)
     plate_margin_mm: float = Field(10.0, ge=0, le=500, description="beam-former plate beyond mirrors")
     stock_allowance_mm: float = Field(2.0, ge=0, le=100)
+    router: RouterSpec | None = Field(None, description="router G-code of the slotted lids and beam-former plates, "
+                                      "one file per part (set a tool narrower than the slots)")
 
 
 class SlotArraySpec(SpecBase):

@@ -64,9 +64,9 @@ def cone_cut(sheet: SheetPlan, kerf_mm: float, part: str | None = None) -> Ruled
     """A taper-cut lens disc: the cone r0 → r1 over the sheet with radial rulings, the wire kerf/2
     outside it normal to the cone. A disc wider than a board is cut so from the blank its board
     strips are glued into (the strips' own cuts are straight)."""
-    t, r0, r1 = sheet.thickness_mm, sheet.front_radius_mm, sheet.radius_mm
+    t, (r0, r1) = sheet.thickness_mm, sheet.cone_mm
     grow = kerf_mm / 2 * math.hypot(t, r1 - r0) / t
-    count = _arc_count(r1 + grow, 2 * math.pi)
+    count = _arc_count(max(r0, r1) + grow, 2 * math.pi)
     a = math.pi / 2 + 2 * math.pi * np.arange(count) / count          # from the top, counter-clockwise
     ring = np.stack([np.cos(a), np.sin(a)], -1)
     return RuledCut(part or sheet.label, (r0 + grow) * ring, (r1 + grow) * ring, sheet.z_min_mm, sheet.z_max_mm,

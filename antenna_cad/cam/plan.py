@@ -115,14 +115,16 @@ def _hotwire_file(cut: RuledCut, m: Machine, cam, material: str) -> tuple[str, d
 
 def _drill_file(piece, sheet, cam) -> tuple[str, dict] | None:
     outline = Polygon(piece.polygon.exterior)
-    holes = [(h.x_mm, h.y_mm, sheet.hole_depth_mm(h)) for h in sheet.lens_dowels + sheet.foot_dowels
+    side = -1.0 if sheet.drilled_from_front else 1.0        # x as seen from the drilled face
+    holes = [(side * h.x_mm, h.y_mm, sheet.hole_depth_mm(h)) for h in sheet.lens_dowels + sheet.foot_dowels
              if outline.contains(Point(h.x_mm, h.y_mm)) and sheet.hole_depth_mm(h) > 0]
     if not holes:
         return None
     router = BUILT_IN["router-3axis"]
     name = f"cam/{piece.label}-drill.gcode"
-    header = [f"antenna_cad dowel holes of {piece.label}: drilled from the back (antenna-side) face, Z 0 on it",
-              "X/Y from the lens axis, as the template is drawn (seen from the antenna side)"]
+    face = ("front (feed-side)", "feed") if sheet.drilled_from_front else ("back (antenna-side)", "antenna")
+    header = [f"antenna_cad dowel holes of {piece.label}: drilled from the {face[0]} face, Z 0 on it",
+              f"X/Y from the lens axis, seen from the {face[1]} side"]
     prog = drill_program(header, holes, cam.units, cam.drill_feed_mm_min, router.rapid_mm_min, DRILL_CLEARANCE_MM)
     entry = {"file": name, "part": piece.label, "machine": router.name, "axes": router.axes, "kerf_mm": 0.0,
              "feed_mm_min": cam.drill_feed_mm_min, "seconds": round(float(prog.seconds), 1)}

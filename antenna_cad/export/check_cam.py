@@ -67,13 +67,13 @@ def _faces(entry: dict, moves: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray
 
 
 def _profile(manifest: dict):
-    """r(z) of the lens from the manifest's spec, synthesized again (None: no radius law)."""
+    """r(z) of the lens at the faces' z from the manifest's spec, synthesized again (the kind's
+    ``cone_radius``; None: the kind has no radius law)."""
     from antenna_cad.registry import adapter
     from antenna_cad.spec import parse_spec
     spec = parse_spec(manifest["spec"])
-    design = adapter(spec.kind).synthesize(spec)
-    radius_at = getattr(design, "radius_at", None)
-    return (lambda z: float(radius_at(min(max(z, 0.0), design.thickness_mm)))) if radius_at else None
+    kind = adapter(spec.kind)
+    return kind.cone_radius(spec, kind.synthesize(spec)) if hasattr(kind, "cone_radius") else None
 
 
 def cone_error_mm(entry: dict, front: np.ndarray, back: np.ndarray, radius_at) -> float:

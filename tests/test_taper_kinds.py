@@ -1,0 +1,80 @@
+"""Taper-cut (``edge: taper``) layups beyond the collimator: each sheet's cone passes through the lens's
+half-width at its two faces (solved here independently from the face profiles), every hot-wire file
+parses back (gcodeparser) and rebuilds the cone + kerf/2 within the check's tolerance, and the check
+fails on a wire moved by a tenth of a millimetre."""
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from antenna_cad.export.check_cam import CAM_TOL_MM, check_cam
+from antenna_cad.pipeline import prepare
+from tests.test_cam import _spec, _surface_errors, _write, moved_wire_failures
+
+FACE_TOL_MM = 1e-6          # cone radius vs the lens half-width at a sheet face
+
+
+@pytest.fixture(scope="module")
+def bifocal(tmp_path_factory):
+    """The seed's Ø1 m bifocal lens (X_B = 9 m), 50 mm boards, taper-cut on a wide hot wire."""
+    spec = _spec("bifocal-nikulina-9m.yaml", edge="taper", cam={"travel_mm": [2000, 2000], "lead_in_mm": 10})
+    plan = prepare(spec)
+    folder = tmp_path_factory.mktemp("bifocal-taper")
+    return spec, plan, folder, _write(plan, spec, folder)
+
+
+def _bifocal_half_width(design, z: float) -> float:
+    """The lens's half-width at depth z from its Hermite faces: the illuminated face before the rim,
+    the shadow face behind it, 0 outside the lens."""
+    if z <= design.rho1_mm or z >= design.rho2_mm:
+        return 0.0
+    surface = "illuminated" if z <= design.edge_x_mm else "shadow"
+    return brentq(lambda y: float(design.profile(surface, y)) - z, 0.0, design.edge_y_mm, xtol=1e-12)
+
+
+def test_bifocal_cones_pass_through_the_lens_at_both_faces(bifocal):
+    spec, plan, folder, manifest = bifocal
+    design, layup = plan.design, plan.layup
+    assert layup.edge == "taper" and all(s.tapered for s in layup.sheets)
+    worst = max(abs(r - _bifocal_half_width(design, z)) for s in layup.sheets
+                for r, z in zip(s.cone_mm, (s.z_min_mm, s.z_max_mm)))
+    assert worst < FACE_TOL_MM
+    fronts, backs = zip(*(s.cone_mm for s in layup.sheets))
+    rim = next(s for s in layup.sheets if s.z_min_mm < design.edge_x_mm < s.z_max_mm)
+    assert all(b > f for f, b, s in zip(fronts, backs, layup.sheets) if s.z_max_mm < design.edge_x_mm)
+    assert all(b < f for f, b, s in zip(fronts, backs, layup.sheets) if s.z_min_mm > design.edge_x_mm)
+    assert max(rim.cone_mm) < design.edge_y_mm          # the chord across the rim
+    assert [c for c in plan.checks if c.name == "sheet_cone_fit"][0].status == "pass"
+
+
+def test_bifocal_gcode_rebuilds_every_cone_and_a_moved_wire_fails(bifocal):
+    spec, plan, folder, manifest = bifocal
+    findings = check_cam(folder, manifest)
+    assert findings and all(f.ok for f in findings), [f for f in findings if not f.ok][:3]
+    errors = _surface_errors(findings)
+    assert len(errors) == plan.layup.count and max(errors) <= CAM_TOL_MM
+    # a steep cone (the rim's): a radial move of the wire is nearly normal to it
+    assert moved_wire_failures(folder, manifest, "cam/sheet-06-blank.gcode") == ["cam_surface"]
+
+
+def test_bifocal_shadow_side_dowels_are_drilled_from_the_front(bifocal):
+    spec, plan, folder, manifest = bifocal
+    last = plan.layup.sheets[-1]
+    assert last.drilled_from_front and not plan.layup.sheets[0].drilled_from_front
+    text = (folder / f"cam/{last.label}-drill.gcode").read_text()
+    depths = [float(w[1:]) for line in text.splitlines() if line.startswith("G81") for w in line.split() if w[0] == "Z"]
+    assert "front (feed-side) face" in text and depths and all(-last.thickness_mm < d < 0 for d in depths)
+
+
+def test_bifocal_taper_gap_table_follows_the_lens(bifocal):
+    """The cones lie far closer to the profile than a full step, except at the rim chord and the
+    two vertex caps."""
+    from antenna_cad.kinds.bifocal import _lens
+    from antenna_cad.kinds.taper import Taper
+    spec, plan, folder, manifest = bifocal
+    gaps = np.array(Taper(_lens(spec, plan.design, plan.layup), plan.layup).largest_gap_mm())
+    t = plan.layup.sheet_thickness_mm
+    assert np.all(gaps > 0) and np.all(gaps < t / 2)
+    inner = [g for g, s in zip(gaps, plan.layup.sheets)
+             if 1 < s.index < plan.layup.count and not s.z_min_mm < plan.design.edge_x_mm < s.z_max_mm]
+    assert max(inner) < t / 10

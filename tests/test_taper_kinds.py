@@ -53,8 +53,7 @@ def test_bifocal_gcode_rebuilds_every_cone_and_a_moved_wire_fails(bifocal):
     assert findings and all(f.ok for f in findings), [f for f in findings if not f.ok][:3]
     errors = _surface_errors(findings)
     assert len(errors) == plan.layup.count and max(errors) <= CAM_TOL_MM
-    # a steep cone (the rim's): a radial move of the wire is nearly normal to it
-    assert moved_wire_failures(folder, manifest, "cam/sheet-06-blank.gcode") == ["cam_surface"]
+    assert moved_wire_failures(folder, manifest, _steepest_cone_file(plan, manifest)) == ["cam_surface"]
 
 
 def test_bifocal_shadow_side_dowels_are_drilled_from_the_front(bifocal):
@@ -78,3 +77,46 @@ def test_bifocal_taper_gap_table_follows_the_lens(bifocal):
     inner = [g for g, s in zip(gaps, plan.layup.sheets)
              if 1 < s.index < plan.layup.count and not s.z_min_mm < plan.design.edge_x_mm < s.z_max_mm]
     assert max(inner) < t / 10
+
+
+def _steepest_cone_file(plan, manifest) -> str:
+    """The hot-wire file of the steepest non-vertical cone (a radial move of the wire is nearly
+    normal to it), a whole disc or a glued blank."""
+    files = {e["part"]: e["file"] for e in manifest["cam"] if "faces" in e}
+    cones = [s for s in plan.layup.sheets if abs(s.cone_mm[1] - s.cone_mm[0]) > 1.0]
+    s = min(cones, key=lambda s: abs(s.cone_mm[1] - s.cone_mm[0]))
+    return files.get(s.label) or files[f"{s.label}-blank"]
+
+
+@pytest.fixture(scope="module")
+def mirror_lens(tmp_path_factory):
+    """The seed-004 feed-on-surface mirror-lens (D 346 mm), 30 mm sheets, taper-cut."""
+    spec = _spec("mirror-lens-feed-on-surface.yaml", edge="taper", cam={"travel_mm": [2000, 2000], "lead_in_mm": 10})
+    plan = prepare(spec)
+    folder = tmp_path_factory.mktemp("mirror-lens-taper")
+    return spec, plan, folder, _write(plan, spec, folder)
+
+
+def test_mirror_lens_cones_pass_through_the_body_at_both_faces(mirror_lens):
+    from shapely.geometry import LineString, Polygon
+    spec, plan, folder, manifest = mirror_lens
+    body = Polygon(plan.design.section_mm())                 # (r, z) section of the body
+
+    def half_width(z):
+        cut = body.intersection(LineString([(0.0, z), (1e4, z)]))
+        return 0.0 if cut.is_empty else cut.bounds[2]
+    layup = plan.layup
+    assert all(s.tapered for s in layup.sheets)
+    worst = max(abs(r - half_width(z)) for s in layup.sheets for r, z in zip(s.cone_mm, (s.z_min_mm, s.z_max_mm)))
+    assert worst < FACE_TOL_MM
+    assert [c for c in plan.checks if c.name == "sheet_cone_fit"][0].status == "pass"
+
+
+def test_mirror_lens_gcode_rebuilds_every_cone_and_a_moved_wire_fails(mirror_lens):
+    spec, plan, folder, manifest = mirror_lens
+    findings = check_cam(folder, manifest)
+    assert findings and all(f.ok for f in findings), [f for f in findings if not f.ok][:3]
+    cones = sum(abs(s.cone_mm[1] - s.cone_mm[0]) > 1e-6 for s in plan.layup.sheets)
+    errors = _surface_errors(findings)
+    assert len(errors) == cones and max(errors) <= CAM_TOL_MM
+    assert moved_wire_failures(folder, manifest, _steepest_cone_file(plan, manifest)) == ["cam_surface"]

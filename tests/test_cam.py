@@ -11,6 +11,7 @@ import yaml
 
 from antenna_cad.cam.machines import kerf_at
 from antenna_cad.export.check_cam import CAM_TOL_MM, check_cam, parse_moves
+from antenna_cad.export.manifest import _clean
 from antenna_cad.pipeline import prepare
 from antenna_cad.spec import parse_spec
 from antenna_cad.synthesis.checks import DesignError
@@ -25,11 +26,12 @@ def _spec(recipe: str, **fabrication):
 
 
 def _write(plan, spec, folder: Path) -> dict:
-    """The cam files of ``plan`` in ``folder`` and the manifest fields the check reads."""
+    """The cam files of ``plan`` in ``folder`` and the manifest fields the check reads, rounded as
+    manifest.json rounds them."""
     for name, text in plan.fab.files.items():
         (folder / name).parent.mkdir(parents=True, exist_ok=True)
         (folder / name).write_text(text)
-    return {"spec": json.loads(spec.model_dump_json()), "cam": list(plan.fab.cam.entries)}
+    return _clean({"spec": json.loads(spec.model_dump_json()), "cam": list(plan.fab.cam.entries)})
 
 
 def _surface_errors(findings) -> list[float]:

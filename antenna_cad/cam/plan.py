@@ -176,8 +176,12 @@ def plan_cam(layup, pieces, cam, material: str, panels=(), placements=None) -> C
         router_files, router_entries = _router_files(panels, placements, cam)
         files |= router_files
         entries += router_entries
+    return with_order(files, entries, cuts)
+
+
+def with_order(files: dict[str, str], entries: list[dict], cuts: list) -> CamPlan:
+    """The CamPlan of ``files`` with ``cam/cut-order.csv``: every entry in cut order and the total time."""
     rows = ["order,file,part,machine,seconds"] + [f"{i},{e['file']},\"{e['part']}\",{e['machine']},{e['seconds']:g}"
                                                   for i, e in enumerate(entries, 1)]
     rows.append(f",total,,,{sum(e['seconds'] for e in entries):.1f}")
-    files["cam/cut-order.csv"] = "\n".join(rows) + "\n"
-    return CamPlan(files, tuple(entries), tuple(cuts))
+    return CamPlan(files | {"cam/cut-order.csv": "\n".join(rows) + "\n"}, tuple(entries), tuple(cuts))

@@ -8,7 +8,8 @@ lead-in, then to the contour); the moves between them are the contour. A taper-c
 lie kerf/2 outside the cone through the lens profile at its two faces — the profile synthesized
 again from the manifest's spec — within ``CAM_TOL_MM``, at every vertex and chord midpoint (a
 board strip's butt-joint planes are vertical rulings inside it); every other piece is a straight cut
-(XY = UV). Every move of either tower stays inside the machine's travel.
+(XY = UV). A Luneburg ring's edge is held to its sphere (``sphere_mm``), an inner edge kerf/2
+inside it. Every move of either tower stays inside the machine's travel.
 """
 
 from __future__ import annotations
@@ -78,7 +79,9 @@ def _profile(manifest: dict):
 
 def cone_error_mm(entry: dict, front: np.ndarray, back: np.ndarray, radius_at) -> float:
     """Largest |distance − kerf/2| between the wire and the cone through r(z) at the two faces, in the
-    meridional plane, over the rulings on the cone and the midpoints of chords between them."""
+    meridional plane, over the rulings on the cone and the midpoints of chords between them; the
+    distance is taken toward the axis for a ring's inner edge (``edge: inner``)."""
+    side = -1.0 if entry.get("edge") == "inner" else 1.0
     z0, z1 = (f["z_mm"] for f in entry["faces"])
     a, b = np.array([radius_at(z0), z0]), np.array([radius_at(z1), z1])
     u = (b - a) / np.linalg.norm(b - a)
@@ -88,7 +91,7 @@ def cone_error_mm(entry: dict, front: np.ndarray, back: np.ndarray, radius_at) -
     def dist(p0, p1):
         rho = np.stack([np.hypot(*p0.T), np.hypot(*p1.T)])
         return np.abs(np.stack([(np.stack([rho[i], np.full(len(p0), z)], -1) - a) @ normal
-                                for i, z in enumerate((z0, z1))]) - entry["kerf_mm"] / 2).max(axis=0)
+                                for i, z in enumerate((z0, z1))]) - side * entry["kerf_mm"] / 2).max(axis=0)
     on = ~vertical
     err = dist(front[on], back[on])
     pair = on[:-1] & on[1:]
@@ -104,6 +107,9 @@ def hotwire_findings(folder: Path, manifest: dict, entry: dict, radius_at, trave
                   and np.all(reach[:, 2:4] <= np.array(travel) + 1e-6))
     out = [Finding(name, "cam_travel", inside, f"every move inside the {travel[0]:g} × {travel[1]:g} mm travel"
                    if inside else "a move leaves the machine's travel")]
+    if "sphere_mm" in entry:                                      # a Luneburg ring's edge: its sphere
+        R = float(entry["sphere_mm"])
+        radius_at = lambda z: float(np.sqrt(max(R * R - z * z, 0.0)))   # noqa: E731
     cut = [p for p, g in zip(moves, cutting) if g][1:-2]         # the contour (see the module docstring)
     front, back = _faces(entry, cut)
     cone = bool(np.any(np.abs(front - back) > 1e-6))

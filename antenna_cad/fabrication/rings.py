@@ -42,6 +42,7 @@ class FabPlanRings:
     in_hole: dict[str, str]                   # piece label -> host ring label
     in_hole_saving_m2: dict[str, float]       # grade -> board area saved by nesting in holes
     files: dict[str, str] = field(default_factory=dict)   # extra text files, as in ``FabPlan``
+    cam: object = None                        # cam.plan.CamPlan of a taper-cut layup with a cam block
 
     @property
     def checks(self) -> tuple[Check, ...]:

@@ -8,11 +8,13 @@ rings per grade (``fabrication.rings``). CAD imports stay inside ``model``.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
 from antenna_cad.verification import Verification
 from antenna_cad.fabrication.cutlist import CutRow
+from antenna_cad.fabrication.ring_plan import sphere_radius
 from antenna_cad.fabrication.rings import FabPlanRings, RingLayupPlan, fabricate_rings, plan_rings
 from antenna_cad.materials import Material
 from antenna_cad.spec.common import resolve_material
@@ -56,7 +58,7 @@ def plan(spec: LuneburgSpec, design: LuneburgDesign):
                       sheet_thickness_mm=fab.sheet_thickness_mm, sizing=fab.ring_sizing, kerf_mm=fab.kerf_mm,
                       board_width_mm=fab.board.width_mm, board_length_mm=fab.board.length_mm,
                       registration_hole_mm=fab.registration_hole_mm, pedestal_height_mm=fab.pedestal_height_mm,
-                      pedestal_width_mm=fab.pedestal_width_mm), ()
+                      pedestal_width_mm=fab.pedestal_width_mm, edge=fab.edge), ()
 
 
 def model(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | None, panels):
@@ -69,7 +71,12 @@ def model(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | Non
 
 def fabricate(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | None, panels):
     if layup is not None:
-        return fabricate_rings(layup, spec.name, drawings=spec.outputs.templates)
+        fab = fabricate_rings(layup, spec.name, drawings=spec.outputs.templates)
+        if spec.fabrication.cam is None or layup.edge != "taper":
+            return fab
+        from antenna_cad.cam.rings import plan_ring_cam
+        cam = plan_ring_cam(layup, spec.fabrication.cam, {L.index: L for L in design.layers})
+        return replace(fab, files=fab.files | cam.files, cam=cam)
     return _fabricate_blanks(spec, design)
 
 
@@ -161,7 +168,9 @@ def fabrication_checks(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLa
                 fit = max(fit, abs(r.r_outer_mm - need_out), abs(r.r_inner_mm - need_in))
                 allowance = max(allowance, r.r_outer_mm - float(np.min(np.sqrt(np.maximum(sh.r_outer_mm**2 - z * z, 0.0)))))
     checks = []
-    if layup.sizing == "contain":
+    if layup.edge == "taper":
+        checks += _cone_checks(layup, L)
+    elif layup.sizing == "contain":
         checks.append(Check.upper("ring_fit", fit, 1e-6, "mm",
                                   "ring radii vs shell radii over the slab (contain, no excess)"))
         checks.append(Check("ring_finishing_allowance", "pass", allowance, allowance, "mm",
@@ -172,6 +181,24 @@ def fabrication_checks(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLa
                             f"rings sized at sheet mid-planes (stepped); {layup.dropped_caps} shell caps "
                             "missing their mid-plane are dropped"))
     return checks + [_registration_check(layup)] + stand
+
+
+def _cone_checks(layup: RingLayupPlan, layers: dict) -> list[Check]:
+    """Taper-cut rings: every cone's radii against its sphere at the sheet's two faces (a disc
+    cut over an inner sphere's pole has no inner cone), and the caps dropped inside such discs."""
+    fit = 0.0
+    for s in layup.sheets:
+        for r in s.rings:
+            sh = layers[r.shell_index]
+            spheres = [(r.cone_outer_mm, sh.r_outer_mm)] + ([(r.cone_inner_mm, sh.r_inner_mm)]
+                                                            if max(r.cone_inner_mm) > 0 else [])
+            fit = max([fit] + [abs(c - sphere_radius(R, z)) for cone, R in spheres
+                               for c, z in zip(cone, (s.z_min_mm, s.z_max_mm))])
+    return [Check.upper("ring_cone_fit", fit, 1e-6, "mm", "taper-cut ring cones vs their spheres at each "
+                        "sheet's two faces"),
+            Check("taper_dropped_caps", "warn" if layup.dropped_caps else "pass", float(layup.dropped_caps), 0.0,
+                  "caps", f"{layup.dropped_caps} shell caps inside a ring cut as a disc over an inner sphere's "
+                  "pole (a wire cuts only through holes; the disc's grade fills them)")]
 
 
 def _registration_check(layup: RingLayupPlan) -> Check:

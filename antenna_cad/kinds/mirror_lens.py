@@ -60,8 +60,10 @@ def synthesize(spec: MirrorLensSpec) -> MirrorLensDesign:
 
 def cone_radius(spec: MirrorLensSpec, design: MirrorLensDesign):
     """r(z): the body's half-width at depth z (seed-004 frame), 0 outside it — what a taper-cut
-    sheet's cone passes through at each face (and what ``make-lens check`` holds the wire to)."""
-    return lambda z: design.max_radius_in_mm(z, z)
+    sheet's cone passes through at each face (and what ``make-lens check`` holds the wire to); z is
+    clamped to the body (its flat face is a sheet face: a manifest's rounded z stays on it)."""
+    lo, hi = design.z_range_mm
+    return lambda z: design.max_radius_in_mm(min(max(z, lo), hi), min(max(z, lo), hi))
 
 
 def _sheets(spec: MirrorLensSpec, design: MirrorLensDesign):

@@ -11,6 +11,7 @@ from typing import Annotated, Literal, Union
 from pydantic import Field, model_validator
 
 from antenna_cad.spec.bounds import MAX_LIST, MIN_RATIO, MIN_SHEET_MM
+from antenna_cad.spec.cam import CamSpec
 from antenna_cad.spec.common import BoardSpec, SpecBase, StrictModel, or_auto
 
 
@@ -98,6 +99,10 @@ class LuneburgLayupSpec(StrictModel):
         "the aperture circle down this far below the lens (a cradle, outside the aperture cylinder, feet "
         "dowelled to each other); none: no stand")
     pedestal_width_mm: float | None = Field(None, ge=1, le=20000, description="stand width; default 60 % of the diameter")
+    edge: Literal["stepped", "taper"] = Field(
+        "stepped", description="stepped: vertical ring edges (ring_sizing); taper: each ring's outer and inner "
+        "edge cut as the cone through its sphere at the sheet's two faces (hot wire, no turning; sphere only)")
+    cam: CamSpec | None = Field(None, description="hot-wire G-code for the rings' cones (cam/)")
 
 
 class LuneburgSpec(SpecBase):
@@ -109,6 +114,13 @@ class LuneburgSpec(SpecBase):
     @model_validator(mode="after")
     def _stand(self):
         fab, d = self.fabrication, self.design
+        if isinstance(fab, LuneburgLayupSpec) and fab.cam is not None and fab.edge != "taper":
+            raise ValueError("fabrication.cam: hot-wire files are for edge: taper (the rings' cones)")
+        if isinstance(fab, LuneburgLayupSpec) and fab.edge == "taper":
+            if d.shape != "sphere":
+                raise ValueError("fabrication.edge: taper is for the sphere (a cylinder's rings are already exact)")
+            if fab.ring_sizing != "contain":
+                raise ValueError("fabrication.edge: taper needs ring_sizing: contain (the blank each cone is cut from)")
         if isinstance(fab, LuneburgLayupSpec) and fab.pedestal_height_mm is not None:
             if d.shape != "sphere":
                 raise ValueError("fabrication.pedestal_height_mm: a stand is for the sphere (the cylinder sits "

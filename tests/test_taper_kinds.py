@@ -120,3 +120,51 @@ def test_mirror_lens_gcode_rebuilds_every_cone_and_a_moved_wire_fails(mirror_len
     errors = _surface_errors(findings)
     assert len(errors) == cones and max(errors) <= CAM_TOL_MM
     assert moved_wire_failures(folder, manifest, _steepest_cone_file(plan, manifest)) == ["cam_surface"]
+
+
+@pytest.fixture(scope="module")
+def luneburg(tmp_path_factory):
+    """The 5-layer Ø200 mm sphere of 10 mm sheets, its rings taper-cut."""
+    spec = _spec("luneburg-layup-200.yaml", edge="taper", cam={"travel_mm": [2000, 2000], "lead_in_mm": 10})
+    plan = prepare(spec)
+    folder = tmp_path_factory.mktemp("luneburg-taper")
+    return spec, plan, folder, _write(plan, spec, folder)
+
+
+def test_luneburg_ring_cones_pass_through_their_spheres_at_both_faces(luneburg):
+    spec, plan, folder, manifest = luneburg
+    shells = {L.index: L for L in plan.design.layers}
+    worst, discs = 0.0, 0
+    for s in plan.layup.sheets:
+        for r in s.rings:
+            sh = shells[r.shell_index]
+            for z, outer, inner in zip((s.z_min_mm, s.z_max_mm), r.cone_outer_mm, r.cone_inner_mm):
+                worst = max(worst, abs(outer - np.sqrt(max(sh.r_outer_mm**2 - z * z, 0.0))))
+                if max(r.cone_inner_mm) > 0:
+                    worst = max(worst, abs(inner - np.sqrt(max(sh.r_inner_mm**2 - z * z, 0.0))))
+            discs += max(r.cone_inner_mm) == 0 and sh.r_inner_mm > min(abs(s.z_min_mm), abs(s.z_max_mm))
+    assert worst < FACE_TOL_MM
+    assert discs > 0 and plan.layup.dropped_caps > 0          # discs over the inner poles, caps inside them
+    checks = {c.name: c.status for c in plan.checks}
+    assert checks["ring_cone_fit"] == "pass" and checks["taper_dropped_caps"] == "warn"
+
+
+def test_luneburg_gcode_rebuilds_every_ring_edge_and_a_moved_wire_fails(luneburg):
+    spec, plan, folder, manifest = luneburg
+    findings = check_cam(folder, manifest)
+    assert findings and all(f.ok for f in findings), [f for f in findings if not f.ok][:3]
+    edges = sum(1 + (max(r.cone_inner_mm) > 0) for r in plan.layup.rings)
+    errors = _surface_errors(findings)
+    assert len(errors) == edges and max(errors) <= CAM_TOL_MM
+    inner = [e for e in manifest["cam"] if e.get("edge") == "inner"]
+    assert inner and all(e["sphere_mm"] > 0 for e in inner)
+    # the equator sheet's outermost ring: steep cones, a radial move of the wire nearly normal to them
+    assert moved_wire_failures(folder, manifest, "cam/sheet-11-ring-05-inner.gcode") == ["cam_surface"]
+    assert moved_wire_failures(folder, manifest, "cam/sheet-11-ring-05-outer.gcode") == ["cam_surface"]
+
+
+def test_luneburg_taper_needs_the_sphere_contain_blanks_and_cam_needs_taper():
+    with pytest.raises(ValueError, match="edge: taper needs ring_sizing: contain"):
+        _spec("luneburg-layup-200.yaml", edge="taper", ring_sizing="mid_plane")
+    with pytest.raises(ValueError, match="fabrication.cam: hot-wire files are for edge: taper"):
+        _spec("luneburg-layup-200.yaml", cam={})

@@ -12,15 +12,29 @@ from antenna_cad.pipeline import prepare
 from tests.test_cam import _spec, _surface_errors, _write, moved_wire_failures
 
 FACE_TOL_MM = 1e-6          # cone radius vs the lens half-width at a sheet face
+WIDE_HOTWIRE = {"travel_mm": [2000, 2000], "lead_in_mm": 10}     # steep cones swing the towers far
+
+
+def _taper_build(tmp_path_factory, recipe: str):
+    """(spec, plan, folder, manifest) of ``recipe`` taper-cut, its cam files written."""
+    spec = _spec(recipe, edge="taper", cam=WIDE_HOTWIRE)
+    plan = prepare(spec)
+    folder = tmp_path_factory.mktemp(recipe.removesuffix(".yaml"))
+    return spec, plan, folder, _write(plan, spec, folder)
+
+
+def _assert_cones_rebuilt(folder, manifest, cones: int) -> None:
+    """Every cam file passes the check, ``cones`` of them rebuilt as cones within the tolerance."""
+    findings = check_cam(folder, manifest)
+    assert findings and all(f.ok for f in findings), [f for f in findings if not f.ok][:3]
+    errors = _surface_errors(findings)
+    assert len(errors) == cones and max(errors) <= CAM_TOL_MM
 
 
 @pytest.fixture(scope="module")
 def bifocal(tmp_path_factory):
-    """The seed's Ø1 m bifocal lens (X_B = 9 m), 50 mm boards, taper-cut on a wide hot wire."""
-    spec = _spec("bifocal-nikulina-9m.yaml", edge="taper", cam={"travel_mm": [2000, 2000], "lead_in_mm": 10})
-    plan = prepare(spec)
-    folder = tmp_path_factory.mktemp("bifocal-taper")
-    return spec, plan, folder, _write(plan, spec, folder)
+    """The seed's Ø1 m bifocal lens (X_B = 9 m), 50 mm boards."""
+    return _taper_build(tmp_path_factory, "bifocal-nikulina-9m.yaml")
 
 
 def _bifocal_half_width(design, z: float) -> float:
@@ -49,10 +63,7 @@ def test_bifocal_cones_pass_through_the_lens_at_both_faces(bifocal):
 
 def test_bifocal_gcode_rebuilds_every_cone_and_a_moved_wire_fails(bifocal):
     spec, plan, folder, manifest = bifocal
-    findings = check_cam(folder, manifest)
-    assert findings and all(f.ok for f in findings), [f for f in findings if not f.ok][:3]
-    errors = _surface_errors(findings)
-    assert len(errors) == plan.layup.count and max(errors) <= CAM_TOL_MM
+    _assert_cones_rebuilt(folder, manifest, plan.layup.count)
     assert moved_wire_failures(folder, manifest, _steepest_cone_file(plan, manifest)) == ["cam_surface"]
 
 
@@ -90,11 +101,8 @@ def _steepest_cone_file(plan, manifest) -> str:
 
 @pytest.fixture(scope="module")
 def mirror_lens(tmp_path_factory):
-    """The seed-004 feed-on-surface mirror-lens (D 346 mm), 30 mm sheets, taper-cut."""
-    spec = _spec("mirror-lens-feed-on-surface.yaml", edge="taper", cam={"travel_mm": [2000, 2000], "lead_in_mm": 10})
-    plan = prepare(spec)
-    folder = tmp_path_factory.mktemp("mirror-lens-taper")
-    return spec, plan, folder, _write(plan, spec, folder)
+    """The seed-004 feed-on-surface mirror-lens (D 346 mm), 30 mm sheets."""
+    return _taper_build(tmp_path_factory, "mirror-lens-feed-on-surface.yaml")
 
 
 def test_mirror_lens_cones_pass_through_the_body_at_both_faces(mirror_lens):
@@ -114,21 +122,14 @@ def test_mirror_lens_cones_pass_through_the_body_at_both_faces(mirror_lens):
 
 def test_mirror_lens_gcode_rebuilds_every_cone_and_a_moved_wire_fails(mirror_lens):
     spec, plan, folder, manifest = mirror_lens
-    findings = check_cam(folder, manifest)
-    assert findings and all(f.ok for f in findings), [f for f in findings if not f.ok][:3]
-    cones = sum(abs(s.cone_mm[1] - s.cone_mm[0]) > 1e-6 for s in plan.layup.sheets)
-    errors = _surface_errors(findings)
-    assert len(errors) == cones and max(errors) <= CAM_TOL_MM
+    _assert_cones_rebuilt(folder, manifest, sum(abs(s.cone_mm[1] - s.cone_mm[0]) > 1e-6 for s in plan.layup.sheets))
     assert moved_wire_failures(folder, manifest, _steepest_cone_file(plan, manifest)) == ["cam_surface"]
 
 
 @pytest.fixture(scope="module")
 def luneburg(tmp_path_factory):
-    """The 5-layer Ø200 mm sphere of 10 mm sheets, its rings taper-cut."""
-    spec = _spec("luneburg-layup-200.yaml", edge="taper", cam={"travel_mm": [2000, 2000], "lead_in_mm": 10})
-    plan = prepare(spec)
-    folder = tmp_path_factory.mktemp("luneburg-taper")
-    return spec, plan, folder, _write(plan, spec, folder)
+    """The 5-layer Ø200 mm sphere of 10 mm sheets."""
+    return _taper_build(tmp_path_factory, "luneburg-layup-200.yaml")
 
 
 def test_luneburg_ring_cones_pass_through_their_spheres_at_both_faces(luneburg):
@@ -151,11 +152,7 @@ def test_luneburg_ring_cones_pass_through_their_spheres_at_both_faces(luneburg):
 
 def test_luneburg_gcode_rebuilds_every_ring_edge_and_a_moved_wire_fails(luneburg):
     spec, plan, folder, manifest = luneburg
-    findings = check_cam(folder, manifest)
-    assert findings and all(f.ok for f in findings), [f for f in findings if not f.ok][:3]
-    edges = sum(1 + (max(r.cone_inner_mm) > 0) for r in plan.layup.rings)
-    errors = _surface_errors(findings)
-    assert len(errors) == edges and max(errors) <= CAM_TOL_MM
+    _assert_cones_rebuilt(folder, manifest, sum(1 + (max(r.cone_inner_mm) > 0) for r in plan.layup.rings))
     inner = [e for e in manifest["cam"] if e.get("edge") == "inner"]
     assert inner and all(e["sphere_mm"] > 0 for e in inner)
     # the equator sheet's outermost ring: steep cones, a radial move of the wire nearly normal to them

@@ -165,3 +165,20 @@ def test_luneburg_taper_needs_the_sphere_contain_blanks_and_cam_needs_taper():
         _spec("luneburg-layup-200.yaml", edge="taper", ring_sizing="mid_plane")
     with pytest.raises(ValueError, match="fabrication.cam: hot-wire files are for edge: taper"):
         _spec("luneburg-layup-200.yaml", cam={})
+
+
+def test_mirror_lens_and_ring_tables_show_each_cone_and_its_gap(mirror_lens, luneburg):
+    """The layer tables: every sheet's (ring's) cones with the largest gap to the profile, which is
+    zero on the body's cylinder and far below a sheet elsewhere."""
+    from antenna_cad.kinds.luneburg import _ring_cone_table
+    from antenna_cad.kinds.mirror_lens import cone_radius
+    from antenna_cad.kinds.taper import cone_table
+    spec, plan, _, _ = mirror_lens
+    rows = cone_table(plan.layup, cone_radius(spec, plan.design)).rows
+    assert [r[0] for r in rows] == [s.label for s in plan.layup.sheets]
+    gaps = [r[-1] for r in rows]
+    assert min(gaps) < 1e-6 and 0 < max(gaps) < plan.layup.sheet_thickness_mm / 2
+    spec, plan, _, _ = luneburg
+    rows = _ring_cone_table(plan.layup, {L.index: L for L in plan.design.layers}).rows
+    assert len(rows) == len(plan.layup.rings)
+    assert 0 < max(r[-1] for r in rows) < plan.layup.sheet_thickness_mm / 2

@@ -2,7 +2,9 @@
 
 ``fabrication.method: shells``: every layer a separate shell split into front/back hemispheres
 with foam pins (cylinder: rings of the plate spacing); ``sheet_layup``: sheets of concentric
-rings per grade (``fabrication.rings``). CAD imports stay inside ``model``.
+rings per grade (``fabrication.rings``), vertical-edged or taper-cut (``edge: taper``: cones through
+the spheres, hot-wire files per ring edge, :mod:`antenna_cad.cam.rings`). CAD imports stay inside
+``model``.
 """
 
 from __future__ import annotations
@@ -12,10 +14,11 @@ from dataclasses import replace
 
 import numpy as np
 
-from antenna_cad.verification import Verification
+from antenna_cad.verification import Table, Verification
 from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.ring_plan import sphere_radius
 from antenna_cad.fabrication.rings import FabPlanRings, RingLayupPlan, fabricate_rings, plan_rings
+from antenna_cad.kinds.taper import cone_gap_mm
 from antenna_cad.materials import Material
 from antenna_cad.spec.common import resolve_material
 from antenna_cad.spec.luneburg import LuneburgLayupSpec, LuneburgSpec
@@ -223,4 +226,25 @@ def verify(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | No
     """As-built GO verification: ideal, stepped and as-built lenses, scanned feeds, tolerances
     (:mod:`antenna_cad.kinds.luneburg_verify`)."""
     from antenna_cad.kinds.luneburg_verify import verify_luneburg   # the tracers and full-wave: a build's cost only
-    return verify_luneburg(spec, design, layup, fab, layer_materials(spec, design))
+    v = verify_luneburg(spec, design, layup, fab, layer_materials(spec, design))
+    if layup is None or layup.edge != "taper":
+        return v
+    return v.merged(Verification(tables=(_ring_cone_table(layup, {L.index: L for L in design.layers}),)))
+
+
+def _ring_cone_table(layup: RingLayupPlan, shells: dict) -> Table:
+    """Every taper-cut ring's two cones and their largest gaps to the spheres."""
+    rows = []
+    for s in layup.sheets:
+        z = (s.z_min_mm, s.z_max_mm)
+        for r in s.rings:
+            sh = shells[r.shell_index]
+            gaps = [cone_gap_mm(r.cone_outer_mm, z, lambda x: sphere_radius(sh.r_outer_mm, x))]
+            if max(r.cone_inner_mm) > 0:
+                gaps.append(cone_gap_mm(r.cone_inner_mm, z, lambda x: sphere_radius(sh.r_inner_mm, x)))
+            rows.append((r.label, round(z[0], 3), round(z[1], 3), *(round(x, 3) for x in r.cone_outer_mm + r.cone_inner_mm),
+                         round(max(gaps), 3)))
+    return Table("ring-cones", "Rings (taper-cut)", ("ring", "z min mm", "z max mm", "outer front mm", "outer back mm",
+                                                    "inner front mm", "inner back mm", "largest gap to the spheres mm"),
+                 tuple(rows), caption="each edge is the cone through its sphere at the sheet's two faces (inner 0: a "
+                 "disc); gap: the largest distance from the sphere to the cone in the meridional section")

@@ -28,6 +28,7 @@ from antenna_cad.kinds.layup import (cone_fit_check, fabricate_layup, layup_figu
                                     plan_sheets)
 from antenna_cad.kinds.mirror_lens_fullwave import body_parts, full_wave_verification
 from antenna_cad.kinds.patterns_arrays import array_patterns, line_case, path_mm
+from antenna_cad.kinds.taper import cone_table
 from antenna_cad.materials import Material
 from antenna_cad.raytrace.mirror_lens import Body, Surface, aperture_field as trace_aperture_field, sigma_at
 from antenna_cad.spec.common import SheetLayupSpec, resolve_material
@@ -338,8 +339,9 @@ def verify(spec: MirrorLensSpec, design: MirrorLensDesign, layup: LayupPlan | No
     edge_check = Check("field_edge_phase_error", "warn" if edge > budget else "pass", edge, budget, "deg",
                        f"aperture phase at the field edge ({sc.field_angle_deg[-1]:.1f}°, feed on the focal "
                        f"curve): {edge:.1f}° p-p vs budget {budget:g}°")
+    cones = (cone_table(layup, cone_radius(spec, design)),) if layup is not None and layup.edge == "taper" else ()
     return Verification(figures, (sens_check, edge_check),
-                        (_profile_table(design), field_table, _astigmatism_table(design), sens_table),
+                        (_profile_table(design), field_table, _astigmatism_table(design), sens_table) + cones,
                         tuple(plots + [field_plot])).merged(array_patterns(cases, PATTERN_CAPTION)).merged(
         full_wave_verification(design, spec.verification, _fullwave_parts(spec, design, layup),
                                aperture_field(spec, design)))

@@ -14,8 +14,35 @@ import numpy as np
 
 from antenna_cad.fabrication.layup import LayupPlan
 from antenna_cad.raytrace.trace2d import Interface
+from antenna_cad.verification import Table
 
 PROFILE_SAMPLES = 20001     # radii on which the lens faces are sampled for the section radius
+GAP_SAMPLES = 257           # depths across a sheet at which the profile is held to its cone
+
+
+def gap_mm(profile: np.ndarray, cone: tuple[float, float], z: tuple[float, float]) -> float:
+    """Largest distance, in the meridional plane, from the (r, z) points ``profile`` to the cone
+    line from (cone[0], z[0]) to (cone[1], z[1])."""
+    a = np.array([cone[0], z[0]])
+    d = np.array([cone[1], z[1]]) - a
+    u = np.clip((profile - a) @ d / (d @ d), 0.0, 1.0)
+    return float(np.max(np.linalg.norm(profile - a - u[:, None] * d, axis=1)))
+
+
+def cone_gap_mm(cone: tuple[float, float], z: tuple[float, float], radius_at) -> float:
+    """:func:`gap_mm` of the profile r = ``radius_at(z)`` (a scalar function) across the sheet."""
+    zz = np.linspace(z[0], z[1], GAP_SAMPLES)
+    return gap_mm(np.stack([[radius_at(x) for x in zz], zz], -1), cone, z)
+
+
+def cone_table(layup: LayupPlan, radius_at) -> Table:
+    """The layer table of a taper-cut layup whose lens radius at depth z is ``radius_at(z)``."""
+    rows = tuple((s.label, round(s.z_min_mm, 3), round(s.z_max_mm, 3), *(round(r, 3) for r in s.cone_mm),
+                  round(cone_gap_mm(s.cone_mm, (s.z_min_mm, s.z_max_mm), radius_at), 3)) for s in layup.sheets)
+    return Table("layers", "Sheets (taper-cut)", ("sheet", "z min mm", "z max mm", "cone radius front mm",
+                                                  "cone radius back mm", "largest gap to the profile mm"), rows,
+                 caption="each rim is the cone through the lens profile at the sheet's two faces; gap: the "
+                 "largest distance from the profile to the cone in the meridional section (no sanding)")
 
 
 def _polyline(r: np.ndarray, z: np.ndarray, n_after: float) -> Interface:
@@ -94,12 +121,7 @@ class Taper:
         rim = [float(self.lens.front_z(self.lens.radius_mm)), float(self.lens.back_z(self.lens.radius_mm))]
         out = []
         for s in self.layup.sheets:
-            z = np.concatenate([np.linspace(s.z_min_mm, s.z_max_mm, 257),
+            z = np.concatenate([np.linspace(s.z_min_mm, s.z_max_mm, GAP_SAMPLES),
                                 [x for x in rim if s.z_min_mm < x < s.z_max_mm]])
-            p = np.stack([self.section_radius(z), z], -1)            # the profile within the sheet
-            r0, r1 = s.cone_mm
-            a = np.array([r0, s.z_min_mm])
-            d = np.array([r1, s.z_max_mm]) - a
-            u = np.clip((p - a) @ d / (d @ d), 0.0, 1.0)
-            out.append(float(np.max(np.linalg.norm(p - a - u[:, None] * d, axis=1))))
+            out.append(gap_mm(np.stack([self.section_radius(z), z], -1), s.cone_mm, (s.z_min_mm, s.z_max_mm)))
         return out

@@ -182,3 +182,13 @@ def test_mirror_lens_and_ring_tables_show_each_cone_and_its_gap(mirror_lens, lun
     rows = _ring_cone_table(plan.layup, {L.index: L for L in plan.design.layers}).rows
     assert len(rows) == len(plan.layup.rings)
     assert 0 < max(r[-1] for r in rows) < plan.layup.sheet_thickness_mm / 2
+
+
+def test_bifocal_auto_stock_is_thicker_with_cones():
+    """sheet_thickness_mm: auto picks the thickest board meeting the budget unsanded (fast model):
+    taper-cut sheets may be far thicker (measured 100 vs 30 mm, docs/guide/cam.md)."""
+    chosen = {}
+    for edge in ("stepped", "taper"):
+        plan = prepare(_spec("bifocal-nikulina-9m.yaml", edge=edge, sheet_thickness_mm="auto"))
+        chosen[edge] = plan.layup.sheet_thickness_mm
+    assert chosen["taper"] > chosen["stepped"]

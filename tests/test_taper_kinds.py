@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from antenna_cad.export.check_cam import CAM_TOL_MM, check_cam
+from antenna_cad.export.check_cam import CAM_TOL_MM, check_cam, parse_moves
 from antenna_cad.pipeline import prepare
 from tests.test_cam import _spec, _surface_errors, _write, moved_wire_failures
 
@@ -192,3 +192,36 @@ def test_bifocal_auto_stock_is_thicker_with_cones():
         plan = prepare(_spec("bifocal-nikulina-9m.yaml", edge=edge, sheet_thickness_mm="auto"))
         chosen[edge] = plan.layup.sheet_thickness_mm
     assert chosen["taper"] > chosen["stepped"]
+
+
+def test_graded_slabs_get_straight_wire_cuts_of_their_exact_outlines(tmp_path):
+    """A graded lens is planar: each sheet's outline is its slab's section, cut straight (XY = UV).
+    Every file parses back and its wire, rebuilt on the foam face, lies kerf/2 outside the piece
+    within the check's tolerance; a wire tilted by one tower moved 0.1 mm fails the check."""
+    from shapely.geometry import LineString, Polygon
+    from antenna_cad.export.check_cam import _faces
+    spec = _spec("graded-trifocal-160mm-foam.yaml", cam={})
+    plan = prepare(spec)
+    manifest = _write(plan, spec, tmp_path)
+    findings = check_cam(tmp_path, manifest)
+    assert findings and all(f.ok for f in findings), [f for f in findings if not f.ok][:3]
+    pieces = {p.label: p for p in plan.fab.pieces}
+    hot = [e for e in manifest["cam"] if "faces" in e]
+    assert {e["part"] for e in hot} == set(pieces)
+    worst = 0.0
+    for e in hot:
+        moves, cutting = parse_moves((tmp_path / e["file"]).read_text(), e["axes"])
+        front, back = _faces(e, [p for p, g in zip(moves, cutting) if g][1:-2])
+        assert np.allclose(front, back)
+        target = Polygon(pieces[e["part"]].polygon.exterior).buffer(e["kerf_mm"] / 2, quad_segs=64)
+        worst = max(worst, LineString(front).hausdorff_distance(target.exterior))
+    assert worst <= CAM_TOL_MM
+    name = hot[0]["file"]
+    lines = (tmp_path / name).read_text().splitlines()
+    k = [i for i, line in enumerate(lines) if line.startswith("G1 ")][5]
+    words = lines[k].split()
+    words[1] = f"X{float(words[1][1:]) + 0.1:.4f}"
+    (tmp_path / "bad/cam").mkdir(parents=True)
+    (tmp_path / "bad" / name).write_text("\n".join(lines[:k] + [" ".join(words)] + lines[k + 1:]) + "\n")
+    entry = next(e for e in manifest["cam"] if e["file"] == name)
+    assert [f.check for f in check_cam(tmp_path / "bad", manifest | {"cam": [entry]}) if not f.ok] == ["cam_surface"]

@@ -17,7 +17,7 @@ from antenna_cad.raytrace.trace2d import Interface
 from antenna_cad.verification import Table
 
 PROFILE_SAMPLES = 20001     # radii on which the lens faces are sampled for the section radius
-GAP_SAMPLES = 257           # depths across a sheet at which the profile is held to its cone
+GAP_SAMPLES = 1025          # depths across a sheet at which the profile is held to its cone
 
 
 def gap_mm(profile: np.ndarray, cone: tuple[float, float], z: tuple[float, float]) -> float:

@@ -123,7 +123,7 @@ def test_kerf_table_is_interpolated_and_clamped():
     assert kerf_at(table, 50.0) == 1.6 and kerf_at(table, 900.0) == 0.6
 
 
-def test_taper_needs_dowels_and_a_monotonic_lens():
+def test_taper_needs_dowels():
     with pytest.raises(ValueError, match="edge: taper needs joining: dowels"):
         _spec("xps-collimator-0.5m-taper.yaml", joining="neck")
 

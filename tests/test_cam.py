@@ -11,6 +11,7 @@ import yaml
 
 from antenna_cad.cam.machines import kerf_at
 from antenna_cad.export.check_cam import CAM_TOL_MM, check_cam, parse_moves
+from antenna_cad.export.manifest import _clean
 from antenna_cad.pipeline import prepare
 from antenna_cad.spec import parse_spec
 from antenna_cad.synthesis.checks import DesignError
@@ -25,11 +26,12 @@ def _spec(recipe: str, **fabrication):
 
 
 def _write(plan, spec, folder: Path) -> dict:
-    """The cam files of ``plan`` in ``folder`` and the manifest fields the check reads."""
+    """The cam files of ``plan`` in ``folder`` and the manifest fields the check reads, rounded as
+    manifest.json rounds them."""
     for name, text in plan.fab.files.items():
         (folder / name).parent.mkdir(parents=True, exist_ok=True)
         (folder / name).write_text(text)
-    return {"spec": json.loads(spec.model_dump_json()), "cam": list(plan.fab.cam.entries)}
+    return _clean({"spec": json.loads(spec.model_dump_json()), "cam": list(plan.fab.cam.entries)})
 
 
 def _surface_errors(findings) -> list[float]:
@@ -61,21 +63,24 @@ def test_every_taper_file_rebuilds_the_cone_within_tolerance(taper):
             e["faces"][1]["z_mm"] - e["faces"][0]["z_mm"])
 
 
-def test_a_wire_moved_by_a_tenth_of_a_millimetre_fails_the_check(taper):
-    spec, plan, folder, manifest = taper
-    name = "cam/sheet-03.gcode"
-    text = (folder / name).read_text()
-    lines = text.splitlines()
+def moved_wire_failures(folder: Path, manifest: dict, name: str) -> list[str]:
+    """The failed checks of cam file ``name`` with one contour move a quarter round (the rim's left
+    side) moved 0.1 mm along X on both towers: the wire, radially."""
+    lines = (folder / name).read_text().splitlines()
     cuts = [i for i, line in enumerate(lines) if line.startswith("G1 ")]
-    k = cuts[len(cuts) // 4]                     # a contour move a quarter round: the rim's left side
-    words = lines[k].split()                     # both towers 0.1 mm along X: the wire, radially
+    k = cuts[len(cuts) // 4]
+    words = lines[k].split()
     words[1], words[3] = (f"{w[0]}{float(w[1:]) + 0.1:.4f}" for w in (words[1], words[3]))
     bad = folder / "bad"
-    (bad / "cam").mkdir(parents=True)
+    (bad / "cam").mkdir(parents=True, exist_ok=True)
     (bad / name).write_text("\n".join(lines[:k] + [" ".join(words)] + lines[k + 1:]) + "\n")
     entry = next(e for e in manifest["cam"] if e["file"] == name)
-    failed = [f for f in check_cam(bad, manifest | {"cam": [entry]}) if not f.ok]
-    assert [f.check for f in failed] == ["cam_surface"]
+    return [f.check for f in check_cam(bad, manifest | {"cam": [entry]}) if not f.ok]
+
+
+def test_a_wire_moved_by_a_tenth_of_a_millimetre_fails_the_check(taper):
+    spec, plan, folder, manifest = taper
+    assert moved_wire_failures(folder, manifest, "cam/sheet-03.gcode") == ["cam_surface"]
 
 
 def test_feet_are_straight_cuts_and_dowel_holes_go_to_drilling_files(taper):
@@ -84,8 +89,8 @@ def test_feet_are_straight_cuts_and_dowel_holes_go_to_drilling_files(taper):
     moves, _ = parse_moves((folder / foot["file"]).read_text(), foot["axes"])
     m = np.array(moves)
     assert np.allclose(m[:, :2], m[:, 2:])                                 # XY = UV
-    drills = [e for e in manifest["cam"] if e["file"].endswith("-drill.gcode")]
-    assert len(drills) == plan.layup.count
+    drills = {e["part"] for e in manifest["cam"] if e["file"].endswith("-drill.gcode")}
+    assert drills == {p.label for p in plan.fab.pieces}                  # every disc and foot is pinned
     first = (folder / "cam/sheet-01-drill.gcode").read_text()
     depths = [float(w[1:]) for line in first.splitlines() if line.startswith("G81") for w in line.split() if w[0] == "Z"]
     assert depths and all(-50 < d < 0 for d in depths)                    # blind: the vertex cone is in the way
@@ -126,7 +131,7 @@ def test_kerf_table_is_interpolated_and_clamped():
     assert kerf_at(table, 50.0) == 1.6 and kerf_at(table, 900.0) == 0.6
 
 
-def test_taper_needs_dowels_and_a_monotonic_lens():
+def test_taper_needs_dowels():
     with pytest.raises(ValueError, match="edge: taper needs joining: dowels"):
         _spec("xps-collimator-0.5m-taper.yaml", joining="neck")
 

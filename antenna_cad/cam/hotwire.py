@@ -66,20 +66,27 @@ def _from_top(front: np.ndarray, back: np.ndarray) -> tuple[np.ndarray, np.ndarr
     return np.roll(front, -k, axis=0), np.roll(back, -k, axis=0)
 
 
-def cone_cut(sheet: SheetPlan, kerf_mm: float, part: str | None = None,
-             face_kerf_mm: tuple[float, float] | None = None) -> RuledCut:
-    """A taper-cut lens disc: the cone r0 → r1 over the sheet with radial rulings, the wire kerf/2
-    outside it normal to the cone (``face_kerf_mm``: each face's own kerf). A disc wider than a board
-    is cut so from the blank its board strips are glued into (the strips' own cuts are straight)."""
-    t, r0, r1 = sheet.thickness_mm, sheet.front_radius_mm, sheet.radius_mm
+def cone_ring(part: str, radii: tuple[float, float], z: tuple[float, float], kerf_mm: float,
+              inward: bool = False, face_kerf_mm: tuple[float, float] | None = None) -> RuledCut:
+    """The cone radii[0] → radii[1] between the faces z[0], z[1] with radial rulings, the wire kerf/2
+    off it normal to the cone: outside (an outer edge) or, ``inward``, inside (a ring's inner edge);
+    ``face_kerf_mm``: each face's own kerf (the wire's speed differs at the two faces)."""
+    (r0, r1), t = radii, z[1] - z[0]
     k0, k1 = face_kerf_mm or (kerf_mm, kerf_mm)
-    sec = math.hypot(t, r1 - r0) / t
-    g0, g1 = k0 / 2 * sec, k1 / 2 * sec
-    count = _arc_count(max(r0 + g0, r1 + g1), 2 * math.pi)
+    grow = (-1.0 if inward else 1.0) / 2 * math.hypot(t, r1 - r0) / t
+    g0, g1 = k0 * grow, k1 * grow
+    count = _arc_count(max(r0 + abs(g0), r1 + abs(g1)), 2 * math.pi)
     a = math.pi / 2 + 2 * math.pi * np.arange(count) / count          # from the top, counter-clockwise
     ring = np.stack([np.cos(a), np.sin(a)], -1)
-    return RuledCut(part or sheet.label, (r0 + g0) * ring, (r1 + g1) * ring, sheet.z_min_mm, sheet.z_max_mm,
-                    kerf_mm, True, face_kerf_mm)
+    return RuledCut(part, (r0 + g0) * ring, (r1 + g1) * ring, z[0], z[1], kerf_mm, True, face_kerf_mm)
+
+
+def cone_cut(sheet: SheetPlan, kerf_mm: float, part: str | None = None,
+             face_kerf_mm: tuple[float, float] | None = None) -> RuledCut:
+    """A taper-cut lens disc: its cone over the sheet (:func:`cone_ring`). A disc wider than a board
+    is cut so from the blank its board strips are glued into (the strips' own cuts are straight)."""
+    return cone_ring(part or sheet.label, sheet.cone_mm, (sheet.z_min_mm, sheet.z_max_mm), kerf_mm,
+                     face_kerf_mm=face_kerf_mm)
 
 
 def straight_cut(piece: Piece, sheet: SheetPlan, kerf_mm: float) -> RuledCut:

@@ -129,14 +129,16 @@ def _hotwire_file(cut: RuledCut, m: Machine, cam, material: str, entry=UP) -> tu
 
 def _drill_file(piece, sheet, cam) -> tuple[str, dict] | None:
     outline = Polygon(piece.polygon.exterior)
-    holes = [(h.x_mm, h.y_mm, sheet.hole_depth_mm(h)) for h in sheet.lens_dowels + sheet.foot_dowels
+    side = -1.0 if sheet.drilled_from_front else 1.0        # x as seen from the drilled face
+    holes = [(side * h.x_mm, h.y_mm, sheet.hole_depth_mm(h)) for h in sheet.lens_dowels + sheet.foot_dowels
              if outline.contains(Point(h.x_mm, h.y_mm)) and sheet.hole_depth_mm(h) > 0]
     if not holes:
         return None
     router = BUILT_IN["router-3axis"]
     name = f"cam/{piece.label}-drill.gcode"
-    header = [f"antenna_cad dowel holes of {piece.label}: drilled from the back (antenna-side) face, Z 0 on it",
-              "X/Y from the lens axis, as the template is drawn (seen from the antenna side)"]
+    face = ("front (feed-side)", "feed") if sheet.drilled_from_front else ("back (antenna-side)", "antenna")
+    header = [f"antenna_cad dowel holes of {piece.label}: drilled from the {face[0]} face, Z 0 on it",
+              f"X/Y from the lens axis, seen from the {face[1]} side"]
     prog = drill_program(header, holes, cam.units, cam.drill_feed_mm_min, router.rapid_mm_min, DRILL_CLEARANCE_MM)
     entry = {"file": name, "part": piece.label, "machine": router.name, "axes": router.axes, "kerf_mm": 0.0,
              "feed_mm_min": cam.drill_feed_mm_min, "seconds": round(float(prog.seconds), 1)}
@@ -175,18 +177,18 @@ def plan_cam(layup, pieces, cam, material: str, panels=(), placements=None) -> C
         board_files, board_entries = router_files(panel_parts(panels, placements), cam.router, BUILT_IN["router-3axis"])
         files |= board_files
         entries += board_entries
-    files["cam/cut-order.csv"] = cut_order_csv(entries)
-    return CamPlan(files, tuple(entries), tuple(cuts))
+    return with_order(files, entries, cuts)
 
 
 def plan_board_cam(boards, router, field: str = "fabrication.cam.router") -> CamPlan:
     """Router programs only (``boards``: board → its parts, :mod:`antenna_cad.cam.boards`)."""
     files, entries = router_files(boards, router, BUILT_IN["router-3axis"], field)
-    return CamPlan(files | {"cam/cut-order.csv": cut_order_csv(entries)}, tuple(entries), ())
+    return with_order(files, entries, [])
 
 
-def cut_order_csv(entries: list[dict]) -> str:
+def with_order(files: dict[str, str], entries: list[dict], cuts: list) -> CamPlan:
+    """The CamPlan of ``files`` with ``cam/cut-order.csv``: every entry in cut order and the total time."""
     rows = ["order,file,part,machine,seconds"] + [f"{i},{e['file']},\"{e['part']}\",{e['machine']},{e['seconds']:g}"
                                                   for i, e in enumerate(entries, 1)]
     rows.append(f",total,,,{sum(e['seconds'] for e in entries):.1f}")
-    return "\n".join(rows) + "\n"
+    return CamPlan(files | {"cam/cut-order.csv": "\n".join(rows) + "\n"}, tuple(entries), tuple(cuts))

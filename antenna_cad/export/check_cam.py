@@ -8,7 +8,8 @@ lead-in, then to the contour); the moves between them are the contour. A taper-c
 lie kerf/2 outside the cone through the lens profile at its two faces — the profile synthesized
 again from the manifest's spec — within ``CAM_TOL_MM``, at every vertex and chord midpoint (a
 board strip's butt-joint planes are vertical rulings inside it); every other piece is a straight cut
-(XY = UV). Every move of either tower stays inside the machine's travel.
+(XY = UV). A Luneburg ring's edge is held to its sphere (``sphere_mm``), an inner edge kerf/2
+inside it. Every move of either tower stays inside the machine's travel.
 """
 
 from __future__ import annotations
@@ -67,18 +68,21 @@ def _faces(entry: dict, moves: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray
 
 
 def _profile(manifest: dict):
-    """r(z) of the lens from the manifest's spec, synthesized again (None: no radius law)."""
+    """r(z) of the lens at the faces' z from the manifest's spec, synthesized again (the kind's
+    ``cone_radius``; None: the kind has no radius law)."""
     from antenna_cad.registry import adapter
     from antenna_cad.spec import parse_spec
     spec = parse_spec(manifest["spec"])
-    design = adapter(spec.kind).synthesize(spec)
-    radius_at = getattr(design, "radius_at", None)
-    return (lambda z: float(radius_at(min(max(z, 0.0), design.thickness_mm)))) if radius_at else None
+    kind = adapter(spec.kind)
+    return kind.cone_radius(spec, kind.synthesize(spec)) if hasattr(kind, "cone_radius") else None
 
 
 def cone_error_mm(entry: dict, front: np.ndarray, back: np.ndarray, radius_at) -> float:
     """Largest |distance − kerf/2| between the wire and the cone through r(z) at the two faces (each
-    face's kerf, ``faces[].kerf_mm``), in the meridional plane, over the rulings on the cone and the midpoints of chords between them."""
+    face's kerf, ``faces[].kerf_mm``), in the meridional plane, over the rulings on the cone and the
+    midpoints of chords between them; the distance is taken toward the axis for a ring's inner edge
+    (``edge: inner``)."""
+    side = -1.0 if entry.get("edge") == "inner" else 1.0
     z0, z1 = (f["z_mm"] for f in entry["faces"])
     a, b = np.array([radius_at(z0), z0]), np.array([radius_at(z1), z1])
     u = (b - a) / np.linalg.norm(b - a)
@@ -89,7 +93,7 @@ def cone_error_mm(entry: dict, front: np.ndarray, back: np.ndarray, radius_at) -
 
     def dist(p0, p1):
         rho = np.stack([np.hypot(*p0.T), np.hypot(*p1.T)])
-        return np.abs(np.stack([(np.stack([rho[i], np.full(len(p0), z)], -1) - a) @ normal - kerfs[i] / 2
+        return np.abs(np.stack([(np.stack([rho[i], np.full(len(p0), z)], -1) - a) @ normal - side * kerfs[i] / 2
                                 for i, z in enumerate((z0, z1))])).max(axis=0)
     on = ~vertical
     err = dist(front[on], back[on])
@@ -106,6 +110,9 @@ def hotwire_findings(folder: Path, manifest: dict, entry: dict, radius_at, trave
                   and np.all(reach[:, 2:4] <= np.array(travel) + 1e-6))
     out = [Finding(name, "cam_travel", inside, f"every move inside the {travel[0]:g} × {travel[1]:g} mm travel"
                    if inside else "a move leaves the machine's travel")]
+    if "sphere_mm" in entry:                                      # a Luneburg ring's edge: its sphere
+        R = float(entry["sphere_mm"])
+        radius_at = lambda z: float(np.sqrt(max(R * R - z * z, 0.0)))   # noqa: E731
     cut = [p for p, g in zip(moves, cutting) if g][1:-2]         # the contour (see the module docstring)
     front, back = _faces(entry, cut)
     cone = bool(np.any(np.abs(front - back) > 1e-6))

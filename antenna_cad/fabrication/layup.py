@@ -11,8 +11,11 @@ sheet boundary and sanding never touches it. Each sheet's lens part is the disc 
 r(min(i·t, d)) — the smallest disc containing the ideal lens inside that slab — so sanding
 only ever removes material. With ``edge: taper`` the rim is instead the cone through the lens
 profile at the sheet's two faces, r(min(z, d)) at z = (i−1)·t and i·t (a hot-wire ruled surface):
-the stack follows the profile to within the chord's sagitta and needs no sanding; ``radius_mm``
-stays the back face's (largest) radius, ``front_radius_mm`` is the feed-side face's.
+the stack follows the profile to within the chord's sagitta and needs no sanding;
+``front_radius_mm`` and ``back_radius_mm`` are the cone's radii on the feed-side and antenna-side
+faces, ``radius_mm`` the larger (the disc the cone is cut from). A lens whose radius falls again
+(the bifocal lens past its rim) has cones narrowing toward the back; their dowel holes are drilled
+from the front face.
 
 Pedestal (digest §6.2 [INTERPRETATION], chosen here): a foot under every sheet, ``w`` wide,
 from y = −R − h up to the aperture circle r = R (a cradle the lens rests in), entirely outside the
@@ -49,27 +52,43 @@ class SheetPlan:
     lens_dowels: tuple[Hole, ...]
     foot_dowels: tuple[Hole, ...]
     front_radius_mm: float | None = None    # taper-cut rim: radius at z_min (None: vertical edge)
+    back_radius_mm: float | None = None     # taper-cut rim: radius at z_max (None: radius_mm)
 
     @property
     def tapered(self) -> bool:
         return self.front_radius_mm is not None
 
+    @property
+    def cone_mm(self) -> tuple[float, float]:
+        """(front, back) radius of the rim: the cone's two faces (both the disc's when vertical)."""
+        if not self.tapered:
+            return self.radius_mm, self.radius_mm
+        return self.front_radius_mm, self.radius_mm if self.back_radius_mm is None else self.back_radius_mm
+
+    @property
+    def drilled_from_front(self) -> bool:
+        """Dowel holes go in from the feed-side face (a cone narrowing toward the back), else the back."""
+        front, back = self.cone_mm
+        return front > back
+
     def radius_at_z(self, z) -> np.ndarray:
         """The rim's radius at depth z (the cone of a taper-cut sheet, else the disc radius)."""
         z = np.asarray(z, float)
-        if not self.tapered:
-            return np.full_like(z, self.radius_mm)
+        front, back = self.cone_mm
         u = np.clip((z - self.z_min_mm) / self.thickness_mm, 0.0, 1.0)
-        return self.front_radius_mm + u * (self.radius_mm - self.front_radius_mm)
+        return front + u * (back - front)
 
     def hole_depth_mm(self, hole: Hole) -> float:
-        """Depth of a dowel hole drilled from the back face: through the sheet, or blind where the
-        hole would break through a taper-cut rim (it stops DOWEL_EDGE_CLEARANCE_MM inside the cone)."""
-        reach = math.hypot(hole.x_mm, hole.y_mm) + hole.diameter_mm / 2 + DOWEL_EDGE_CLEARANCE_MM
-        if not self.tapered or self.front_radius_mm >= reach:
+        """Depth of a dowel hole drilled from the wider face (the back, unless
+        ``drilled_from_front``): through the sheet, or blind where the hole would break through a
+        taper-cut rim (it stops DOWEL_EDGE_CLEARANCE_MM inside the cone); a foot's holes go through."""
+        centre = math.hypot(hole.x_mm, hole.y_mm)
+        reach = centre + hole.diameter_mm / 2 + DOWEL_EDGE_CLEARANCE_MM
+        wide, narrow = sorted(self.cone_mm, reverse=True)
+        if narrow >= reach or centre > wide:        # inside the cone at both faces, or in the foot
             return self.thickness_mm
-        u = (reach - self.front_radius_mm) / max(self.radius_mm - self.front_radius_mm, 1e-9)
-        return max(0.0, self.thickness_mm * (1.0 - u))
+        u = (wide - reach) / max(wide - narrow, 1e-9)
+        return max(0.0, self.thickness_mm * u)
 
     @property
     def label(self) -> str:
@@ -137,19 +156,23 @@ def plan_layup(*, radius_at, lens_thickness_mm: float, lens_radius_mm: float,
     ``radius_at`` must be non-decreasing in z on [0, lens_thickness] (true for the collimator).
     Lenses whose radius is not monotonic (the bifocal lens: it rises along the illuminated face to
     the rim and falls along the shadow face) pass ``max_radius_in(z_lo, z_hi)`` instead, the largest
-    lens radius within the slab (``radius_at`` is then unused). ``z_origin_mm`` is the z of the lens
+    lens radius within the slab (``radius_at`` then gives the taper's cones only). ``z_origin_mm`` is the z of the lens
     vertex in the lens's own frame: sheet i spans [z0 + (i−1)·t, z0 + i·t]; ``radius_at`` and
     ``max_radius_in`` take depths relative to that vertex. ``edge="taper"`` cuts every rim as the
-    cone through r(min(z, d)) at the sheet's two faces (it needs ``radius_at``).
+    cone through r(min(z, d)) at the sheet's two faces (it needs ``radius_at``, the lens's section
+    radius at any depth, also where it falls again).
     """
-    if edge == "taper" and max_radius_in is not None:
-        raise ValueError("fabrication.edge: taper needs a lens whose radius grows from the vertex to the "
-                         "flat face (the collimator); this lens's radius is not monotonic")
+    if edge == "taper" and radius_at is None:
+        raise ValueError("fabrication.edge: taper needs the lens radius at every depth; this lens has none")
     t = sheet_thickness_mm
     count = max(1, math.ceil(lens_thickness_mm / t - 1e-9))
     R = lens_radius_mm
     width = pedestal_width_mm if pedestal_width_mm is not None else 0.6 * 2 * R
-    if max_radius_in is None:
+    if edge == "taper":
+        faces = [float(radius_at(min(i * t, lens_thickness_mm))) for i in range(count + 1)]
+        cones = list(zip(faces[:-1], faces[1:]))
+        radii = [max(c) for c in cones]
+    elif max_radius_in is None:
         radii = [float(radius_at(min(i * t, lens_thickness_mm))) for i in range(1, count + 1)]
     else:
         radii = [float(max_radius_in((i - 1) * t, min(i * t, lens_thickness_mm))) for i in range(1, count + 1)]
@@ -164,12 +187,12 @@ def plan_layup(*, radius_at, lens_thickness_mm: float, lens_radius_mm: float,
     foot_dowels = tuple(Hole(x, -R - pedestal_height_mm / 2, dowel_diameter_mm)
                         for x in (-width / 4, width / 4))
     z0 = z_origin_mm
-    fronts = ([float(radius_at(min((i - 1) * t, lens_thickness_mm))) for i in range(1, count + 1)]
-              if edge == "taper" else [None] * count)
+    if edge != "taper":
+        cones = [(None, None)] * count
     sheets = tuple(SheetPlan(index=i, z_min_mm=z0 + (i - 1) * t, z_max_mm=z0 + i * t, radius_mm=r_i,
                              has_neck=joining == "neck" and r_i < R - 1e-9,
-                             lens_dowels=lens_dowels, foot_dowels=foot_dowels, front_radius_mm=f_i)
-                   for i, (r_i, f_i) in enumerate(zip(radii, fronts), start=1))
+                             lens_dowels=lens_dowels, foot_dowels=foot_dowels, front_radius_mm=f_i, back_radius_mm=b_i)
+                   for i, (r_i, (f_i, b_i)) in enumerate(zip(radii, cones), start=1))
     return LayupPlan(lens_radius_mm=R, sheet_thickness_mm=t, lens_thickness_mm=lens_thickness_mm,
                      back_slab_mm=count * t - lens_thickness_mm, pedestal_width_mm=width,
                      pedestal_height_mm=pedestal_height_mm, neck_width_mm=neck_width_mm,

@@ -11,6 +11,11 @@ foam grade. Ring sizing (selectable, reported):
 * ``mid_plane``: radii sqrt(r² − z_m²) at the sheet mid-plane (stepped lens, rings butt, no
   finishing); shell caps that do not reach the mid-plane are dropped (reported).
 
+Taper-cut (``edge: taper``, sphere): each ring is cut from its ``contain`` blank by a hot wire, its
+outer edge the cone through the outer sphere at the sheet's two faces, sqrt(max(r_out² − z², 0)) at
+z = z_lo and z_hi, its inner edge the cone through the inner sphere there (``cone_outer_mm``,
+``cone_inner_mm``): the rings follow the spheres to within the chords' sagitta, with no turning.
+
 A ring whose cut path fits no board is cut into equal sectors with radial butt joints,
 staggered by half a sector in neighbouring sheets (planned here, so the registration holes can
 keep clear of the joints).
@@ -36,7 +41,7 @@ the cost is linear in sheets × rings (+ sector pieces); polygons are built only
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -70,6 +75,8 @@ class RingPlan:
     sectors: int = 1         # equal sectors with radial butt joints (1: one piece)
     sector_start_rad: float = 0.0   # angle of the first radial joint, sheet frame, from +X
     holes: tuple[DowelHole, ...] = ()    # registration dowel holes
+    cone_outer_mm: tuple[float, float] | None = None    # taper-cut: outer edge at (z_min, z_max)
+    cone_inner_mm: tuple[float, float] | None = None    # taper-cut: inner edge at (z_min, z_max)
 
     @property
     def joint_angles_rad(self) -> np.ndarray:
@@ -129,13 +136,14 @@ class RingLayupPlan(Cradle):
     board_width_mm: float
     board_length_mm: float
     registration_hole_mm: float
-    dropped_caps: int        # mid_plane: shell caps that miss their sheet's mid-plane
+    dropped_caps: int        # mid_plane: shell caps that miss their sheet's mid-plane; taper: caps inside a disc
     dowels: tuple[Dowel, ...] = ()
     undowelled_joints: int = 0   # (joint, shell) pairs whose band is too thin for a dowel
     lens_radius_mm: float = 0.0
     pedestal_width_mm: float | None = None     # the stand (None: none); names as ``layup.LayupPlan``
     pedestal_height_mm: float | None = None
     stand_material: Material | None = None
+    edge: str = "stepped"                      # "stepped" (vertical ring edges) or "taper" (cones)
 
     @property
     def count(self) -> int:
@@ -144,6 +152,33 @@ class RingLayupPlan(Cradle):
     @property
     def rings(self) -> list[RingPlan]:
         return [r for s in self.sheets for r in s.rings]
+
+
+def sphere_radius(r_sphere: float, z: float) -> float:
+    """The sphere's radius at height z (0 beyond it): a taper-cut ring's edge on a face."""
+    return math.sqrt(max(r_sphere * r_sphere - z * z, 0.0))
+
+
+def _cones(r_in: float, r_out: float, z_lo: float, z_hi: float) -> dict:
+    """The cone fields of a taper-cut ring of the shell (r_in, r_out) in the slab [z_lo, z_hi]."""
+    return {"cone_outer_mm": (sphere_radius(r_out, z_lo), sphere_radius(r_out, z_hi)),
+            "cone_inner_mm": (sphere_radius(r_in, z_lo), sphere_radius(r_in, z_hi))}
+
+
+def taper_cones(ri: np.ndarray, ro: np.ndarray, z_lo: float, z_hi: float, kerf_mm: float) -> tuple[list, int]:
+    """Per shell the cone fields of its taper-cut ring in the slab (None: dropped), and how many
+    were dropped. A wire cuts only through holes: where an inner sphere's pole lies in the slab
+    (its cone closes, or opens less than the kerf, on a face), that ring is cut as a disc and
+    the smaller shells' caps inside it are dropped (the disc's grade fills them; reported)."""
+    cones: list = [_cones(float(a), float(b), z_lo, z_hi) for a, b in zip(ri, ro)]
+    blind = [j for j, c in enumerate(cones)
+             if max(c["cone_inner_mm"]) > 1e-9 and min(c["cone_inner_mm"]) <= max(kerf_mm, 1e-9)]
+    if not blind:
+        return cones, 0
+    core = max(blind)
+    cones[core]["cone_inner_mm"] = (0.0, 0.0)
+    dropped = sum(max(cones[j]["cone_outer_mm"]) > 1e-9 for j in range(core))
+    return [None] * core + cones[core:], dropped
 
 
 def ring_radii(r_inner: np.ndarray, r_outer: np.ndarray, z_lo: float, z_hi: float, sizing: str
@@ -209,8 +244,9 @@ def sector_count(r_in: float, r_out: float, board_w: float, board_l: float, kerf
 def plan_rings(r_inner_mm, r_outer_mm, materials: list[Material], *, shape: str, height_mm: float | None,
                sheet_thickness_mm: float, sizing: str, kerf_mm: float, board_width_mm: float,
                board_length_mm: float, registration_hole_mm: float, pedestal_height_mm: float | None = None,
-               pedestal_width_mm: float | None = None) -> RingLayupPlan:
-    """Sheets, their rings (radii, grade, sector split, dowel holes), the dowels, and the stand."""
+               pedestal_width_mm: float | None = None, edge: str = "stepped") -> RingLayupPlan:
+    """Sheets, their rings (radii, grade, sector split, dowel holes, cones when ``edge`` is
+    "taper"), the dowels, and the stand."""
     ri, ro = np.asarray(r_inner_mm, float), np.asarray(r_outer_mm, float)
     span = 2.0 * ro[-1] if shape == "sphere" else float(height_mm)
     t = sheet_thickness_mm
@@ -219,8 +255,12 @@ def plan_rings(r_inner_mm, r_outer_mm, materials: list[Material], *, shape: str,
     sheets, dropped = [], 0
     for k in range(n):
         z_lo, z_hi = z0 + k * t, z0 + (k + 1) * t
+        cones: list = [{}] * len(ro)
         if shape == "sphere":
             inner, outer = ring_radii(ri, ro, z_lo, z_hi, sizing)
+            if edge == "taper":
+                cones, lost = taper_cones(ri, ro, z_lo, z_hi, kerf_mm)
+                dropped += lost
             if sizing == "mid_plane":
                 dropped += int(np.sum((outer <= 1e-9) & (ring_radii(ri, ro, z_lo, z_hi, "contain")[1] > 1e-9)))
         else:
@@ -228,12 +268,13 @@ def plan_rings(r_inner_mm, r_outer_mm, materials: list[Material], *, shape: str,
         label = f"sheet-{k + 1:02d}"
         rings = []
         for j in range(len(ro)):
-            if outer[j] <= 1e-9 or outer[j] - inner[j] <= 1e-9:
+            if outer[j] <= 1e-9 or outer[j] - inner[j] <= 1e-9 or cones[j] is None:
                 continue
-            parts = sector_count(float(inner[j]), float(outer[j]), board_width_mm, board_length_mm, kerf_mm)
+            r_in = 0.0 if cones[j] and max(cones[j]["cone_inner_mm"]) == 0.0 else float(inner[j])
+            parts = sector_count(r_in, float(outer[j]), board_width_mm, board_length_mm, kerf_mm)
             start = 0.0 if k % 2 == 0 or parts == 1 else math.pi / parts      # staggered joints
-            rings.append(RingPlan(f"{label}-ring-{j + 1:02d}", k + 1, j + 1, float(inner[j]), float(outer[j]),
-                                  materials[j], parts, start))
+            rings.append(RingPlan(f"{label}-ring-{j + 1:02d}", k + 1, j + 1, r_in, float(outer[j]),
+                                  materials[j], parts, start, **cones[j]))
         sheets.append(RingSheet(k + 1, label, z_lo, z_hi, tuple(rings)))
     sheets, dowels, missing = _registration(sheets, ri, ro, shape, sizing, registration_hole_mm, kerf_mm)
     R = float(ro[-1])
@@ -243,7 +284,7 @@ def plan_rings(r_inner_mm, r_outer_mm, materials: list[Material], *, shape: str,
         dowels += feet
     return RingLayupPlan(tuple(sheets), t, sizing, shape, kerf_mm, board_width_mm, board_length_mm,
                          registration_hole_mm, dropped, tuple(dowels), missing, R, width, pedestal_height_mm,
-                         materials[-1] if width is not None else None)
+                         materials[-1] if width is not None else None, edge)
 
 
 def _stand_dowels(sheets: list[RingSheet], R: float, width: float, height: float, d: float, grade: Material
@@ -319,8 +360,7 @@ def _registration(sheets: list[RingSheet], ri: np.ndarray, ro: np.ndarray, shape
                     holes[r.label].append(DowelHole(x, y, d, depth, face))
                 dowels.append(Dowel(j + 1, tuple(s.index for s in members), x, y, d, z_hi - z_lo, rings[0].material))
     out = [RingSheet(s.index, s.label, s.z_min_mm, s.z_max_mm,
-                     tuple(RingPlan(r.label, r.sheet_index, r.shell_index, r.r_inner_mm, r.r_outer_mm, r.material,
-                                    r.sectors, r.sector_start_rad, tuple(holes[r.label])) for r in s.rings),
+                     tuple(replace(r, holes=tuple(holes[r.label])) for r in s.rings),
                      s.has_neck) for s in sheets]
     return out, dowels, missing
 

@@ -42,7 +42,7 @@ class FabPlanRings:
     in_hole: dict[str, str]                   # piece label -> host ring label
     in_hole_saving_m2: dict[str, float]       # grade -> board area saved by nesting in holes
     files: dict[str, str] = field(default_factory=dict)   # extra text files, as in ``FabPlan``
-    cam: object = None                                    # toolpaths (cam.plan.CamPlan), as in ``FabPlan``
+    cam: object = None                        # toolpaths (cam.plan.CamPlan), as in ``FabPlan``
 
     @property
     def checks(self) -> tuple[Check, ...]:

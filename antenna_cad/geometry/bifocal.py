@@ -129,7 +129,7 @@ def build_model(design: BifocalDesign, height_mm: float | None, plan: LayupPlan 
                 lens_material: Material, box_material: Material | None = None,
                 panels: tuple[Panel, ...] = (), plates: tuple[list[ModelPart], list[Check]] = ([], [])) -> Model:
     """All labelled solids. ``plan`` None means a machined (solid) lens: the lens (and the
-    parallel-plate parts of :func:`plate_parts`, if any). The sanding allowance is checked against
+    parallel-plate parts of :func:`plate_parts`, if any). The sanding allowance of a stepped stack is checked against
     the analytic Σ π·R_i²·t − V_lens."""
     lens = lens_solid(design, height_mm)
     checks = [relative_volume_check("lens_solid_volume", solid_volume_mm3(lens, design, height_mm),
@@ -141,11 +141,12 @@ def build_model(design: BifocalDesign, height_mm: float | None, plan: LayupPlan 
         return Model(tuple(parts), tuple(checks), step_pcurves=not plates[0])
     parts += [ModelPart(s.label, lens_material, "fabricated", sheet_solid(plan, s)) for s in plan.sheets]
     parts.append(ModelPart("pedestal", lens_material, "reference", pedestal_solid(plan)))
-    allowance = sanding_allowance(plan, lens)
-    stack = sum(math.pi * s.radius_mm**2 * s.thickness_mm for s in plan.sheets)
-    checks.append(relative_volume_check("sanding_allowance_volume", kernel.volume(allowance),
-                                        stack - lens_volume_mm3(design),
-                                        "sanding allowance (stack − lens) vs analytic volume", ALLOWANCE_REL_LIMIT))
-    parts.append(ModelPart("sanding-allowance", lens_material, "reference", allowance))
+    if plan.edge == "stepped":            # a taper-cut stack is not sanded
+        allowance = sanding_allowance(plan, lens)
+        stack = sum(math.pi * s.radius_mm**2 * s.thickness_mm for s in plan.sheets)
+        checks.append(relative_volume_check("sanding_allowance_volume", kernel.volume(allowance),
+                                            stack - lens_volume_mm3(design),
+                                            "sanding allowance (stack − lens) vs analytic volume", ALLOWANCE_REL_LIMIT))
+        parts.append(ModelPart("sanding-allowance", lens_material, "reference", allowance))
     parts += [ModelPart(p.label, box_material, "fabricated", panel_solid(p)) for p in panels]
     return Model(tuple(parts), tuple(checks))

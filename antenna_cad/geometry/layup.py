@@ -44,12 +44,14 @@ def sheet_solid(plan: LayupPlan, sheet: SheetPlan) -> kernel.Shape:
 
 def _taper_solid(plan: LayupPlan, sheet: SheetPlan) -> kernel.Shape:
     """A taper-cut sheet: the truncated cone of its rim with its foot, dowel holes drilled from the
-    back face (blind where a through hole would break the cone)."""
-    z0, z1, r0, r1 = sheet.z_min_mm, sheet.z_max_mm, sheet.front_radius_mm, sheet.radius_mm
-    outline = [(0, 0, z0)] + ([(r0, 0, z0)] if r0 > 1e-6 else []) + [(r1, 0, z1), (0, 0, z1)]
+    wider face (blind where a through hole would break the cone)."""
+    z0, z1 = sheet.z_min_mm, sheet.z_max_mm
+    r0, r1 = sheet.cone_mm
+    outline = ([(0, 0, z0)] + ([(r0, 0, z0)] if r0 > 1e-6 else []) + ([(r1, 0, z1)] if r1 > 1e-6 else [])
+               + [(0, 0, z1)])
     cone = kernel.revolve_z(kernel.face(kernel.polygon(outline)))
     foot = kernel.translate(kernel.extrude(foot_sketch(plan), (0, 0, sheet.thickness_mm)), (0, 0, z0))
-    holes = [kernel.cylinder(h.diameter_mm / 2, d, (h.x_mm, h.y_mm, z1 - d))
+    holes = [kernel.cylinder(h.diameter_mm / 2, d, (h.x_mm, h.y_mm, z0 if sheet.drilled_from_front else z1 - d))
              for h in sheet.lens_dowels + sheet.foot_dowels if (d := sheet.hole_depth_mm(h)) > 0]
     return kernel.cut(kernel.fuse([cone, foot]), holes)
 

@@ -43,6 +43,13 @@ def annulus_solid(r_in: float, r_out: float, z_lo: float, z_hi: float) -> kernel
     return revolve_closed(polyline_edges(pts))
 
 
+def cone_ring_solid(inner: tuple[float, float], outer: tuple[float, float], z_lo: float, z_hi: float) -> kernel.Shape:
+    """A taper-cut ring about Z: its inner and outer cones (radii at z_lo, z_hi) revolved."""
+    pts = [(inner[0], z_lo), (outer[0], z_lo), (outer[1], z_hi), (inner[1], z_hi), (inner[0], z_lo)]
+    pts = [p for k, p in enumerate(pts) if k == 0 or math.dist(p, pts[k - 1]) > 1e-9]
+    return revolve_closed(polyline_edges(pts))
+
+
 def pin_layout(r_in: float, r_out: float, count: int, d_max: float) -> tuple[float, float, float] | None:
     """(radius of the pin circle, pin diameter, hole depth per half) or None when no pin fits."""
     if count <= 0:
@@ -114,11 +121,16 @@ def build_model(design, grades: list[Material], fab, base: Material) -> Model:
 
 def build_layup_model(plan, base: Material) -> Model:
     """The layup's rings as flat solids (as cut, before turning; dowel holes refilled by their
-    dowels), one part per ring, and the stand's feet (the spine's cradle, ``geometry.layup``)."""
+    dowels) or, taper-cut, as their cones, one part per ring, and the stand's feet (the spine's
+    cradle, ``geometry.layup``)."""
     parts = []
     foot = foot_sketch(plan) if plan.pedestal_height_mm is not None else None
     for s in plan.sheets:
         for r in s.rings:
+            if r.cone_outer_mm is not None:
+                parts.append(ModelPart(r.label, r.material, "fabricated",
+                                       cone_ring_solid(r.cone_inner_mm, r.cone_outer_mm, s.z_min_mm, s.z_max_mm)))
+                continue
             solid = annulus_solid(r.r_inner_mm, r.r_outer_mm, s.z_min_mm, s.z_max_mm)
             if plan.shape == "cylinder":
                 solid = kernel.rotate(solid, (1, 0, 0), -90)

@@ -121,11 +121,12 @@ def build_model(design: MirrorLensDesign, spec_design, plan: LayupPlan | None, l
         return Model(tuple(parts), tuple(checks))
     parts += [ModelPart(s.label, lens_material, "fabricated", sheet_solid(plan, s)) for s in plan.sheets]
     parts.append(ModelPart("pedestal", lens_material, "reference", pedestal_solid(plan)))
-    allowance = sanding_allowance(plan, body)
-    stack = sum(math.pi * s.radius_mm**2 * s.thickness_mm for s in plan.sheets)
-    checks.append(relative_volume_check("sanding_allowance_volume", kernel.volume(allowance),
-                                        stack - design.volume_mm3(),
-                                        "sanding allowance (stack − body) vs analytic volume", 1e-4))
-    parts.append(ModelPart("sanding-allowance", lens_material, "reference", allowance))
+    if plan.edge == "stepped":            # a taper-cut stack is not sanded
+        allowance = sanding_allowance(plan, body)
+        stack = sum(math.pi * s.radius_mm**2 * s.thickness_mm for s in plan.sheets)
+        checks.append(relative_volume_check("sanding_allowance_volume", kernel.volume(allowance),
+                                            stack - design.volume_mm3(),
+                                            "sanding allowance (stack − body) vs analytic volume", 1e-4))
+        parts.append(ModelPart("sanding-allowance", lens_material, "reference", allowance))
     parts += [ModelPart(p.label, box_material, "fabricated", panel_solid(p)) for p in panels]
     return Model(tuple(parts), tuple(checks))

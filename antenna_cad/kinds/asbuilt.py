@@ -316,7 +316,7 @@ def _layer_table(lens: Lens, layup: LayupPlan, fab) -> Table:
     pieces = [sum(p.sheet_index == s.index for p in fab.pieces) for s in layup.sheets]
     if layup.edge == "taper":
         gaps = Taper(lens, layup).largest_gap_mm()
-        rows = tuple((s.label, _r(s.z_min_mm), _r(s.z_max_mm), _r(s.front_radius_mm), _r(s.radius_mm), _r(g), k)
+        rows = tuple((s.label, _r(s.z_min_mm), _r(s.z_max_mm), *map(_r, s.cone_mm), _r(g), k)
                      for s, g, k in zip(layup.sheets, gaps, pieces))
         return Table("layers", "Sheets (taper-cut)", ("sheet", "z min mm", "z max mm", "cone radius front mm",
                                                       "cone radius back mm", "largest gap to the profile mm",

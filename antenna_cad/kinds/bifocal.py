@@ -4,7 +4,10 @@ Frame: the synthesis frame (:mod:`antenna_cad.synthesis.bifocal`) — feed plane
 illuminated vertex z = ρ1, rim z = X_B, shadow vertex z = ρ2. A sheet layup reuses the spine
 (:func:`plan_layup` with ``max_radius_in`` and ``z_origin_mm = ρ1``): both faces are curved, so sheet
 i's disc is the largest lens radius inside its slab on either face; the N·t − d overhang beyond the
-shadow vertex is sanded off with the steps.
+shadow vertex is sanded off with the steps. Taper-cut (``edge: taper``): each sheet's rim is the cone
+through the lens's half-width at its two faces (:func:`cone_radius`) — widening on the illuminated
+side, narrowing on the shadow side; the sheet holding the rim X_B is the chord across it, and the
+last sheet's cone closes at the axis on its back face (the overhang stays: no sanding).
 """
 
 from __future__ import annotations
@@ -18,7 +21,8 @@ import numpy as np
 from antenna_cad.fabrication import bifocal_plates as bp
 from antenna_cad.fabrication.layup import LayupPlan
 from antenna_cad.kinds.asbuilt import Lens, lens_variants, stock_study, verify_lens
-from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks, plan_layup_and_box, plan_sheets
+from antenna_cad.kinds.layup import (cone_fit_check, fabricate_layup, layup_figures, neck_checks, plan_layup_and_box,
+                                    plan_sheets)
 from antenna_cad.kinds.patterns import criteria_from, lens_patterns
 from antenna_cad.materials import Material
 from antenna_cad.spec.bifocal import BifocalSpec
@@ -49,10 +53,17 @@ def _slab_radius(design: BifocalDesign):
     return lambda lo, hi: max_radius_in(design, design.rho1_mm + lo, design.rho1_mm + hi)
 
 
+def cone_radius(spec: BifocalSpec, design: BifocalDesign):
+    """r(z): the lens's half-width at depth z (lens frame), 0 outside it — what a taper-cut sheet's
+    cone passes through at each face (and what ``make-lens check`` holds the wire to)."""
+    return lambda z: max_radius_in(design, z, z)
+
+
 def _sheets(spec: BifocalSpec, design: BifocalDesign):
+    r = cone_radius(spec, design)
     return partial(plan_sheets, spec.fabrication, lens_radius_mm=design.edge_y_mm,
                    lens_thickness_mm=design.thickness_mm, max_radius_in=_slab_radius(design),
-                   z_origin_mm=design.rho1_mm)
+                   radius_at=lambda z: r(design.rho1_mm + z), z_origin_mm=design.rho1_mm)
 
 
 def _lens(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None) -> Lens:
@@ -139,7 +150,9 @@ def summary(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None) -
         figures["height_mm"] = float(spec.design.height_mm)
     figures |= _kinber_figures(spec, design)
     if layup is not None:
-        figures |= layup_figures(layup) | {"sanding_allowance_mm3": sanding_allowance_mm3(design, layup)}
+        figures |= layup_figures(layup)
+        if layup.edge == "stepped":
+            figures["sanding_allowance_mm3"] = sanding_allowance_mm3(design, layup)
     return figures
 
 
@@ -155,6 +168,8 @@ def fabrication_checks(spec: BifocalSpec, design: BifocalDesign, layup: LayupPla
         checks = [Check.upper("plate_spacing_tem_only", spec.design.height_mm, lam / 2, "mm",
                               "plate spacing vs λ/2 (the TM1 cut-off of the air-filled plates)")]
         return checks + ([] if plates[1] is None else [bp.horn_clearance_check(design, plates[1])])
+    if layup.edge == "taper":
+        return [cone_fit_check(layup, cone_radius(spec, design))] + neck_checks(layup)
     fit, y = 0.0, np.linspace(0.0, design.edge_y_mm, 2001)
     zi, zs = design.profile("illuminated", y), design.profile("shadow", y)
     for s in layup.sheets:

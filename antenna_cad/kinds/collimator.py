@@ -35,6 +35,12 @@ def synthesize(spec: CollimatorSpec) -> CollimatorDesign:
         antenna_distance_mm=_antenna_gap_mm(spec) if aut else None)
 
 
+def cone_radius(spec: CollimatorSpec, design: CollimatorDesign):
+    """r(z): the lens radius at depth z from the vertex (the lens's own radius behind it): what a
+    taper-cut sheet's cone passes through at each face."""
+    return lambda z: float(design.radius_at(min(max(z, 0.0), design.thickness_mm)))
+
+
 def _sheets(spec: CollimatorSpec, design: CollimatorDesign):
     return partial(plan_sheets, spec.fabrication, lens_radius_mm=design.diameter_mm / 2,
                    lens_thickness_mm=design.thickness_mm, radius_at=design.radius_at)

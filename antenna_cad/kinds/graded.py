@@ -7,6 +7,8 @@ seed's comparison with the homogeneous bifocal lens, and exposes the aperture fi
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from antenna_cad.kinds.patterns_arrays import array_patterns, best_focus, imaged_case, path_mm
@@ -48,7 +50,12 @@ def model(spec: GradedSpec, design: GradedDesign, layup, panels):
 def fabricate(spec: GradedSpec, design: GradedDesign, layup, panels):
     if layup is not None:
         from antenna_cad.fabrication.graded_layup import fabricate_graded_layup
-        return fabricate_graded_layup(design, layup, spec.name)
+        fab = fabricate_graded_layup(design, layup, spec.name)
+        if spec.fabrication.cam is None:
+            return fab
+        from antenna_cad.cam.straight import plan_straight_cam
+        cam = plan_straight_cam(layup.sheets, fab.pieces, spec.fabrication.cam)
+        return replace(fab, files=fab.files | cam.files, cam=cam)
     from antenna_cad.fabrication.graded import fabricate_graded
     return fabricate_graded(design, resolve_material(spec.material), spec.design.height_mm,
                             spec.fabrication.stock_allowance_mm, spec.name)

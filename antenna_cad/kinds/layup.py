@@ -66,6 +66,15 @@ def layup_figures(layup: LayupPlan) -> dict[str, float]:
             "stack_thickness_mm": layup.stack_thickness_mm, "back_slab_mm": layup.back_slab_mm}
 
 
+def cone_fit_check(layup: LayupPlan, cone_radius) -> Check:
+    """Every taper-cut sheet's cone against the lens: its radii at the two faces vs the lens radius
+    ``cone_radius(z)`` there (z in the layup's frame)."""
+    fit = max(abs(r - float(cone_radius(z))) for s in layup.sheets
+              for r, z in zip(s.cone_mm, (s.z_min_mm, s.z_max_mm)))
+    return Check.upper("sheet_cone_fit", fit, 1e-6, "mm",
+                       "taper-cut cone radii vs the lens radius at each sheet's two faces")
+
+
 def neck_checks(layup: LayupPlan) -> list[Check]:
     """Material the layup adds inside the aperture cylinder (necks), as a warning with its volume."""
     added = sum(added_in_aperture_mm2(layup, s) * s.thickness_mm for s in layup.sheets)

@@ -2,7 +2,9 @@
 
 ``fabrication.method: shells``: every layer a separate shell split into front/back hemispheres
 with foam pins (cylinder: rings of the plate spacing); ``sheet_layup``: sheets of concentric
-rings per grade (``fabrication.rings``). CAD imports stay inside ``model``.
+rings per grade (``fabrication.rings``), vertical-edged or taper-cut (``edge: taper``: cones through
+the spheres, hot-wire files per ring edge, :mod:`antenna_cad.cam.rings`). CAD imports stay inside
+``model``.
 """
 
 from __future__ import annotations
@@ -12,9 +14,11 @@ from dataclasses import replace
 
 import numpy as np
 
-from antenna_cad.verification import Verification
+from antenna_cad.verification import Table, Verification
 from antenna_cad.fabrication.cutlist import CutRow
+from antenna_cad.fabrication.ring_plan import sphere_radius
 from antenna_cad.fabrication.rings import FabPlanRings, RingLayupPlan, fabricate_rings, plan_rings
+from antenna_cad.kinds.taper import cone_gap_mm
 from antenna_cad.materials import Material
 from antenna_cad.spec.common import resolve_material
 from antenna_cad.spec.luneburg import LuneburgLayupSpec, LuneburgSpec
@@ -57,7 +61,7 @@ def plan(spec: LuneburgSpec, design: LuneburgDesign):
                       sheet_thickness_mm=fab.sheet_thickness_mm, sizing=fab.ring_sizing, kerf_mm=fab.kerf_mm,
                       board_width_mm=fab.board.width_mm, board_length_mm=fab.board.length_mm,
                       registration_hole_mm=fab.registration_hole_mm, pedestal_height_mm=fab.pedestal_height_mm,
-                      pedestal_width_mm=fab.pedestal_width_mm), ()
+                      pedestal_width_mm=fab.pedestal_width_mm, edge=fab.edge), ()
 
 
 def model(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | None, panels):
@@ -73,11 +77,15 @@ def fabricate(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan |
         return _fabricate_blanks(spec, design)
     plan = fabricate_rings(layup, spec.name, drawings=spec.outputs.templates)
     cam = spec.fabrication.cam
-    if cam is None or cam.router is None:
+    if cam is not None and layup.edge == "taper":          # the rings' cones on the hot wire
+        from antenna_cad.cam.rings import plan_ring_cam
+        toolpaths = plan_ring_cam(layup, cam, {L.index: L for L in design.layers})
+    elif cam is not None and cam.router is not None:        # flat rings and feet on the router
+        from antenna_cad.cam.boards import ring_parts
+        from antenna_cad.cam.plan import plan_board_cam
+        toolpaths = plan_board_cam(ring_parts(plan, cam.router.tool_diameter_mm), cam.router)
+    else:
         return plan
-    from antenna_cad.cam.boards import ring_parts
-    from antenna_cad.cam.plan import plan_board_cam
-    toolpaths = plan_board_cam(ring_parts(plan, cam.router.tool_diameter_mm), cam.router)
     return replace(plan, files=plan.files | toolpaths.files, cam=toolpaths)
 
 
@@ -169,7 +177,9 @@ def fabrication_checks(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLa
                 fit = max(fit, abs(r.r_outer_mm - need_out), abs(r.r_inner_mm - need_in))
                 allowance = max(allowance, r.r_outer_mm - float(np.min(np.sqrt(np.maximum(sh.r_outer_mm**2 - z * z, 0.0)))))
     checks = []
-    if layup.sizing == "contain":
+    if layup.edge == "taper":
+        checks += _cone_checks(layup, L)
+    elif layup.sizing == "contain":
         checks.append(Check.upper("ring_fit", fit, 1e-6, "mm",
                                   "ring radii vs shell radii over the slab (contain, no excess)"))
         checks.append(Check("ring_finishing_allowance", "pass", allowance, allowance, "mm",
@@ -180,6 +190,24 @@ def fabrication_checks(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLa
                             f"rings sized at sheet mid-planes (stepped); {layup.dropped_caps} shell caps "
                             "missing their mid-plane are dropped"))
     return checks + [_registration_check(layup)] + stand
+
+
+def _cone_checks(layup: RingLayupPlan, layers: dict) -> list[Check]:
+    """Taper-cut rings: every cone's radii against its sphere at the sheet's two faces (a disc
+    cut over an inner sphere's pole has no inner cone), and the caps dropped inside such discs."""
+    fit = 0.0
+    for s in layup.sheets:
+        for r in s.rings:
+            sh = layers[r.shell_index]
+            spheres = [(r.cone_outer_mm, sh.r_outer_mm)] + ([(r.cone_inner_mm, sh.r_inner_mm)]
+                                                            if max(r.cone_inner_mm) > 0 else [])
+            fit = max([fit] + [abs(c - sphere_radius(R, z)) for cone, R in spheres
+                               for c, z in zip(cone, (s.z_min_mm, s.z_max_mm))])
+    return [Check.upper("ring_cone_fit", fit, 1e-6, "mm", "taper-cut ring cones vs their spheres at each "
+                        "sheet's two faces"),
+            Check("taper_dropped_caps", "warn" if layup.dropped_caps else "pass", float(layup.dropped_caps), 0.0,
+                  "caps", f"{layup.dropped_caps} shell caps inside a ring cut as a disc over an inner sphere's "
+                  "pole (a wire cuts only through holes; the disc's grade fills them)")]
 
 
 def _registration_check(layup: RingLayupPlan) -> Check:
@@ -204,4 +232,25 @@ def verify(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | No
     """As-built GO verification: ideal, stepped and as-built lenses, scanned feeds, tolerances
     (:mod:`antenna_cad.kinds.luneburg_verify`)."""
     from antenna_cad.kinds.luneburg_verify import verify_luneburg   # the tracers and full-wave: a build's cost only
-    return verify_luneburg(spec, design, layup, fab, layer_materials(spec, design))
+    v = verify_luneburg(spec, design, layup, fab, layer_materials(spec, design))
+    if layup is None or layup.edge != "taper":
+        return v
+    return v.merged(Verification(tables=(_ring_cone_table(layup, {L.index: L for L in design.layers}),)))
+
+
+def _ring_cone_table(layup: RingLayupPlan, shells: dict) -> Table:
+    """Every taper-cut ring's two cones and their largest gaps to the spheres."""
+    rows = []
+    for s in layup.sheets:
+        z = (s.z_min_mm, s.z_max_mm)
+        for r in s.rings:
+            sh = shells[r.shell_index]
+            gaps = [cone_gap_mm(r.cone_outer_mm, z, lambda x: sphere_radius(sh.r_outer_mm, x))]
+            if max(r.cone_inner_mm) > 0:
+                gaps.append(cone_gap_mm(r.cone_inner_mm, z, lambda x: sphere_radius(sh.r_inner_mm, x)))
+            rows.append((r.label, round(z[0], 3), round(z[1], 3), *(round(x, 3) for x in r.cone_outer_mm + r.cone_inner_mm),
+                         round(max(gaps), 3)))
+    return Table("ring-cones", "Rings (taper-cut)", ("ring", "z min mm", "z max mm", "outer front mm", "outer back mm",
+                                                    "inner front mm", "inner back mm", "largest gap to the spheres mm"),
+                 tuple(rows), caption="each edge is the cone through its sphere at the sheet's two faces (inner 0: a "
+                 "disc); gap: the largest distance from the sphere to the cone in the meridional section")

@@ -3,7 +3,9 @@
 Frame: seed-004 §1 in mm — feed (focus) at the origin, +Z into the body, the beam leaves toward −Z.
 A sheet layup reuses the spine (:func:`plan_sheets` with ``max_radius_in``, anchored at the body's
 lowest z): both faces are curved and sanded; the mirror face must be smooth to be metallised, so
-the body as fabricated is the sanded stack (GO sees no sheet joints of the same material).
+the body as fabricated is the sanded stack (GO sees no sheet joints of the same material). Taper-cut
+(``edge: taper``): each sheet's rim is the cone through the body's half-width at its two faces
+(:func:`cone_radius`), so only the chords' sagitta is left to smooth.
 
 Verification (3-D GO, :mod:`antenna_cad.raytrace.mirror_lens`): the body as fabricated is the one
 the CAD holds — splines through the sampled exact profiles — traced against the exact synthesis;
@@ -22,9 +24,11 @@ from scipy.interpolate import CubicHermiteSpline
 
 from antenna_cad.fabrication.layup import LayupPlan
 from antenna_cad.kinds.asbuilt import ruze_loss_db
-from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks, plan_layup_and_box, plan_sheets
+from antenna_cad.kinds.layup import (cone_fit_check, fabricate_layup, layup_figures, neck_checks, plan_layup_and_box,
+                                    plan_sheets)
 from antenna_cad.kinds.mirror_lens_fullwave import body_parts, full_wave_verification
 from antenna_cad.kinds.patterns_arrays import array_patterns, line_case, path_mm
+from antenna_cad.kinds.taper import cone_table
 from antenna_cad.materials import Material
 from antenna_cad.raytrace.mirror_lens import Body, Surface, aperture_field as trace_aperture_field, sigma_at
 from antenna_cad.spec.common import SheetLayupSpec, resolve_material
@@ -55,10 +59,19 @@ def synthesize(spec: MirrorLensSpec) -> MirrorLensDesign:
                                   field_half_angle_deg=g.field_half_angle_deg)
 
 
+def cone_radius(spec: MirrorLensSpec, design: MirrorLensDesign):
+    """r(z): the body's half-width at depth z (seed-004 frame), 0 outside it — what a taper-cut
+    sheet's cone passes through at each face (and what ``make-lens check`` holds the wire to); z is
+    clamped to the body (its flat face is a sheet face: a manifest's rounded z stays on it)."""
+    lo, hi = design.z_range_mm
+    return lambda z: design.max_radius_in_mm(min(max(z, lo), hi), min(max(z, lo), hi))
+
+
 def _sheets(spec: MirrorLensSpec, design: MirrorLensDesign):
     z_lo, z_hi = design.z_range_mm
+    r = cone_radius(spec, design)
     return partial(plan_sheets, spec.fabrication, lens_radius_mm=design.body_radius_mm,
-                   lens_thickness_mm=z_hi - z_lo, z_origin_mm=z_lo,
+                   lens_thickness_mm=z_hi - z_lo, z_origin_mm=z_lo, radius_at=lambda z: r(z_lo + z),
                    max_radius_in=lambda lo, hi: design.max_radius_in_mm(z_lo + lo, z_lo + hi))
 
 
@@ -98,6 +111,8 @@ def fabrication_checks(spec: MirrorLensSpec, design: MirrorLensDesign, layup: La
     """Sheet discs against the body (contain it with no excess), and neck material."""
     if layup is None:
         return []
+    if layup.edge == "taper":
+        return [cone_fit_check(layup, cone_radius(spec, design))] + neck_checks(layup)
     fit = max(abs(s.radius_mm - design.max_radius_in_mm(s.z_min_mm, s.z_max_mm)) for s in layup.sheets)
     return [Check.upper("sheet_disc_fit", fit, 1e-6, "mm", "sheet disc radius vs largest body radius in its slab")
             ] + neck_checks(layup)
@@ -324,8 +339,9 @@ def verify(spec: MirrorLensSpec, design: MirrorLensDesign, layup: LayupPlan | No
     edge_check = Check("field_edge_phase_error", "warn" if edge > budget else "pass", edge, budget, "deg",
                        f"aperture phase at the field edge ({sc.field_angle_deg[-1]:.1f}°, feed on the focal "
                        f"curve): {edge:.1f}° p-p vs budget {budget:g}°")
+    cones = (cone_table(layup, cone_radius(spec, design)),) if layup is not None and layup.edge == "taper" else ()
     return Verification(figures, (sens_check, edge_check),
-                        (_profile_table(design), field_table, _astigmatism_table(design), sens_table),
+                        (_profile_table(design), field_table, _astigmatism_table(design), sens_table) + cones,
                         tuple(plots + [field_plot])).merged(array_patterns(cases, PATTERN_CAPTION)).merged(
         full_wave_verification(design, spec.verification, _fullwave_parts(spec, design, layup),
                                aperture_field(spec, design)))

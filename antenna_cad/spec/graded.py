@@ -14,6 +14,7 @@ from typing import Annotated, Literal, Union
 from pydantic import Field, model_validator
 
 from antenna_cad.spec.bounds import MIN_DEG, MIN_RATIO
+from antenna_cad.spec.cam import CamSpec
 from antenna_cad.spec.common import BoardSpec, SheetThickness, SolidSpec, SpecBase, StrictModel
 
 
@@ -56,6 +57,8 @@ class GradedLayupSpec(StrictModel):
                                                "design.height_mm is planed down")
     board: BoardSpec = BoardSpec()
     kerf_mm: float = Field(0.0, ge=0, le=10, description="cutting kerf (the tool path is offset by half)")
+    cam: CamSpec | None = Field(None, description="hot-wire G-code per slab piece (straight cuts: the lens is "
+                                "planar, so the sheet outlines are exact; cam/)")
 
 
 GradedFabrication = Annotated[Union[GradedLayupSpec, SolidSpec], Field(discriminator="method")]

@@ -99,8 +99,12 @@ class LuneburgLayupSpec(StrictModel):
         "the aperture circle down this far below the lens (a cradle, outside the aperture cylinder, feet "
         "dowelled to each other); none: no stand")
     pedestal_width_mm: float | None = Field(None, ge=1, le=20000, description="stand width; default 60 % of the diameter")
-    cam: CamSpec | None = Field(None, description="router G-code for the ring pieces and feet, one file per board "
-                                "(cam.router)")
+    edge: Literal["stepped", "taper"] = Field(
+        "stepped", description="stepped: vertical ring edges (ring_sizing); taper: each ring's outer and inner "
+        "edge cut as the cone through its sphere at the sheet's two faces (hot wire, no turning; sphere only)")
+    cam: CamSpec | None = Field(None, description="toolpaths (cam/): with edge: taper, hot-wire G-code for each "
+                                "ring's cones; with stepped edges, router G-code for the ring pieces and feet, one "
+                                "file per board (cam.router)")
 
 
 class LuneburgSpec(SpecBase):
@@ -112,6 +116,11 @@ class LuneburgSpec(SpecBase):
     @model_validator(mode="after")
     def _stand(self):
         fab, d = self.fabrication, self.design
+        if isinstance(fab, LuneburgLayupSpec) and fab.edge == "taper":
+            if d.shape != "sphere":
+                raise ValueError("fabrication.edge: taper is for the sphere (a cylinder's rings are already exact)")
+            if fab.ring_sizing != "contain":
+                raise ValueError("fabrication.edge: taper needs ring_sizing: contain (the blank each cone is cut from)")
         if isinstance(fab, LuneburgLayupSpec) and fab.pedestal_height_mm is not None:
             if d.shape != "sphere":
                 raise ValueError("fabrication.pedestal_height_mm: a stand is for the sphere (the cylinder sits "

@@ -160,11 +160,10 @@ def test_luneburg_gcode_rebuilds_every_ring_edge_and_a_moved_wire_fails(luneburg
     assert moved_wire_failures(folder, manifest, "cam/sheet-11-ring-05-outer.gcode") == ["cam_surface"]
 
 
-def test_luneburg_taper_needs_the_sphere_contain_blanks_and_cam_needs_taper():
+def test_luneburg_taper_needs_contain_blanks():
+    """(A ``cam`` block on stepped rings writes router files instead: tests/test_cam_router.py.)"""
     with pytest.raises(ValueError, match="edge: taper needs ring_sizing: contain"):
         _spec("luneburg-layup-200.yaml", edge="taper", ring_sizing="mid_plane")
-    with pytest.raises(ValueError, match="fabrication.cam: hot-wire files are for edge: taper"):
-        _spec("luneburg-layup-200.yaml", cam={})
 
 
 def test_mirror_lens_and_ring_tables_show_each_cone_and_its_gap(mirror_lens, luneburg):

@@ -45,6 +45,7 @@ SAMPLES_PER_WAVELENGTH = 20      # aperture and AUT-plane cuts
 GRID_PER_WAVELENGTH = 4          # 2-D aperture grid (patterns of off-axis feeds)
 PLOT_BEAMWIDTHS = 12             # pattern plots: ± this many λ/D about the beam
 TEST_ZONE_RANGE = 1.25           # test-zone cut out to this × the lens radius
+EDGE_HOLD_WAVELENGTHS = 0.5      # a trace ending this close to the rim is held out to it
 
 
 @dataclass(frozen=True)
@@ -89,11 +90,16 @@ def exit_field(lens: Lens, medium: Medium, feed, z_ref: float) -> ExitField:
 
 
 def resampled(y_mm, amplitude, phase_rad, half_mm: float, wavelength_mm: float) -> tuple[np.ndarray, np.ndarray]:
-    """A field A·e^{jφ} known at increasing ``y_mm`` on the uniform cut −half … half (zero outside
-    the samples)."""
+    """A field A·e^{jφ} known at increasing ``y_mm`` on the uniform cut −half … half. Where the
+    samples stop short of ±half by less than ``EDGE_HOLD_WAVELENGTHS`` λ (the tracer aims its rays
+    just inside the rim) the end samples are held out to the rim, so a uniform aperture stays uniform
+    to its edge; beyond that (a shadow) the field is zero."""
     grid = np.linspace(-half_mm, half_mm, 2 * int(SAMPLES_PER_WAVELENGTH * half_mm / wavelength_mm) + 1)
-    a = np.interp(grid, y_mm, amplitude, left=0.0, right=0.0)
-    return grid, a * np.exp(1j * np.interp(grid, y_mm, phase_rad))
+    y = np.asarray(y_mm, float)
+    hold = EDGE_HOLD_WAVELENGTHS * wavelength_mm
+    lo, hi = (y[0] if y[0] + half_mm <= hold else -np.inf), (y[-1] if half_mm - y[-1] <= hold else np.inf)
+    a = np.interp(np.clip(grid, lo, hi), y, amplitude, left=0.0, right=0.0)
+    return grid, a * np.exp(1j * np.interp(grid, y, phase_rad))
 
 
 def _aperture(lens: Lens, ef: ExitField, on_axis: bool, height_mm: float | None):

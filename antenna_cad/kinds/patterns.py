@@ -32,11 +32,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from antenna_cad.kinds.asbuilt import Lens, Medium, trace_lens
+from antenna_cad.kinds.quiet_zone import lens_quiet_zone
 from antenna_cad.radiation.aperture import PatternFigures, bor_aperture, grid_aperture, pattern_figures
 from antenna_cad.radiation.distortion import Aut, AutMeter, IntegralErrors
 from antenna_cad.radiation.testzone import TestZone, largest_test_zone, propagate_bor, propagate_line
 from antenna_cad.raytrace.collimator import axial_defocus_limits, trace_collimator
 from antenna_cad.raytrace.trace2d import transmitted_amplitude
+from antenna_cad.spec.common import TestZoneSpec
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.collimator import edge_margin_mm, path_difference_approx_mm, path_difference_mm
 from antenna_cad.verification import Plot, Series, Table, Verification, finite_figures
@@ -55,6 +57,7 @@ class Criteria:
     phase_deg: float = 11.25
     aut: Aut | None = None
     difference: bool = True
+    zone: TestZoneSpec = TestZoneSpec()          # the quiet-zone cylinder (antenna_cad.quietzone)
 
 
 def criteria_from(aut_spec, test_zone_spec) -> Criteria:
@@ -66,7 +69,7 @@ def criteria_from(aut_spec, test_zone_spec) -> Criteria:
         else:
             aut = Aut(aut_spec.width_mm, aut_spec.height_mm, False, aut_spec.taper)
     return Criteria(test_zone_spec.amplitude_db, test_zone_spec.phase_deg, aut,
-                    aut_spec is None or aut_spec.pattern == "sum_and_difference")
+                    aut_spec is None or aut_spec.pattern == "sum_and_difference", test_zone_spec)
 
 
 @dataclass(frozen=True)
@@ -229,7 +232,13 @@ def lens_patterns(lens: Lens, variants: list[tuple[str, Medium]], feeds, criteri
     if criteria.aut is None:
         checks = []                 # no AUT in the spec: the default one is reported, not judged
     figures |= a_fig
-    return Verification(finite_figures(figures), tuple(checks), tuple(tables + [a_tab]), tuple(plots + [a_plot]))
+    v = Verification(finite_figures(figures), tuple(checks), tuple(tables + [a_tab]), tuple(plots + [a_plot]))
+    ef, on_axis = fields[(variants[0][0], nominal)]
+    if not on_axis:
+        return v
+    half = ef.y_mm >= 0
+    return v.merged(lens_quiet_zone(lens, variants, feeds[0], z_ref, distance, criteria,
+                                    (ef.y_mm[half], ef.field[half])))
 
 
 def _test_zone(lens: Lens, variants, fields, nominal: str, distance: float, criteria: Criteria):

@@ -1,0 +1,115 @@
+"""The quiet-zone cylinder, its planes, and the field on them from GO and from the fast model.
+
+Zone (``design.test_zone``): diameter (default the AUT's, else the largest meeting the limits),
+near face ``distance_mm`` behind the back of the stack (default the AUT's distance), depth away from
+the lens (default one zone diameter, at least 2 λ), and the planes scanned across it: at least
+``MIN_PLANES``, spaced by at most half the period of the axial caustic. That caustic is the rim's (and
+the ring edges') diffraction arriving on the axis of a body of revolution: the edge wave from radius a
+and the direct wave differ in path by √(z² + a²) − z, so along z the pattern repeats every
+λ / (1 − z/√(z² + a²)) — shortest near the lens and for the outermost edge (a = the lens radius).
+
+Fields on a plane z behind the stack:
+* GO: each ray straight on from its exit point (amplitude unchanged, as the seed's model, §4.4;
+  no diffraction, so no caustic and no rim wave);
+* the fast model: the GO field of the ideal lens on the plane at the back of the stack propagated by
+  the exact angular spectrum of a body of revolution (:func:`antenna_cad.radiation.testzone.propagate_bor`:
+  rim diffraction and the axial caustic included), times, for a stepped stack, the fast
+  sub-wavelength model's transfer of its excess foam (:func:`antenna_cad.fullwave.fastmodel.fast_ratio`:
+  a thin screen at the stack's mean front face diffracted to the plane, over the unstepped one).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from antenna_cad.fullwave.fastmodel import fast_ratio
+from antenna_cad.radiation.testzone import propagate_bor
+
+MIN_PLANES = 5
+MIN_DEPTH_WAVELENGTHS = 2.0
+SAMPLES_PER_WAVELENGTH = 20      # radial samples of the propagated field
+
+
+@dataclass(frozen=True)
+class Zone:
+    """The cylinder: ``diameter_mm`` None until the largest meeting the limits is known; planes as
+    distances behind the back of the stack."""
+    diameter_mm: float | None
+    distance_mm: float
+    depth_mm: float
+    planes_mm: np.ndarray
+    amplitude_db: float
+    phase_deg: float
+    cross_pol_db: float | None
+
+    def limits_text(self) -> str:
+        xp = f", cross-pol ≤ {self.cross_pol_db:g} dB" if self.cross_pol_db is not None else ""
+        return f"±{self.amplitude_db:g} dB, ±{self.phase_deg:g}°{xp}"
+
+
+def caustic_period_mm(edge_radius_mm: float, z_mm: float, wavelength_mm: float) -> float:
+    """Period along the axis of the interference of an edge wave from radius a with the direct wave
+    at distance z (module docstring)."""
+    return wavelength_mm / (1.0 - z_mm / math.hypot(z_mm, edge_radius_mm))
+
+
+def zone_from(spec, aut_diameter_mm: float | None, aut_distance_mm: float, lens_radius_mm: float,
+              wavelength_mm: float) -> Zone:
+    """The zone of ``spec`` (``design.test_zone``) with its defaults (module docstring)."""
+    diameter = spec.diameter_mm if spec.diameter_mm is not None else aut_diameter_mm
+    distance = spec.distance_mm if spec.distance_mm is not None else aut_distance_mm
+    depth = spec.depth_mm if spec.depth_mm is not None else max(diameter or 2 * lens_radius_mm,
+                                                                 MIN_DEPTH_WAVELENGTHS * wavelength_mm)
+    if spec.planes is not None:
+        n = spec.planes
+    else:
+        spacing = caustic_period_mm(lens_radius_mm, max(distance, wavelength_mm), wavelength_mm) / 2
+        n = max(MIN_PLANES, math.ceil(depth / spacing) + 1)
+    return Zone(diameter, distance, depth, distance + np.linspace(0.0, depth, n), spec.amplitude_db, spec.phase_deg,
+                spec.cross_pol_db)
+
+
+def radii_mm(radius_mm: float, wavelength_mm: float) -> np.ndarray:
+    """Uniform radii 0 … radius at ``SAMPLES_PER_WAVELENGTH`` per λ."""
+    return np.linspace(0.0, radius_mm, int(SAMPLES_PER_WAVELENGTH * radius_mm / wavelength_mm) + 2)
+
+
+@dataclass(frozen=True)
+class Rays:
+    """Exit rays of a body of revolution (the y ≥ 0 half of a meridional trace) on the plane z_mm:
+    position y, direction (z, y) components, amplitude and optical path (mm)."""
+    y_mm: np.ndarray
+    dz: np.ndarray
+    dy: np.ndarray
+    amplitude: np.ndarray
+    path_mm: np.ndarray
+    z_mm: float
+
+    def field_at(self, z_mm: float, wavelength_mm: float) -> tuple[np.ndarray, np.ndarray]:
+        """GO field on the plane ``z_mm``: (r increasing, complex field), each ray carried straight on."""
+        t = (z_mm - self.z_mm) / self.dz
+        y, path = self.y_mm + t * self.dy, self.path_mm + t
+        o = np.argsort(y)
+        return y[o], self.amplitude[o] * np.exp(1j * 2 * np.pi / wavelength_mm * path[o])
+
+
+def propagated(r_mm: np.ndarray, field: np.ndarray, wavelength_mm: float, distances_mm: np.ndarray,
+               rho_mm: np.ndarray) -> np.ndarray:
+    """[plane, ρ] the body-of-revolution field E(r) after each distance (angular spectrum)."""
+    return np.array([propagate_bor(r_mm, field, wavelength_mm, d, rho_mm) for d in distances_mm])
+
+
+def fast_fields(r_mm: np.ndarray, ideal_field: np.ndarray, wavelength_mm: float, distances_mm: np.ndarray,
+                rho_mm: np.ndarray, screens: dict[str, tuple[Callable, float, float, float]]) -> dict[str, np.ndarray]:
+    """[plane, ρ] the fast model's field of the ideal lens and of each stepped variant; ``screens``:
+    variant → (excess foam Δd(r), n, lens radius, screen-to-back-of-stack distance)."""
+    ideal = propagated(r_mm, ideal_field, wavelength_mm, distances_mm, rho_mm)
+    out = {"ideal": ideal}
+    for name, (excess, n, radius, lead) in screens.items():
+        out[name] = ideal * np.array([fast_ratio(excess, n, wavelength_mm, radius, lead + d, rho_mm)
+                                      for d in distances_mm])
+    return out

@@ -121,3 +121,19 @@ def test_collimator_verification_carries_the_quiet_zone():
     assert "fast model" in check.message and "worst at" in check.message
     assert {"quiet-zone-phase", "quiet-zone-amplitude", "quiet-zone-map"} <= {p.name for p in v.plots}
     assert {"quiet-zone", "quiet-zone-planes"} <= {t.name for t in v.tables}
+
+
+def test_stack_own_figures_divide_out_the_rim():
+    """A stepped variant equal to the ideal lens times a known phase c·r² (the same radii): the stack's
+    own figures are that phase's closed forms on every plane, whatever the common field does."""
+    a, c = 5 * LAM, 2e-3
+    zone = zone_from(TestZoneSpec(diameter_mm=6 * LAM, distance_mm=2 * LAM, depth_mm=4 * LAM, planes=5),
+                     None, 0.0, a, LAM)
+    r = radii_mm(a, LAM)
+    ideal = propagated(r, np.ones_like(r), LAM, zone.planes_mm, r)
+    stepped = ideal * np.exp(1j * np.radians(c * r**2))
+    model = ModelPlanes("fast", "", {"ideal": [(r, e) for e in ideal], "stepped": [(r, e) for e in stepped]})
+    f = quiet_zone_study(zone, [model], "on_axis", {"ideal": -90.0, "stepped": -90.0}, LAM, True).figures
+    rho = r[r <= 3 * LAM * (1 + 1e-12)][-1]
+    assert f["quiet_zone_stepped_added_on_axis_phase_p2p_deg"] == pytest.approx(c * rho**2, rel=1e-9)
+    assert f["quiet_zone_stepped_added_on_axis_phase_rms_deg"] == pytest.approx(c * rho**2 / math.sqrt(12), rel=2e-3)

@@ -273,7 +273,8 @@ def _test_zone(lens: Lens, variants, fields, nominal: str, distance: float, crit
                      for i, (v, z) in enumerate(zones.items())),
                caption=f"criterion ±{criteria.phase_deg:g}°; drawn where the amplitude is above −10 dB",
                hlines=((f"+{criteria.phase_deg:g}°", criteria.phase_deg), (f"−{criteria.phase_deg:g}°", -criteria.phase_deg)))
-    table = Table("test-zone", "Test zone on the AUT plane (nominal feed)", ("lens", "diameter mm", "distance mm"),
+    table = Table("test-zone", "Test zone on the AUT plane alone (nominal feed; single-plane figures, kept beside "
+                  "the quiet zone for comparison)", ("lens", "diameter mm", "distance mm"),
                   tuple((v, _r(z.diameter_mm, 1), _r(distance, 1)) for v, z in zones.items()),
                   caption=f"largest centred zone within ±{criteria.amplitude_db:g} dB and ±{criteria.phase_deg:g}° "
                           "(linear tilt removed); angular spectrum of plane waves (not Fresnel)")

@@ -60,10 +60,28 @@ def _r(v: float, nd: int = 3):
     return round(float(v), nd) + 0.0
 
 
+def stack_own(zone: Zone, best: ModelPlanes, disc_mm: float, feed: str) -> tuple[dict[str, float], list[tuple]]:
+    """The stack's own figures: each stepped variant's field over the ideal lens's, by the best model,
+    over the same disc on every plane (what sanding removes; the rim's caustic divides out)."""
+    figures, rows = {}, []
+    ideal = best.fields["ideal"]
+    for variant, planes in best.fields.items():
+        if variant == "ideal":
+            continue
+        j = Judged(disc_mm, [plane_figures(r, e / ei, disc_mm, z, zone.amplitude_db, zone.phase_deg)
+                             for z, (r, e), (_, ei) in zip(zone.planes_mm, planes, ideal)])
+        for fig in ("phase_p2p_deg", "phase_rms_deg"):
+            value, z = j.worst(fig)
+            figures[f"quiet_zone_{variant}_added_{feed}_{fig}"] = value
+            rows.append((f"{best.name}: {variant} / ideal", variant, fig, _r(value), _r(z, 1)))
+    return figures, rows
+
+
 def quiet_zone_study(zone: Zone, models: list[ModelPlanes], feed: str, cross_pol_db: dict[str, float],
                      wavelength_mm: float, judged_zone: bool) -> Verification:
     """Figures, per-plane table, worst-plane table, plots and (``judged_zone``: the zone comes from the
-    spec or the AUT) the check of the last variant by the first model."""
+    spec or the AUT) the check of the last variant by the first model. When the first model has the
+    ideal lens on the same radii, also the stack's own figures (:func:`stack_own`)."""
     figures = {"quiet_zone_distance_mm": zone.distance_mm, "quiet_zone_depth_mm": zone.depth_mm,
                "quiet_zone_planes": float(len(zone.planes_mm))}
     rows, worst_rows, results = [], [], {}
@@ -83,6 +101,10 @@ def quiet_zone_study(zone: Zone, models: list[ModelPlanes], feed: str, cross_pol
                      for p in j.planes]
     best, built = models[0], list(models[0].fields)[-1]
     j = results[(best.name, built)]
+    if "ideal" in best.fields and built != "ideal" and _same_radii(best):
+        own, own_rows = stack_own(zone, best, j.disc_mm, feed)
+        figures |= own
+        worst_rows += own_rows
     caption = (f"zone Ø{j.disc_mm:.0f} mm, {zone.distance_mm:.0f}–{zone.distance_mm + zone.depth_mm:.0f} mm behind "
                f"the stack, {len(zone.planes_mm)} planes; over the whole disc including the axis; phase piston "
                f"removed per plane (no tilt on the axis of a body of revolution), area-weighted RMS; taper: "
@@ -94,11 +116,17 @@ def quiet_zone_study(zone: Zone, models: list[ModelPlanes], feed: str, cross_pol
                     ("model", "lens", "figure", "worst", "at z mm"), tuple(worst_rows),
                     caption=caption + "; cross-pol (GO Fresnel ∥ vs ⊥, φ = 45°): "
                     + ", ".join(f"{v} {x:.1f} dB" for v, x in cross_pol_db.items())))
-    checks = (_check(zone, j, best.name, built, cross_pol_db[built]),) if judged_zone else ()
+    own = figures.get(f"quiet_zone_{built}_added_{feed}_phase_p2p_deg")
+    checks = (_check(zone, j, best.name, built, cross_pol_db[built], own),) if judged_zone else ()
     return Verification(finite_figures(figures), checks, tables, _plots(zone, best, built, j))
 
 
-def _check(zone: Zone, j: Judged, model: str, variant: str, cross_pol: float) -> Check:
+def _same_radii(model: ModelPlanes) -> bool:
+    radii = [r for planes in model.fields.values() for r, _ in planes]
+    return all(len(r) == len(radii[0]) and np.array_equal(r, radii[0]) for r in radii)
+
+
+def _check(zone: Zone, j: Judged, model: str, variant: str, cross_pol: float, own_p2p: float | None) -> Check:
     p2p, zp = j.worst("phase_p2p_deg")
     amp = max(p.amplitude_p2p_db for p in j.planes)
     za = next(p.z_mm for p in j.planes if p.amplitude_p2p_db == amp)
@@ -107,7 +135,8 @@ def _check(zone: Zone, j: Judged, model: str, variant: str, cross_pol: float) ->
     return Check("quiet_zone", "warn" if any(over) else "pass", p2p, 2 * zone.phase_deg, "deg",
                  f"quiet zone Ø{j.disc_mm:.0f} mm × {zone.depth_mm:.0f} mm ({len(zone.planes_mm)} planes), {variant} "
                  f"lens: phase {p2p:.1f}° p-p (worst at {zp:.0f} mm), amplitude {amp:.2f} dB p-p (at {za:.0f} mm), "
-                 f"cross-pol {cross_pol:.1f} dB vs {zone.limits_text()} ({model})")
+                 f"cross-pol {cross_pol:.1f} dB vs {zone.limits_text()} ({model})"
+                 + (f"; the stack's own phase ({variant} / ideal) {own_p2p:.1f}° p-p" if own_p2p is not None else ""))
 
 
 def _plots(zone: Zone, model: ModelPlanes, variant: str, j: Judged) -> tuple[Plot, ...]:

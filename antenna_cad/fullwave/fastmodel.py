@@ -44,20 +44,13 @@ def propagate(u: np.ndarray, r: np.ndarray, radius_mm: float, wavelength_mm: flo
     return 2 * np.pi * (j0(2 * np.pi * np.outer(r_obs, rho)) @ (spectrum * rho[:, None])) * d_rho
 
 
-def fast_ratio(excess_mm, n: float, wavelength_mm: float, radius_mm: float, distance_mm: float,
+def fast_phase(excess_mm, n: float, wavelength_mm: float, radius_mm: float, distance_mm: float,
                r_obs: np.ndarray) -> np.ndarray:
-    """Complex factor (amplitude and phase) that the excess foam ``excess_mm(r)`` (a function of r, mm)
-    puts on the field at radii ``r_obs`` ``distance_mm`` behind the screen, relative to the ideal
-    lens: the sub-wavelength-aware model above."""
+    """Phase (deg) that the excess foam ``excess_mm(r)`` (a function of r, mm) adds on the aperture plane
+    at radii ``r_obs``, relative to the ideal lens: the sub-wavelength-aware model above."""
     step = wavelength_mm / SAMPLES_PER_LAMBDA
     r = np.arange(0.5 * step, radius_mm, step)
     screen = np.exp(1j * np.radians(thin_screen_deg(excess_mm(r), n, wavelength_mm)))
     stepped, ideal = propagate(np.column_stack([screen, np.ones_like(r)]), r, radius_mm, wavelength_mm,
                                distance_mm, r_obs).T
-    return stepped / ideal
-
-
-def fast_phase(excess_mm, n: float, wavelength_mm: float, radius_mm: float, distance_mm: float,
-               r_obs: np.ndarray) -> np.ndarray:
-    """Phase (deg) of :func:`fast_ratio`: what the excess foam adds on the aperture plane."""
-    return np.degrees(np.angle(fast_ratio(excess_mm, n, wavelength_mm, radius_mm, distance_mm, r_obs)))
+    return np.degrees(np.angle(stepped / ideal))

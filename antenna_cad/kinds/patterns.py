@@ -237,8 +237,7 @@ def lens_patterns(lens: Lens, variants: list[tuple[str, Medium]], feeds, criteri
     if not on_axis:
         return v
     half = ef.y_mm >= 0
-    return v.merged(lens_quiet_zone(lens, variants, feeds[0], z_ref, distance, criteria,
-                                    (ef.y_mm[half], ef.field[half])))
+    return v.merged(lens_quiet_zone(lens, variants, feeds[0], z_ref, criteria, (ef.y_mm[half], ef.field[half])))
 
 
 def _test_zone(lens: Lens, variants, fields, nominal: str, distance: float, criteria: Criteria):

@@ -9,9 +9,9 @@ from __future__ import annotations
 import numpy as np
 
 from antenna_cad.fullwave.lens import C_MM_GHZ, RevolvedLens
-from antenna_cad.kinds.asbuilt import Lens, trace_lens
+from antenna_cad.kinds.asbuilt import Lens, lens_zone, trace_lens
 from antenna_cad.quietzone.verdict import ModelPlanes, quiet_zone_study
-from antenna_cad.quietzone.volume import Rays, fast_fields, radii_mm, zone_from
+from antenna_cad.quietzone.volume import Rays, fast_fields, radii_mm
 from antenna_cad.raytrace.trace2d import Slabs, transmitted_amplitude
 from antenna_cad.verification import Verification
 
@@ -31,19 +31,19 @@ def _rays(lens: Lens, medium, feed) -> tuple[Rays, float]:
             20 * np.log10(max(cross, 1e-12)))
 
 
-def lens_quiet_zone(lens: Lens, variants, feed: tuple[str, float, float], z_ref: float, aut_distance_mm: float,
-                    criteria, ideal_exit) -> Verification:
+def lens_quiet_zone(lens: Lens, variants, feed: tuple[str, float, float], z_ref: float, criteria,
+                    ideal_exit) -> Verification:
     """Quiet-zone figures of every variant at the nominal on-axis ``feed`` (name, z, y); ``ideal_exit``:
     the ideal lens's GO field on the plane ``z_ref`` (the back of the stack), (y ≥ 0 uniform, E)."""
     lam, R = lens.wavelength_mm, lens.radius_mm
     aut = criteria.aut
     aut_d = None if aut is None else (aut.height_mm if aut.circular else float(np.hypot(aut.width_mm, aut.height_mm)))
-    zone = zone_from(criteria.zone, aut_d, aut_distance_mm, R, lam)
+    zone = lens_zone(lens, z_ref, criteria.zone, aut_d)
     go, cross = {}, {}
     for name, medium in variants:
         rays, cross[name] = _rays(lens, medium, feed[1:])
         go[name] = [rays.field_at(z_ref + z, lam) for z in zone.planes_mm]
-    rho = radii_mm(max(R, (zone.diameter_mm or 0.0) / 2), lam)
+    rho = radii_mm(max(R, zone.diameter_mm / 2), lam)
     sections = {n: m for n, m in variants if isinstance(m, Slabs)}
     rl = RevolvedLens(lens.front_z, lens.back_z, R, lens.eps_r, C_MM_GHZ / lam, feed[1], sections)
     screens = {n: (lambda r, n=n: rl.excess_mm(n, r), lens.n, R, z_ref - rl.screen_z_mm()) for n in sections}
@@ -51,4 +51,4 @@ def lens_quiet_zone(lens: Lens, variants, feed: tuple[str, float, float], z_ref:
     models = [ModelPlanes(FAST, "", {n: [(rho, e) for e in fast[n]] if n in fast else go[n] for n, _ in variants}),
               ModelPlanes(GO, "go_", go)]
     explicit = criteria.zone.diameter_mm is not None or aut is not None
-    return quiet_zone_study(zone, models, feed[0], cross, lam, explicit)
+    return quiet_zone_study(zone, models, feed[0], cross, explicit)

@@ -44,32 +44,25 @@ class Judged:
         return float(v), self.planes[vals.index(v)].z_mm
 
 
-def judged(zone: Zone, planes: list[tuple[np.ndarray, np.ndarray]], wavelength_mm: float) -> Judged:
-    """Every plane over the zone's disc (its diameter, else the largest meeting the limits on every
-    plane, at least 2 λ)."""
-    def over(disc):
-        return [plane_figures(r, e, disc, z, zone.amplitude_db, zone.phase_deg)
-                for z, (r, e) in zip(zone.planes_mm, planes)]
-    first = over(zone.diameter_mm if zone.diameter_mm is not None else 2 * wavelength_mm)
-    disc = zone.diameter_mm if zone.diameter_mm is not None else max(min(p.diameter_mm for p in first),
-                                                                     2 * wavelength_mm)
-    return Judged(disc, first if disc == first[0].disc_mm else over(disc))
+def judged(zone: Zone, planes: list[tuple[np.ndarray, np.ndarray]]) -> Judged:
+    """Every plane over the zone's disc."""
+    return Judged(zone.diameter_mm, [plane_figures(r, e, zone.diameter_mm, z, zone.amplitude_db, zone.phase_deg)
+                                     for z, (r, e) in zip(zone.planes_mm, planes)])
 
 
 def _r(v: float, nd: int = 3):
     return round(float(v), nd) + 0.0
 
 
-def stack_own(zone: Zone, best: ModelPlanes, disc_mm: float, feed: str) -> tuple[dict[str, float], list[tuple]]:
+def stack_own(zone: Zone, best: ModelPlanes, feed: str) -> tuple[dict[str, float], list[tuple]]:
     """The stack's own figures: each stepped variant's field over the ideal lens's, by the best model,
-    over the same disc on every plane (what sanding removes; the rim's caustic divides out)."""
+    over the zone on every plane (what sanding removes; the rim's caustic divides out)."""
     figures, rows = {}, []
     ideal = best.fields["ideal"]
     for variant, planes in best.fields.items():
         if variant == "ideal":
             continue
-        j = Judged(disc_mm, [plane_figures(r, e / ei, disc_mm, z, zone.amplitude_db, zone.phase_deg)
-                             for z, (r, e), (_, ei) in zip(zone.planes_mm, planes, ideal)])
+        j = judged(zone, [(r, e / ei) for (r, e), (_, ei) in zip(planes, ideal)])
         for fig in ("phase_p2p_deg", "phase_rms_deg"):
             value, z = j.worst(fig)
             figures[f"quiet_zone_{variant}_added_{feed}_{fig}"] = value
@@ -78,19 +71,18 @@ def stack_own(zone: Zone, best: ModelPlanes, disc_mm: float, feed: str) -> tuple
 
 
 def quiet_zone_study(zone: Zone, models: list[ModelPlanes], feed: str, cross_pol_db: dict[str, float],
-                     wavelength_mm: float, judged_zone: bool) -> Verification:
+                     judged_zone: bool) -> Verification:
     """Figures, per-plane table, worst-plane table, plots and (``judged_zone``: the zone comes from the
     spec or the AUT) the check of the last variant by the first model. When the first model has the
     ideal lens on the same radii, also the stack's own figures (:func:`stack_own`)."""
-    figures = {"quiet_zone_distance_mm": zone.distance_mm, "quiet_zone_depth_mm": zone.depth_mm,
-               "quiet_zone_planes": float(len(zone.planes_mm))}
+    figures = {"quiet_zone_disc_mm": zone.diameter_mm, "quiet_zone_distance_mm": zone.distance_mm,
+               "quiet_zone_depth_mm": zone.depth_mm, "quiet_zone_planes": float(len(zone.planes_mm))}
     rows, worst_rows, results = [], [], {}
     for m in models:
         for variant, planes in m.fields.items():
-            j = judged(zone, planes, wavelength_mm)
+            j = judged(zone, planes)
             results[(m.name, variant)] = j
             key = f"quiet_zone_{m.key}{variant}_{feed}"
-            figures[f"{key}_disc_mm"] = j.disc_mm
             for fig in FIGURES:
                 value, z = j.worst(fig)
                 figures[f"{key}_{fig}"] = value
@@ -102,7 +94,7 @@ def quiet_zone_study(zone: Zone, models: list[ModelPlanes], feed: str, cross_pol
     best, built = models[0], list(models[0].fields)[-1]
     j = results[(best.name, built)]
     if "ideal" in best.fields and built != "ideal" and _same_radii(best):
-        own, own_rows = stack_own(zone, best, j.disc_mm, feed)
+        own, own_rows = stack_own(zone, best, feed)
         figures |= own
         worst_rows += own_rows
     caption = (f"zone Ø{j.disc_mm:.0f} mm, {zone.distance_mm:.0f}–{zone.distance_mm + zone.depth_mm:.0f} mm behind "

@@ -1,6 +1,6 @@
 """The quiet-zone cylinder, its planes, and the field on them from GO and from the fast model.
 
-Zone (``design.test_zone``): diameter (default the AUT's, else the largest meeting the limits),
+Zone (``design.test_zone``): diameter (default the AUT's: the spec's, or the caller's default AUT),
 near face ``distance_mm`` behind the back of the stack (default the AUT's distance), depth away from
 the lens (default one zone diameter, at least 2 λ), and the planes scanned across it: at least
 ``MIN_PLANES``, spaced by at most half the period of the axial caustic. That caustic is the rim's (and
@@ -14,8 +14,8 @@ Fields on a plane z behind the stack:
 * the fast model: the GO field of the ideal lens on the plane at the back of the stack propagated by
   the exact angular spectrum of a body of revolution (:func:`antenna_cad.radiation.testzone.propagate_bor`:
   rim diffraction and the axial caustic included), times, for a stepped stack, the fast
-  sub-wavelength model's transfer of its excess foam (:func:`antenna_cad.fullwave.fastmodel.fast_ratio`:
-  a thin screen at the stack's mean front face diffracted to the plane, over the unstepped one).
+  sub-wavelength model's factor of its excess foam (:func:`stack_ratio`: a thin screen at the stack's
+  mean front face, its departure from unity diffracted to the plane by the same angular spectrum).
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ from typing import Callable
 
 import numpy as np
 
-from antenna_cad.fullwave.fastmodel import fast_ratio
+from antenna_cad.fullwave.fastmodel import thin_screen_deg
 from antenna_cad.radiation.testzone import propagate_bor
 
 MIN_PLANES = 5
@@ -36,9 +36,8 @@ SAMPLES_PER_WAVELENGTH = 20      # radial samples of the propagated field
 
 @dataclass(frozen=True)
 class Zone:
-    """The cylinder: ``diameter_mm`` None until the largest meeting the limits is known; planes as
-    distances behind the back of the stack."""
-    diameter_mm: float | None
+    """The cylinder; planes as distances behind the back of the stack."""
+    diameter_mm: float
     distance_mm: float
     depth_mm: float
     planes_mm: np.ndarray
@@ -57,13 +56,13 @@ def caustic_period_mm(edge_radius_mm: float, z_mm: float, wavelength_mm: float) 
     return wavelength_mm / (1.0 - z_mm / math.hypot(z_mm, edge_radius_mm))
 
 
-def zone_from(spec, aut_diameter_mm: float | None, aut_distance_mm: float, lens_radius_mm: float,
+def zone_from(spec, aut_diameter_mm: float, aut_distance_mm: float, lens_radius_mm: float,
               wavelength_mm: float) -> Zone:
-    """The zone of ``spec`` (``design.test_zone``) with its defaults (module docstring)."""
+    """The zone of ``spec`` (``design.test_zone``) with its defaults (module docstring); the AUT is the
+    spec's, or the caller's default one."""
     diameter = spec.diameter_mm if spec.diameter_mm is not None else aut_diameter_mm
     distance = spec.distance_mm if spec.distance_mm is not None else aut_distance_mm
-    depth = spec.depth_mm if spec.depth_mm is not None else max(diameter or 2 * lens_radius_mm,
-                                                                 MIN_DEPTH_WAVELENGTHS * wavelength_mm)
+    depth = spec.depth_mm if spec.depth_mm is not None else max(diameter, MIN_DEPTH_WAVELENGTHS * wavelength_mm)
     if spec.planes is not None:
         n = spec.planes
     else:
@@ -110,6 +109,18 @@ def fast_fields(r_mm: np.ndarray, ideal_field: np.ndarray, wavelength_mm: float,
     ideal = propagated(r_mm, ideal_field, wavelength_mm, distances_mm, rho_mm)
     out = {"ideal": ideal}
     for name, (excess, n, radius, lead) in screens.items():
-        out[name] = ideal * np.array([fast_ratio(excess, n, wavelength_mm, radius, lead + d, rho_mm)
-                                      for d in distances_mm])
+        out[name] = ideal * stack_ratio(excess, n, radius, wavelength_mm, lead, distances_mm, rho_mm)
     return out
+
+
+def stack_ratio(excess: Callable, n: float, radius_mm: float, wavelength_mm: float, lead_mm: float,
+                distances_mm: np.ndarray, rho_mm: np.ndarray) -> np.ndarray:
+    """[plane, ρ] the fast model's field of a stepped stack over the ideal lens's: its excess foam Δd(r)
+    as the thin screen exp(i·k0(n−1)Δd) of seed-000 §7.3 ``lead_mm`` before the back of the stack, on an
+    unbounded plane wave: 1 + what the screen's departure from unity diffracts to each distance behind
+    it (the rim's own diffraction is the ideal lens's, not the stack's)."""
+    r = radii_mm(radius_mm, wavelength_mm / 2)
+    departure = np.exp(1j * np.radians(thin_screen_deg(excess(r), n, wavelength_mm))) - 1.0
+    k = 2 * math.pi / wavelength_mm
+    return np.array([1.0 + np.exp(-1j * k * (lead_mm + d)) * propagate_bor(r, departure, wavelength_mm, lead_mm + d,
+                                                                            rho_mm) for d in distances_mm])

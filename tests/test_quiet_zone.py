@@ -151,3 +151,14 @@ def test_stack_factor_of_a_uniform_plate_against_its_closed_form():
     rho = np.hypot(L, a)
     exact = 1 + (np.exp(1j * phi0) - 1) * (1 - L / rho * np.exp(1j * K * (rho - L)))
     assert np.max(np.abs(got - exact)) < 0.01 * abs(np.exp(1j * phi0) - 1)
+
+
+def test_rays_that_cross_the_axis_arrive_at_their_radius():
+    """GO of a converging fan: a ray aimed 10 mm off axis at 0.1 rad inward is at r = 10 mm again
+    200 mm further on (having crossed the axis), with its straight-line path."""
+    rays = Rays(np.array([0.0, 10.0]), np.array([1.0, math.cos(0.1)]), np.array([0.0, -math.sin(0.1)]),
+                np.ones(2), np.zeros(2), 0.0)
+    z = 2 * 10.0 / math.tan(0.1)
+    r, e = rays.field_at(z, LAM)
+    assert r == pytest.approx([0.0, 10.0])
+    assert np.angle(e[1]) == pytest.approx(np.angle(np.exp(1j * K * z / math.cos(0.1))), abs=1e-9)

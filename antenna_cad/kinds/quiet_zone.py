@@ -48,7 +48,9 @@ def lens_quiet_zone(lens: Lens, variants, feed: tuple[str, float, float], z_ref:
     rl = RevolvedLens(lens.front_z, lens.back_z, R, lens.eps_r, C_MM_GHZ / lam, feed[1], sections)
     screens = {n: (lambda r, n=n: rl.excess_mm(n, r), lens.n, R, z_ref - rl.screen_z_mm()) for n in sections}
     fast = fast_fields(*ideal_exit, lam, zone.planes_mm, rho, screens)
-    models = [ModelPlanes(FAST, "", {n: [(rho, e) for e in fast[n]] if n in fast else go[n] for n, _ in variants}),
+    kept = [n for n, _ in variants if n not in fast]
+    best = FAST + (f"; GO for {', '.join(kept)} (taper-cut cones: no stepped section)" if kept else "")
+    models = [ModelPlanes(best, "", {n: [(rho, e) for e in fast[n]] if n in fast else go[n] for n, _ in variants}),
               ModelPlanes(GO, "go_", go)]
     explicit = criteria.zone.diameter_mm is not None or aut is not None
     return quiet_zone_study(zone, models, feed[0], cross, explicit)

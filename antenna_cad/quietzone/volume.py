@@ -89,9 +89,10 @@ class Rays:
     z_mm: float
 
     def field_at(self, z_mm: float, wavelength_mm: float) -> tuple[np.ndarray, np.ndarray]:
-        """GO field on the plane ``z_mm``: (r increasing, complex field), each ray carried straight on."""
+        """GO field on the plane ``z_mm``: (r increasing, complex field), each ray carried straight on (one
+        that has crossed the axis arrives at radius |y|)."""
         t = (z_mm - self.z_mm) / self.dz
-        y, path = self.y_mm + t * self.dy, self.path_mm + t
+        y, path = np.abs(self.y_mm + t * self.dy), self.path_mm + t
         o = np.argsort(y)
         return y[o], self.amplitude[o] * np.exp(1j * 2 * np.pi / wavelength_mm * path[o])
 

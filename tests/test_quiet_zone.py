@@ -43,14 +43,15 @@ def _exact_on_axis(a: float, z: np.ndarray) -> np.ndarray:
 
 def test_uniform_disc_on_axis_over_the_depth():
     """A uniform disc Ø10 λ propagated to 15 planes from 2 λ to 30 λ (Fresnel number 12.5 to 0.8):
-    |E| and the phase on the axis against the exact form (0.01, 1° where |E| > 0.2); beyond 15 λ
-    (z > 3a) it is the Fresnel form 2|sin(k a²/(4z))|."""
+    |E| and the phase on the axis against the exact form (0.015: the κ quadrature's ≈ 1 % of
+    radiation.testzone with one κ axis for every plane; 1° where |E| > 0.2); beyond 15 λ (z > 3a) it is
+    the Fresnel form 2|sin(k a²/(4z))|."""
     a = 5 * LAM
     r = radii_mm(a, LAM)
     z = np.linspace(2 * LAM, 30 * LAM, 15)
     e = propagated(r, np.ones_like(r), LAM, z, np.array([0.0]))[:, 0] * np.exp(-1j * K * z)
     exact = _exact_on_axis(a, z)
-    np.testing.assert_allclose(np.abs(e), np.abs(exact), atol=0.01)
+    np.testing.assert_allclose(np.abs(e), np.abs(exact), atol=0.015)
     ok = np.abs(exact) > 0.2
     np.testing.assert_allclose(np.degrees(np.angle(e[ok] / exact[ok])), 0.0, atol=1.0)
     far = z > 15 * LAM

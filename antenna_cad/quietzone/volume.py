@@ -27,7 +27,7 @@ from typing import Callable
 import numpy as np
 
 from antenna_cad.fullwave.fastmodel import thin_screen_deg
-from antenna_cad.radiation.testzone import propagate_bor
+from antenna_cad.radiation.testzone import propagate_bor_planes
 
 MIN_PLANES = 5
 MIN_DEPTH_WAVELENGTHS = 2.0
@@ -100,7 +100,7 @@ class Rays:
 def propagated(r_mm: np.ndarray, field: np.ndarray, wavelength_mm: float, distances_mm: np.ndarray,
                rho_mm: np.ndarray) -> np.ndarray:
     """[plane, ρ] the body-of-revolution field E(r) after each distance (angular spectrum)."""
-    return np.array([propagate_bor(r_mm, field, wavelength_mm, d, rho_mm) for d in distances_mm])
+    return propagate_bor_planes(r_mm, field, wavelength_mm, distances_mm, rho_mm)
 
 
 def fast_fields(r_mm: np.ndarray, ideal_field: np.ndarray, wavelength_mm: float, distances_mm: np.ndarray,
@@ -122,6 +122,6 @@ def stack_ratio(excess: Callable, n: float, radius_mm: float, wavelength_mm: flo
     it (the rim's own diffraction is the ideal lens's, not the stack's)."""
     r = radii_mm(radius_mm, wavelength_mm / 2)
     departure = np.exp(1j * np.radians(thin_screen_deg(excess(r), n, wavelength_mm))) - 1.0
-    k = 2 * math.pi / wavelength_mm
-    return np.array([1.0 + np.exp(-1j * k * (lead_mm + d)) * propagate_bor(r, departure, wavelength_mm, lead_mm + d,
-                                                                            rho_mm) for d in distances_mm])
+    d = lead_mm + np.asarray(distances_mm, float)
+    carrier = np.exp(-2j * math.pi / wavelength_mm * d)[:, None]          # the plane wave's own phase
+    return 1.0 + carrier * propagate_bor_planes(r, departure, wavelength_mm, d, rho_mm)

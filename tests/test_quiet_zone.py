@@ -97,6 +97,7 @@ def test_zone_defaults():
     assert np.diff(z.planes_mm).max() <= caustic_period_mm(250.0, 100.0, LAM) / 2 + 1e-9
     small = zone_from(TestZoneSpec(), 20.0, 3000.0, 250.0, LAM)
     assert small.depth_mm == 2 * LAM and len(small.planes_mm) == 5
+    assert len(zone_from(TestZoneSpec(depth_mm=100000), 500.0, 100.0, 250.0, LAM).planes_mm) == 200   # capped
     assert caustic_period_mm(250.0, 100.0, LAM) == pytest.approx(LAM / (1 - 100 / math.hypot(100, 250)))
     TestZoneSpec.model_validate({"amplitude_db": 0.5, "phase_deg": 5})
 
@@ -163,3 +164,14 @@ def test_rays_that_cross_the_axis_arrive_at_their_radius():
     r, e = rays.field_at(z, LAM)
     assert r == pytest.approx([0.0, 10.0])
     assert np.angle(e[1]) == pytest.approx(np.angle(np.exp(1j * K * z / math.cos(0.1))), abs=1e-9)
+
+
+def test_a_zone_touching_the_stack_is_the_aperture_field():
+    """A zone starting at the back of the stack (distance 0; the spectrum of λ/4, ≈ 9 k): the plane there
+    reproduces the aperture field (a uniform disc: 1 within 2 %) away from the rim and from the axis, where
+    a body of revolution focuses the ringing of the truncated spectrum."""
+    a = 5 * LAM
+    r = radii_mm(a, LAM)
+    e = propagated(r, np.ones_like(r), LAM, np.array([0.0, LAM]), r)
+    inside = (r > LAM) & (r < a - 2 * LAM)
+    np.testing.assert_allclose(np.abs(e[0][inside]), 1.0, atol=0.02)

@@ -30,6 +30,7 @@ from antenna_cad.fullwave.fastmodel import thin_screen_deg
 from antenna_cad.radiation.testzone import propagate_bor_planes
 
 MIN_PLANES = 5
+MAX_PLANES = 200            # the spec's own bound on ``planes``: a deep zone is scanned no finer than this
 MIN_DEPTH_WAVELENGTHS = 2.0
 SAMPLES_PER_WAVELENGTH = 20      # radial samples of the propagated field
 
@@ -67,7 +68,7 @@ def zone_from(spec, aut_diameter_mm: float, aut_distance_mm: float, lens_radius_
         n = spec.planes
     else:
         spacing = caustic_period_mm(lens_radius_mm, max(distance, wavelength_mm), wavelength_mm) / 2
-        n = max(MIN_PLANES, math.ceil(depth / spacing) + 1)
+        n = min(MAX_PLANES, max(MIN_PLANES, math.ceil(depth / spacing) + 1))
     return Zone(diameter, distance, depth, distance + np.linspace(0.0, depth, n), spec.amplitude_db, spec.phase_deg,
                 spec.cross_pol_db)
 

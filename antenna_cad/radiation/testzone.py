@@ -25,13 +25,15 @@ import numpy as np
 from antenna_cad.radiation.aperture import matvec, trapezoid_weights
 
 EVANESCENT_NEPERS = 14.0
+NEAREST_WAVELENGTHS = 0.25  # nearer planes (down to 0) keep the spectrum of this distance: up to ≈ 9 k,
+                            # finer than the λ/20 sampling of the fields, and a bounded cost
 KAPPA_SAMPLES = 48      # κ step π/(48·extent): the on-axis field of a hard-edged disc (its edge wave
                         # focuses there, the hardest case) to ≈ 1 % against the exact form at λ/40 sampling
 
 
 def _spectrum_axis(wavelength_mm: float, distance_mm: float, extent_mm: float, symmetric: bool) -> np.ndarray:
     k = 2 * math.pi / wavelength_mm
-    kmax = math.sqrt(k**2 + (EVANESCENT_NEPERS / max(distance_mm, 1e-9)) ** 2)
+    kmax = math.sqrt(k**2 + (EVANESCENT_NEPERS / max(distance_mm, NEAREST_WAVELENGTHS * wavelength_mm)) ** 2)
     dk = math.pi / (KAPPA_SAMPLES * extent_mm)
     n = int(kmax / dk) + 2
     kappa = np.linspace(0.0, kmax, n)

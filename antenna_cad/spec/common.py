@@ -219,7 +219,7 @@ class TestZoneSpec(StrictModel):
     depth_mm: float | None = Field(None, ge=1, le=100000, description="along the axis, away from the lens "
                                    "(default: one zone diameter, at least 2 λ)")
     planes: int | None = Field(None, ge=2, le=200, description="planes scanned across the depth (default: at least "
-                               "5, and spaced by at most half the period of the axial caustic of the lens's rim)")
+                               "5, and spaced by at most half the period of the axial caustic of the lens's rim; at most 200)")
 
     __test__ = False
 

@@ -4,9 +4,10 @@ Zone (``design.test_zone``): diameter (default the AUT's: the spec's, or the cal
 near face ``distance_mm`` behind the back of the stack (default the AUT's distance), depth away from
 the lens (default one zone diameter, at least 2 λ), and the planes scanned across it: at least
 ``MIN_PLANES``, spaced by at most half the period of the axial caustic (at most ``MAX_PLANES``). That
-caustic is the rim's (and the ring edges') diffraction arriving on the axis of a body of revolution: the edge wave from radius a
-and the direct wave differ in path by √(z² + a²) − z, so along z the pattern repeats every
-λ / (1 − z/√(z² + a²)) — shortest near the lens and for the outermost edge (a = the lens radius).
+caustic is the rim's (and the ring edges') diffraction arriving on the axis of a body of revolution:
+the edge wave from radius a and the direct wave differ in path by √(z² + a²) − z, so along z the
+pattern repeats every λ / (1 − z/√(z² + a²)) — shortest near the lens and for the outermost edge
+(a = the lens radius).
 
 Fields on a plane z behind the stack:
 * GO: each ray straight on from its exit point (amplitude unchanged, as the seed's model, §4.4;

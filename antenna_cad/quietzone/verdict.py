@@ -5,7 +5,9 @@ diameter within the limits): ``quiet_zone_<lens>_<feed>_<figure>`` from the best
 name in the tables and the check), ``quiet_zone_go_<lens>_<feed>_<figure>`` from GO beside it. The
 cross-polarization is GO's for both: the Fresnel transmissions of the two polarizations differ, and a
 linearly polarized feed on the axis of a body of revolution then gets a cross-polar field
-(τ∥ − τ⊥)/2·sin 2φ against the co-polar (τ∥ + τ⊥)/2 (largest at φ = 45°); the scalar fast model carries none.
+(τ∥ − τ⊥)/2·sin 2φ against the co-polar (τ∥ + τ⊥)/2 (largest at φ = 45°); the scalar fast model
+carries none. The stack's own figures ``quiet_zone_<lens>_added_<feed>_phase_*`` are each stepped
+variant's field over the ideal lens's (:func:`stack_own`).
 """
 
 from __future__ import annotations

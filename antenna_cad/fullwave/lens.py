@@ -60,10 +60,14 @@ class RevolvedLens:
             float(np.max(self.back_z(np.linspace(0.0, self.radius_mm, 101))))
         return z + plane_offset_lambda * self.wavelength_mm
 
+    def screen_z_mm(self) -> float:
+        """Where the fast model puts its thin screen: the area-weighted mean front face."""
+        r = np.linspace(0.0, self.radius_mm, 201)
+        return float(np.average(self.front_z(r), weights=r + 1e-9))
+
     def fast_difference_deg(self, variant: str, plane_offset_lambda: float, r_obs: np.ndarray) -> np.ndarray:
         """Fast model of the phase ``variant`` − ideal on the aperture plane (deg) at radii r_obs;
         the screen sits at the mean front face."""
-        r = np.linspace(0.0, self.radius_mm, 201)
-        distance = self.plane_z_mm(plane_offset_lambda) - float(np.average(self.front_z(r), weights=r + 1e-9))
+        distance = self.plane_z_mm(plane_offset_lambda) - self.screen_z_mm()
         return fast_phase(lambda x: self.excess_mm(variant, x), self.n, self.wavelength_mm, self.radius_mm,
                           distance, r_obs)

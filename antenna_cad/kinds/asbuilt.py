@@ -34,9 +34,11 @@ from antenna_cad.kinds.taper import Taper
 from antenna_cad.raytrace.collimator import ApertureTrace
 from antenna_cad.raytrace.trace2d import Interface, Slabs, Trace2D, aim_at_face, trace, trace_slabs, \
     transmitted_amplitude
-from antenna_cad.spec.common import TolerancesSpec, VerificationSpec
+from antenna_cad.quietzone.verdict import judged
+from antenna_cad.quietzone.volume import Zone, radii_mm, stack_ratio, zone_from
+from antenna_cad.spec.common import TestZoneSpec, TolerancesSpec, VerificationSpec
 from antenna_cad.synthesis.checks import Check, DesignError
-from antenna_cad.synthesis.collimator import step_phase_error_deg
+from antenna_cad.synthesis.collimator import edge_margin_mm, step_phase_error_deg
 from antenna_cad.verification import Plot, Series, Table, Verification, detrended
 
 RAYS = 1201                 # rays per trace across the aperture
@@ -60,6 +62,8 @@ class Lens:
     antenna_z_mm: float
     feed: tuple[float, float]           # nominal feed (z, y)
     faces: Callable[[float], tuple[Interface, ...]]
+    zone: TestZoneSpec = TestZoneSpec()         # the quiet zone the stack is judged over
+    aut_diameter_mm: float | None = None        # the AUT's (None: the default AUT, :func:`lens_zone`)
 
     @property
     def n(self) -> float:
@@ -142,6 +146,45 @@ def focus_shift(lens: Lens, medium: Medium, feed) -> tuple[float, Stats]:
     return shift, aperture_stats(lens, tr, keep)
 
 
+# ------------------------------------------------------------------ the quiet zone of the stack
+
+def lens_zone(lens: Lens, z_ref: float, spec: TestZoneSpec | None = None, aut_diameter_mm: float | None = None) -> Zone:
+    """The quiet zone behind the plane ``z_ref`` (the back of the stack): ``spec`` (default the lens's)
+    with the AUT's diameter, else the default AUT's: the lens less the GO edge margin g of seed-000 §4.6
+    (2.1) on each side, at least 2 λ."""
+    lam, distance = lens.wavelength_mm, lens.antenna_z_mm - z_ref
+    aut = aut_diameter_mm if spec is not None else lens.aut_diameter_mm
+    if aut is None:
+        aut = max(2 * lens.radius_mm - 2 * edge_margin_mm(lam, distance), 2 * lam)
+    return zone_from(spec if spec is not None else lens.zone, aut, distance, lens.radius_mm, lam)
+
+
+@dataclass(frozen=True)
+class ZoneStats:
+    """The stack's own phase over the quiet zone (its field over the ideal lens's, fast model): worst
+    p-p and RMS over the planes, and the plane (mm behind the stack) of the worst p-p."""
+    p2p_deg: float
+    rms_deg: float
+    plane_mm: float
+
+
+def stack_zone(lens: Lens, layup: LayupPlan, fab=None) -> dict[str, ZoneStats]:
+    """:class:`ZoneStats` of each stepped section (stepped; fabricated with ``fab``) by the fast model
+    (:func:`antenna_cad.quietzone.volume.stack_ratio`) over :func:`lens_zone`."""
+    rl = revolved(lens, layup, fab)
+    z_ref = rl.plane_z_mm(0.0)
+    zone = lens_zone(lens, z_ref)
+    rho = radii_mm(max(lens.radius_mm, zone.diameter_mm / 2), lens.wavelength_mm)
+    out = {}
+    for name in rl.sections:
+        ratio = stack_ratio(lambda r, name=name: rl.excess_mm(name, r), lens.n, lens.radius_mm, lens.wavelength_mm,
+                            z_ref - rl.screen_z_mm(), zone.planes_mm, rho)
+        j = judged(zone, [(rho, e) for e in ratio])
+        p2p, plane = j.worst("phase_p2p_deg")
+        out[name] = ZoneStats(p2p, j.worst("phase_rms_deg")[0], plane)
+    return out
+
+
 # ------------------------------------------------------------------ layers and the stock thickness
 
 def excess_mm(lens: Lens, layup: LayupPlan, r: np.ndarray) -> np.ndarray:
@@ -174,13 +217,15 @@ class Candidate:
     estimate_deg: float | None      # k0(n−1)Δd
     meets: bool
     note: str = ""
-    model: Stats | None = None      # the fast sub-wavelength model: what ``meets`` follows
+    model: Stats | None = None      # the fast sub-wavelength model on one plane (for comparison)
+    zone: ZoneStats | None = None   # the stack's own phase over the quiet zone: what ``meets`` follows
 
 
 def stock_study(sheets: Callable[[float], LayupPlan], lens_for: Callable[[LayupPlan], Lens],
                 stocks: tuple[float, ...], settings: VerificationSpec = VerificationSpec()) -> tuple[Candidate, ...]:
     """Every stock thickness laid up and judged unsanded (stepped stack as cut) at the nominal feed:
-    GO trace (for reference) and the fast sub-wavelength model, whose p-p decides."""
+    GO trace and the fast sub-wavelength model on one plane (for comparison), and the stack's own
+    phase over the quiet zone (:func:`stack_zone`), whose worst p-p decides."""
     out = []
     for t in stocks:
         try:
@@ -191,8 +236,9 @@ def stock_study(sheets: Callable[[float], LayupPlan], lens_for: Callable[[LayupP
         lens = lens_for(layup)
         st = aperture_stats(lens, *trace_lens(lens, cut_medium(lens, layup), lens.feed))
         model = modelled_stats(lens, fast_model(revolved(lens, layup), settings), "stepped", lens.feed)
-        out.append(Candidate(t, layup, st, step_estimate_deg(lens, layup), model.p2p_deg <= lens.budget_deg,
-                             model=model))
+        zone = stack_zone(lens, layup)["stepped"]
+        out.append(Candidate(t, layup, st, step_estimate_deg(lens, layup), zone.p2p_deg <= lens.budget_deg,
+                             model=model, zone=zone))
     return tuple(out)
 
 
@@ -288,13 +334,18 @@ def verify_lens(lens: Lens, feeds: tuple[tuple[str, float, float], ...], toleran
         tables.append(_layer_table(lens, layup, fab))
         plots.append(_profile_plot(lens, layup))
         model = modelled_stats(lens, fw.model, "fabricated", feeds[0][1:])
-        pp, sanded = model.p2p_deg, figures[f"ideal_{nominal}_p2p_deg"]
-        figures |= {f"model_fabricated_{nominal}_p2p_deg": pp, f"model_fabricated_{nominal}_rms_deg": model.rms_deg}
+        zone = stack_zone(lens, layup, fab)["fabricated"]
+        pp = zone.p2p_deg
+        figures |= {f"model_fabricated_{nominal}_p2p_deg": model.p2p_deg, f"model_fabricated_{nominal}_rms_deg":
+                    model.rms_deg, f"stack_zone_fabricated_{nominal}_p2p_deg": pp,
+                    f"stack_zone_fabricated_{nominal}_rms_deg": zone.rms_deg}
         checks.append(Check("unsanded_step_phase_error", "warn" if pp > lens.budget_deg else "pass", pp,
                             lens.budget_deg, "deg",
-                            f"as fabricated, unsanded ({layup.sheet_thickness_mm:g} mm sheets): {pp:.1f}° "
-                            f"p-p vs budget {lens.budget_deg:g}° ({fw.model.name}; GO alone "
-                            f"{figures[f'fabricated_{nominal}_p2p_deg']:.1f}°)" + _over_budget(layup, pp > lens.budget_deg, sanded)))
+                            f"as fabricated, unsanded ({layup.sheet_thickness_mm:g} mm sheets): the stack's own phase "
+                            f"over the quiet zone {pp:.1f}° p-p (worst plane {zone.plane_mm:.0f} mm behind the stack; "
+                            f"fast model) vs budget {lens.budget_deg:g}°; on one plane {model.p2p_deg:.1f}° "
+                            f"({fw.model.name}), GO alone {figures[f'fabricated_{nominal}_p2p_deg']:.1f}°"
+                            + _over_budget(layup, pp > lens.budget_deg)))
     if study:
         tables.append(_candidates_table(study, layup))
     sens_table, sens_plot, sens_figures, sens_check = _sensitivity(lens, section, tolerances, layup, model)
@@ -303,12 +354,12 @@ def verify_lens(lens: Lens, feeds: tuple[tuple[str, float, float], ...], toleran
                         tuple(plots + [_fan_plot(lens, as_built, section), sens_plot]) + fw.plots, fw.files)
 
 
-def _over_budget(layup: LayupPlan, over: bool, sanded: float) -> str:
+def _over_budget(layup: LayupPlan, over: bool) -> str:
     if not over:
         return ""
     if layup.edge == "taper":
         return "; taper-cut: thinner sheets bring the cones closer to the profile"
-    return f"; sanding required: it brings the error to {sanded:.1f}° (the ideal lens)"
+    return "; sanding required: it removes the stack's own error (the ideal lens)"
 
 
 def _layer_table(lens: Lens, layup: LayupPlan, fab) -> Table:
@@ -332,15 +383,19 @@ def _layer_table(lens: Lens, layup: LayupPlan, fab) -> Table:
 
 def _candidates_table(study: tuple[Candidate, ...], layup: LayupPlan | None) -> Table:
     rows = tuple((c.thickness_mm, c.layup.count, _r(c.stats.p2p_deg), _r(c.stats.rms_deg), _r(c.model.p2p_deg),
-                  _r(c.model.rms_deg), _r(c.model.gain_loss_db), _r(c.estimate_deg), "yes" if c.meets else "no")
-                 if c.layup is not None else (c.thickness_mm, None, None, None, None, None, None, None, f"no: {c.note}")
+                  _r(c.model.rms_deg), _r(c.zone.p2p_deg), _r(c.zone.rms_deg), _r(c.zone.plane_mm),
+                  _r(c.estimate_deg), "yes" if c.meets else "no")
+                 if c.layup is not None else (c.thickness_mm, *[None] * 9, f"no: {c.note}")
                  for c in study)
     chosen = f"; chosen: {layup.sheet_thickness_mm:g} mm" if layup is not None else ""
     return Table("stock-candidates", "Stock sheet thickness, unsanded stack at the nominal feed",
-                 ("thickness mm", "sheets", "GO p-p deg", "GO RMS deg", "model p-p deg", "model RMS deg",
-                  "gain loss dB", "k0(n-1)Δd deg", "meets budget"), rows,
-                 caption=f"GO: exact trace of the stack as cut (blind to sub-wavelength zones); model: the fast "
-                 f"sub-wavelength model, which decides; k0(n−1)Δd the thin screen of seed-000 §7.3{chosen}")
+                 ("thickness mm", "sheets", "GO p-p deg", "GO RMS deg", "one-plane model p-p deg",
+                  "one-plane model RMS deg", "quiet-zone p-p deg", "quiet-zone RMS deg", "worst plane mm",
+                  "k0(n-1)Δd deg", "meets budget"), rows,
+                 caption=f"GO: exact trace of the stack as cut (blind to sub-wavelength zones); one-plane model: the "
+                 "fast sub-wavelength model on the aperture plane (single-plane figures, for comparison); "
+                 "quiet-zone: the stack's own phase (its field over the ideal lens's, fast model) worst over the "
+                 f"quiet zone's planes and disc, which decides; k0(n−1)Δd the thin screen of seed-000 §7.3{chosen}")
 
 
 def _sensitivity(lens: Lens, section: Slabs | Taper | None, tol: TolerancesSpec, layup: LayupPlan | None,

@@ -59,7 +59,8 @@ def _lens(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | Non
     return Lens(radius_mm=design.diameter_mm / 2, eps_r=m.eps_r, tan_delta=m.tan_delta,
                 wavelength_mm=design.wavelength_mm, budget_deg=design.phase_error_budget_deg,
                 antenna_z_mm=back + _antenna_gap_mm(spec), feed=(-f, 0.0),
-                faces=lambda n_lens: (front_face(f, n, n_lens), Interface.plane(back, 1.0)))
+                faces=lambda n_lens: (front_face(f, n, n_lens), Interface.plane(back, 1.0)),
+                zone=spec.design.test_zone, aut_diameter_mm=spec.design.aut.span_mm if spec.design.aut else None)
 
 
 def plan(spec: CollimatorSpec, design: CollimatorDesign):

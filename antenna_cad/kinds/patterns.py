@@ -32,11 +32,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from antenna_cad.kinds.asbuilt import Lens, Medium, trace_lens
+from antenna_cad.kinds.quiet_zone import lens_quiet_zone
 from antenna_cad.radiation.aperture import PatternFigures, bor_aperture, grid_aperture, pattern_figures
 from antenna_cad.radiation.distortion import Aut, AutMeter, IntegralErrors
 from antenna_cad.radiation.testzone import TestZone, largest_test_zone, propagate_bor, propagate_line
 from antenna_cad.raytrace.collimator import axial_defocus_limits, trace_collimator
 from antenna_cad.raytrace.trace2d import transmitted_amplitude
+from antenna_cad.spec.common import TestZoneSpec
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.collimator import edge_margin_mm, path_difference_approx_mm, path_difference_mm
 from antenna_cad.verification import Plot, Series, Table, Verification, finite_figures
@@ -45,6 +47,7 @@ SAMPLES_PER_WAVELENGTH = 20      # aperture and AUT-plane cuts
 GRID_PER_WAVELENGTH = 4          # 2-D aperture grid (patterns of off-axis feeds)
 PLOT_BEAMWIDTHS = 12             # pattern plots: ± this many λ/D about the beam
 TEST_ZONE_RANGE = 1.25           # test-zone cut out to this × the lens radius
+EDGE_HOLD_WAVELENGTHS = 0.5      # a trace ending this close to the rim is held out to it
 
 
 @dataclass(frozen=True)
@@ -54,6 +57,7 @@ class Criteria:
     phase_deg: float = 11.25
     aut: Aut | None = None
     difference: bool = True
+    zone: TestZoneSpec = TestZoneSpec()          # the quiet-zone cylinder (antenna_cad.quietzone)
 
 
 def criteria_from(aut_spec, test_zone_spec) -> Criteria:
@@ -65,7 +69,7 @@ def criteria_from(aut_spec, test_zone_spec) -> Criteria:
         else:
             aut = Aut(aut_spec.width_mm, aut_spec.height_mm, False, aut_spec.taper)
     return Criteria(test_zone_spec.amplitude_db, test_zone_spec.phase_deg, aut,
-                    aut_spec is None or aut_spec.pattern == "sum_and_difference")
+                    aut_spec is None or aut_spec.pattern == "sum_and_difference", test_zone_spec)
 
 
 @dataclass(frozen=True)
@@ -89,11 +93,16 @@ def exit_field(lens: Lens, medium: Medium, feed, z_ref: float) -> ExitField:
 
 
 def resampled(y_mm, amplitude, phase_rad, half_mm: float, wavelength_mm: float) -> tuple[np.ndarray, np.ndarray]:
-    """A field A·e^{jφ} known at increasing ``y_mm`` on the uniform cut −half … half (zero outside
-    the samples)."""
+    """A field A·e^{jφ} known at increasing ``y_mm`` on the uniform cut −half … half. Where the
+    samples stop short of ±half by less than ``EDGE_HOLD_WAVELENGTHS`` λ (the tracer aims its rays
+    just inside the rim) the end samples are held out to the rim, so a uniform aperture stays uniform
+    to its edge; beyond that (a shadow) the field is zero."""
     grid = np.linspace(-half_mm, half_mm, 2 * int(SAMPLES_PER_WAVELENGTH * half_mm / wavelength_mm) + 1)
-    a = np.interp(grid, y_mm, amplitude, left=0.0, right=0.0)
-    return grid, a * np.exp(1j * np.interp(grid, y_mm, phase_rad))
+    y = np.asarray(y_mm, float)
+    hold = EDGE_HOLD_WAVELENGTHS * wavelength_mm
+    lo, hi = (y[0] if y[0] + half_mm <= hold else -np.inf), (y[-1] if half_mm - y[-1] <= hold else np.inf)
+    a = np.interp(np.clip(grid, lo, hi), y, amplitude, left=0.0, right=0.0)
+    return grid, a * np.exp(1j * np.interp(grid, y, phase_rad))
 
 
 def _aperture(lens: Lens, ef: ExitField, on_axis: bool, height_mm: float | None):
@@ -223,7 +232,12 @@ def lens_patterns(lens: Lens, variants: list[tuple[str, Medium]], feeds, criteri
     if criteria.aut is None:
         checks = []                 # no AUT in the spec: the default one is reported, not judged
     figures |= a_fig
-    return Verification(finite_figures(figures), tuple(checks), tuple(tables + [a_tab]), tuple(plots + [a_plot]))
+    v = Verification(finite_figures(figures), tuple(checks), tuple(tables + [a_tab]), tuple(plots + [a_plot]))
+    ef, on_axis = fields[(variants[0][0], nominal)]
+    if not on_axis:
+        return v
+    half = ef.y_mm >= 0
+    return v.merged(lens_quiet_zone(lens, variants, feeds[0], z_ref, criteria, (ef.y_mm[half], ef.field[half])))
 
 
 def _test_zone(lens: Lens, variants, fields, nominal: str, distance: float, criteria: Criteria):
@@ -258,7 +272,8 @@ def _test_zone(lens: Lens, variants, fields, nominal: str, distance: float, crit
                      for i, (v, z) in enumerate(zones.items())),
                caption=f"criterion ±{criteria.phase_deg:g}°; drawn where the amplitude is above −10 dB",
                hlines=((f"+{criteria.phase_deg:g}°", criteria.phase_deg), (f"−{criteria.phase_deg:g}°", -criteria.phase_deg)))
-    table = Table("test-zone", "Test zone on the AUT plane (nominal feed)", ("lens", "diameter mm", "distance mm"),
+    table = Table("test-zone", "Test zone on the AUT plane alone (nominal feed; single-plane figures, kept beside "
+                  "the quiet zone for comparison)", ("lens", "diameter mm", "distance mm"),
                   tuple((v, _r(z.diameter_mm, 1), _r(distance, 1)) for v, z in zones.items()),
                   caption=f"largest centred zone within ±{criteria.amplitude_db:g} dB and ±{criteria.phase_deg:g}° "
                           "(linear tilt removed); angular spectrum of plane waves (not Fresnel)")

@@ -18,6 +18,8 @@ from antenna_cad.raytrace.trace2d import Interface, Trace2D, aim_at_face, trace
 from antenna_cad.synthesis.collimator import profile_z_mm, thickness_mm
 from antenna_cad.verification import detrended
 
+RIM_TOLERANCE = 1e-9        # relative: a ray aimed at the rim stays in the aperture despite rounding
+
 
 @dataclass(frozen=True)
 class ApertureTrace:
@@ -68,12 +70,13 @@ def trace_collimator(*, focal_length_mm: float, n: float, diameter_mm: float, ba
     """Trace ``rays`` rays from the feed (default: the focus (−f, 0)) through the lens to the
     plane z = antenna_z. Rays are aimed at points of the illuminated face spread uniformly in y
     over ``margin`` × the diameter, so both halves are covered under transverse defocus; rays
-    that leave the flat face outside the rim are dropped."""
+    that leave the flat face outside the rim (beyond rounding) are dropped."""
     feed = np.array(feed_zy_mm if feed_zy_mm is not None else (-focal_length_mm, 0.0))
     front = front_face(focal_length_mm, n)
     dirs = aim_at_face(front, feed, margin * diameter_mm / 2, rays)
     tr = trace(np.tile(feed, (rays, 1)), dirs, [front, Interface.plane(back_z_mm, 1.0)], 1.0, antenna_z_mm)
-    return ApertureTrace.from_trace(tr, wavelength_mm, tr.ok & (np.abs(tr.points[2][:, 1]) <= diameter_mm / 2))
+    rim = diameter_mm / 2 * (1 + RIM_TOLERANCE)
+    return ApertureTrace.from_trace(tr, wavelength_mm, tr.ok & (np.abs(tr.points[2][:, 1]) <= rim))
 
 
 def single_surface_p2p_deg(focal_length_mm: float, diameter_mm: float, eps_r: float, feed_y_mm: float,

@@ -204,10 +204,22 @@ class AutSpec(StrictModel):
 
 
 class TestZoneSpec(StrictModel):
-    """Test-zone criteria on the AUT plane: ± amplitude ripple and ± phase deviation (linear tilt
-    removed) about their mid-range; defaults ±1 dB and ±22.5°/2 (seed-000 §4.1)."""
+    """The quiet zone, as compact ranges specify it: a cylinder (diameter × depth) starting
+    ``distance_mm`` behind the back of the stack, scanned on ``planes`` planes across its depth, with
+    limits on the amplitude (± about mid-range) and the phase (± about mid-range, piston and tilt
+    removed per plane); defaults ±1 dB and ±22.5°/2 (seed-000 §4.1). Every size defaults from the AUT."""
     amplitude_db: float = Field(1.0, ge=0.01, le=20)
     phase_deg: float = Field(11.25, ge=0.01, le=180)
+    cross_pol_db: float | None = Field(None, ge=-100, le=0, description="cross-polarization limit (dB to the "
+                                       "co-polar level; none: reported, not judged)")
+    diameter_mm: float | None = Field(None, ge=1, le=20000, description="default: the AUT's (a rectangle's "
+                                      "diagonal), else the largest meeting the limits")
+    distance_mm: float | None = Field(None, ge=0, le=100000, description="back of the stack to the zone's near "
+                                      "face (default: the AUT's distance)")
+    depth_mm: float | None = Field(None, ge=1, le=100000, description="along the axis, away from the lens "
+                                   "(default: one zone diameter, at least 2 λ)")
+    planes: int | None = Field(None, ge=2, le=200, description="planes scanned across the depth (default: at least "
+                               "5, and spaced by at most half the period of the axial caustic of the lens's rim; at most 200)")
 
     __test__ = False
 

@@ -1,0 +1,56 @@
+"""The quiet zone of the lenses of revolution (collimator, bifocal): their GO rays and GO aperture
+field handed to :mod:`antenna_cad.quietzone` for the nominal feed on the axis — GO through each
+variant (ideal, stepped as cut, as fabricated), and the fast model: the ideal lens's GO field by the
+angular spectrum, a layup's stepped sections by the fast sub-wavelength model on top (a taper-cut
+stack's cones have no sections: GO only there)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from antenna_cad.fullwave.lens import C_MM_GHZ, RevolvedLens
+from antenna_cad.kinds.asbuilt import Lens, lens_zone, trace_lens
+from antenna_cad.quietzone.verdict import ModelPlanes, quiet_zone_study
+from antenna_cad.quietzone.volume import Rays, fast_fields, radii_mm
+from antenna_cad.raytrace.trace2d import Slabs, transmitted_amplitude
+from antenna_cad.verification import Verification
+
+GO = "GO (rays carried straight on; no diffraction)"
+FAST = "fast model (angular spectrum of the GO aperture field; thin screen of the steps diffracted)"
+
+
+def _rays(lens: Lens, medium, feed) -> tuple[Rays, float]:
+    """The y ≥ 0 exit rays at the antenna plane, and GO's cross-polar level (dB) over them."""
+    tr, keep = trace_lens(lens, medium, feed)
+    lam = lens.wavelength_mm
+    half = keep & (tr.points[-1][:, 1] >= 0)
+    perp, par = (transmitted_amplitude(tr, lam, lens.tan_delta, pol)[half] for pol in ("perp", "par"))
+    cross = float(np.max(np.abs(par - perp) / np.abs(par + perp)))
+    d = tr.directions[-1][half]
+    return (Rays(tr.points[-1][half, 1], d[:, 0], d[:, 1], (par + perp) / 2, tr.opl[half], lens.antenna_z_mm),
+            20 * np.log10(max(cross, 1e-12)))
+
+
+def lens_quiet_zone(lens: Lens, variants, feed: tuple[str, float, float], z_ref: float, criteria,
+                    ideal_exit) -> Verification:
+    """Quiet-zone figures of every variant at the nominal on-axis ``feed`` (name, z, y); ``ideal_exit``:
+    the ideal lens's GO field on the plane ``z_ref`` (the back of the stack), (y ≥ 0 uniform, E)."""
+    lam, R = lens.wavelength_mm, lens.radius_mm
+    aut = criteria.aut
+    aut_d = None if aut is None else (aut.height_mm if aut.circular else float(np.hypot(aut.width_mm, aut.height_mm)))
+    zone = lens_zone(lens, z_ref, criteria.zone, aut_d)
+    go, cross = {}, {}
+    for name, medium in variants:
+        rays, cross[name] = _rays(lens, medium, feed[1:])
+        go[name] = [rays.field_at(z_ref + z, lam) for z in zone.planes_mm]
+    rho = radii_mm(max(R, zone.diameter_mm / 2), lam)
+    sections = {n: m for n, m in variants if isinstance(m, Slabs)}
+    rl = RevolvedLens(lens.front_z, lens.back_z, R, lens.eps_r, C_MM_GHZ / lam, feed[1], sections)
+    screens = {n: (lambda r, n=n: rl.excess_mm(n, r), lens.n, R, z_ref - rl.screen_z_mm()) for n in sections}
+    fast = fast_fields(*ideal_exit, lam, zone.planes_mm, rho, screens)
+    kept = [n for n, _ in variants if n not in fast]
+    best = FAST + (f"; GO for {', '.join(kept)} (taper-cut cones: no stepped section)" if kept else "")
+    models = [ModelPlanes(best, "", {n: [(rho, e) for e in fast[n]] if n in fast else go[n] for n, _ in variants}),
+              ModelPlanes(GO, "go_", go)]
+    explicit = criteria.zone.diameter_mm is not None or aut is not None
+    return quiet_zone_study(zone, models, feed[0], cross, explicit)

@@ -470,3 +470,14 @@ def test_sweep_on_a_tls_scheduler(tmp_path):
             except subprocess.TimeoutExpired:       # a loaded machine: a worker slow to close
                 p.kill()
                 p.wait()
+
+
+def test_a_local_cluster_leaves_nothing_in_the_temporary_folder(tmp_path, monkeypatch):
+    """The workers' folder and dask's own lock files live in one scratch folder, removed on exit."""
+    import tempfile
+
+    from antenna_cad.sweep.execute import connect
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+    with connect(workers=1) as client:
+        assert client.submit(abs, -1).result() == 1
+    assert list(tmp_path.iterdir()) == []

@@ -108,7 +108,9 @@ def connect(scheduler: str | None = None, workers: int | None = None, security=N
         with client:
             yield client
         return
-    with tempfile.TemporaryDirectory(prefix="antenna_cad-sweep-") as scratch:
+    import dask
+    with tempfile.TemporaryDirectory(prefix="antenna_cad-sweep-") as scratch, \
+            dask.config.set({"temporary-directory": scratch}):    # dask's own lock files too, not TMPDIR
         cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
                                dashboard_address=None, silence_logs=logging.ERROR, local_directory=scratch,
                                env={"TMPDIR": scratch})

@@ -234,3 +234,20 @@ def test_each_face_of_a_cone_is_compensated_by_the_kerf_at_its_own_speed(taper):
     front, back = _faces(entry, [p for p, g in zip(moves, cutting) if g][1:-2])
     assert np.hypot(*front.T) == pytest.approx(r0 + k0 / 2 * sec, abs=2e-3)
     assert np.hypot(*back.T) == pytest.approx(r1 + k1 / 2 * sec, abs=2e-3)
+
+
+def test_a_rings_hole_is_compensated_inward_by_the_kerf_at_each_faces_speed():
+    """Hand computation for a hole's cone (radii 80 → 40 mm over 20 mm, xps table at 300 mm/min): the
+    wire runs kerf/2 inside it, so the path radii are r − g, the larger face at the feed."""
+    from antenna_cad.cam.hotwire import cone_ring
+    from antenna_cad.cam.plan import face_kerfs
+    table = ((100.0, 1.6), (300.0, 0.9))
+    sec = np.hypot(20.0, 40.0) / 20.0
+    g = 0.9 / 2 * sec
+    v1 = 300 * (40 - g) / (80 - g)
+    k1 = 1.6 + (v1 - 100) * (0.9 - 1.6) / 200
+    kerfs = face_kerfs((80.0, 40.0), 20.0, table, 300.0, inward=True)
+    assert kerfs == pytest.approx((0.9, k1), abs=1e-12)
+    cut = cone_ring("ring-inner", (80.0, 40.0), (0.0, 20.0), 0.9, inward=True, face_kerf_mm=kerfs)
+    assert np.hypot(*cut.front.T) == pytest.approx(80 - 0.9 / 2 * sec, abs=1e-9)
+    assert np.hypot(*cut.back.T) == pytest.approx(40 - k1 / 2 * sec, abs=1e-9)

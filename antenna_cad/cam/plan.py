@@ -57,13 +57,15 @@ def kerf_of(cam, material_name: str) -> float:
     return kerf_at(kerf_table_of(cam, material_name), cam.feed_mm_min)
 
 
-def face_kerfs(sheet, table, feed_mm_min: float) -> tuple[float, float]:
-    """(front, back) kerf of a taper cut: the faster face moves at the feed, the other at the feed times
-    the ratio of their path radii (both ends sweep the same angle per move), each face's kerf the
-    table's at its own speed (FreeCAD FoamCut scales kerf with speed). The radii are the paths
-    compensated by the feed's kerf (one step: the correction of the radii is a fraction of a mm)."""
-    t, r0, r1 = sheet.thickness_mm, sheet.front_radius_mm, sheet.radius_mm
-    g = kerf_at(table, feed_mm_min) / 2 * np.hypot(t, r1 - r0) / t
+def face_kerfs(radii: tuple[float, float], thickness_mm: float, table, feed_mm_min: float,
+               inward: bool = False) -> tuple[float, float]:
+    """(front, back) kerf of a cone cut through ``radii`` at its two faces: the faster face moves at the
+    feed, the other at the feed times the ratio of their path radii (both ends sweep the same angle
+    per move), each face's kerf the table's at its own speed (FreeCAD FoamCut scales kerf with speed).
+    The path radii are the cone's offset by the feed's kerf/2 (outward, or ``inward`` for a ring's
+    hole): one step, the correction of the radii being a fraction of a mm."""
+    (r0, r1), t = radii, thickness_mm
+    g = (-1.0 if inward else 1.0) * kerf_at(table, feed_mm_min) / 2 * np.hypot(t, r1 - r0) / t
     fast = max(r0 + g, r1 + g)
     return kerf_at(table, feed_mm_min * (r0 + g) / fast), kerf_at(table, feed_mm_min * (r1 + g) / fast)
 
@@ -157,7 +159,7 @@ def plan_cam(layup, pieces, cam, material: str, panels=(), placements=None) -> C
         own = sorted((p for p in pieces if p.sheet_index == sheet.index), key=lambda p: p.label)
         blank = sheet.tapered and not any(p.label == sheet.label for p in own)   # the disc is in board strips
         for piece in own:
-            text, entry, xy, uv = _hotwire_file(piece_cut(piece, sheet, kerf, face_kerfs(sheet, table, cam.feed_mm_min)),
+            text, entry, xy, uv = _hotwire_file(piece_cut(piece, sheet, kerf, face_kerfs(sheet.cone_mm, sheet.thickness_mm, table, cam.feed_mm_min)),
                                                 m, cam, material, entry_direction(cam.lead_in_at, sheet, piece, own))
             files[entry["file"]] = text
             entries.append(entry)
@@ -168,7 +170,7 @@ def plan_cam(layup, pieces, cam, material: str, panels=(), placements=None) -> C
                 entries.append(drill[1])
         if blank:                                   # the glued strips cut to the cone
             text, entry, xy, uv = _hotwire_file(cone_cut(sheet, kerf, f"{sheet.label}-blank",
-                                                         face_kerfs(sheet, table, cam.feed_mm_min)), m, cam, material,
+                                                         face_kerfs(sheet.cone_mm, sheet.thickness_mm, table, cam.feed_mm_min)), m, cam, material,
                                                 entry_direction(cam.lead_in_at, sheet, None, own))
             files[entry["file"]] = text
             entries.append(entry)

@@ -36,7 +36,7 @@ LIMITS = {
     "pieces": Limit("pieces", "fabrication.board", soft=400, hard=4000),
     "drawings": Limit("drawings", "fabrication.board", soft=300, hard=3000),
     "pages": Limit("template pages", "outputs.templates", soft=5000, hard=100_000),
-    "triangles": Limit("STL triangles", "outputs.mesh_tolerance_mm", soft=5_000_000, hard=60_000_000),
+    "triangles": Limit("STL triangles", "outputs.mesh_tolerance_mm", soft=5_000_000, hard=20_000_000),
 }
 
 

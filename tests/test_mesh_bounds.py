@@ -72,7 +72,7 @@ def _scaled_sphere(tmp_path: Path, tolerance_mm: float) -> Path:
 
 def test_validate_counts_the_triangles_a_build_would_mesh(tmp_path):
     """``validate`` builds the solid model in memory and estimates every part's STL: a warning above
-    5 M triangles in all, a one-line refusal (exit 2, naming the part and the field) above 20 M a part
+    5 M triangles in all, a one-line refusal (exit 2, naming the part and the field) above 5 M a part
     — the same rules ``build`` applies before it meshes."""
     done = CliRunner().invoke(app, ["validate", str(_scaled_sphere(tmp_path, 0.05))])
     assert done.exit_code == 0, done.output

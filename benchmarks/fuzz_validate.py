@@ -4,9 +4,9 @@ with the output and the start of the spec of anything else), so the counts can b
 
     PYTHONPATH=$PWD ANTENNA_CAD_MEEP_PYTHON=/usr/bin/false python benchmarks/fuzz_validate.py 1600 1 s1.jsonl
 
-Measured (2 seeds × 1,600, load average ~35 on 2 cores): 3,200 cases, 136 valid, 3,062 clean
-errors, 0 tracebacks / unclean / written, 2 over the 60 s alarm (wall clock on that load; the alarm now
-counts CPU seconds, with ten times that of wall time for a blocked read).
+Measured 2026-11-27 (2 seeds × 1,600, load average ~5 on 2 cores, validate building the solid model):
+3,200 cases, 176 valid, 3,024 clean errors, 0 tracebacks / unclean / hangs / written; the slowest case
+12.3 CPU s. A hang is over 60 CPU seconds, or ten times that of wall time (a blocked read).
 """
 import json
 import resource

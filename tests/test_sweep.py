@@ -402,7 +402,8 @@ def test_an_interrupted_sweep_resumes_where_it_stopped(local, tmp_path, monkeypa
 
 @pytest.mark.slow
 def test_ctrl_c_on_a_local_sweep_ends_every_worker_and_resumes(tmp_path):
-    """SIGINT to `make-lens sweep --workers 2`: exit 130 saying how many rows are done, every process
+    """Ctrl-C (SIGINT to the process group) on `make-lens sweep --workers 2`: exit 130 saying how many
+    rows are done, no traceback from any process, every process
     it started ended, its temporary folder removed, no leaked-semaphore warning, index.html and
     pareto.csv for the rows done, progress lines off a terminal; the same command then finishes the
     sweep, computing only what was missing."""
@@ -413,11 +414,12 @@ def test_ctrl_c_on_a_local_sweep_ends_every_worker_and_resumes(tmp_path):
     exe = shutil.which("make-lens") or str(Path(sys.executable).parent / "make-lens")
     command = [exe, "sweep", str(_write(tmp_path, many)), "-o", str(tmp_path / "out"), "--workers", "2"]
     env = dict(os.environ, TMPDIR=str(scratch))
-    cli = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
+    cli = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env,
+                           start_new_session=True)
     table = tmp_path / "out" / "stopped" / "results.csv"
     _wait_for_rows(table, 1, cli, limit_s=600)
     started = psutil.Process(cli.pid).children(recursive=True)
-    cli.send_signal(signal.SIGINT)
+    os.killpg(cli.pid, signal.SIGINT)                  # as Ctrl-C on a terminal: the whole process group
     output, _ = cli.communicate(timeout=900)           # closing the cluster, then the page of the rows done
     _, alive = psutil.wait_procs(started, timeout=60)  # multiprocessing's resource tracker ends after its parent
     rows = _rows(table.parent)
@@ -427,7 +429,7 @@ def test_ctrl_c_on_a_local_sweep_ends_every_worker_and_resumes(tmp_path):
     assert len(started) >= 2 and alive == []
     assert f"interrupted: {len(rows)} rows done are in {table}" in output
     assert re.search(r"sweep.yaml: \d of 8 variants", output)
-    assert [p.name for p in scratch.iterdir() if p.name != "dask-scratch-space"] == []   # dask's own shared folder
+    assert list(scratch.iterdir()) == []
     assert (table.parent / "index.html").exists() and (table.parent / "pareto.csv").exists()
     done = subprocess.run(command, capture_output=True, text=True, env=env, timeout=1200)
     assert done.returncode == 0, done.stderr

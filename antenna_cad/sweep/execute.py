@@ -17,7 +17,9 @@ from __future__ import annotations
 import logging
 import os
 import re
+import signal
 import tempfile
+import threading
 from collections.abc import Callable
 from contextlib import contextmanager
 from pathlib import Path
@@ -94,6 +96,20 @@ def security(tls, folder: Path):
 
 
 @contextmanager
+def _interrupts_ignored():
+    """SIGINT ignored meanwhile (in the main thread): processes spawned now start with it ignored
+    (Python and asyncio install no KeyboardInterrupt handler over an ignored SIGINT)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+@contextmanager
 def connect(scheduler: str | None = None, workers: int | None = None, security=None):
     """A dask Client: to ``scheduler`` when given (``security``: a distributed Security for tls://),
     else to a new LocalCluster of ``workers`` (default: one per core) single-threaded processes,
@@ -111,14 +127,22 @@ def connect(scheduler: str | None = None, workers: int | None = None, security=N
     import dask
     with tempfile.TemporaryDirectory(prefix="antenna_cad-sweep-") as scratch, \
             dask.config.set({"temporary-directory": scratch}):    # dask's own lock files too, not TMPDIR
-        cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
-                               dashboard_address=None, silence_logs=logging.ERROR, local_directory=scratch,
-                               env={"TMPDIR": scratch})
+        with _interrupts_ignored():     # the workers start deaf to Ctrl-C (a terminal sends it to the whole
+            # process group): this process ends them, and a worker's own KeyboardInterrupt is a traceback
+            cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
+                                   dashboard_address=None, silence_logs=logging.ERROR, local_directory=scratch,
+                                   env={"TMPDIR": scratch})
+        started: list = []
         try:
             with Client(cluster) as client:
-                yield client
+                try:
+                    yield client
+                except BaseException:            # Ctrl-C, an error: the workers and their runs end at once
+                    started = _descendants(cluster)
+                    _end(started)
+                    raise
         finally:
-            started = _descendants(cluster)       # before closing: a dying worker's children lose their parent
+            started += _descendants(cluster)     # before closing: a dying worker's children lose their parent
             try:
                 cluster.close(timeout=CLOSE_TIMEOUT_S)
             finally:

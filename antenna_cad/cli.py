@@ -3,6 +3,7 @@
     make-lens SPEC [-o OUT] [-q|-v]  build everything into OUT/<name>/ (default exports/)
     make-lens build SPEC [-o OUT]    the same; options may come before or after SPEC
     make-lens validate SPEC          every rule a build applies (the solid model in memory); writes nothing
+    make-lens validate --fast SPEC   the rules before CAD only, in about a second
     make-lens schema [-o FILE]       the JSON Schema of specs (stdout unless -o)
     make-lens check OUT              re-read every file of a build folder with independent readers
     make-lens sweep SWEEP [-o OUT] [--scheduler tcp://HOST:PORT|tls://HOST:PORT] [--workers N] [-q|-v]
@@ -86,13 +87,15 @@ def _load(spec_path: Path, out: Path | None = None, solids: bool = False):
 
 
 @app.command(epilog=EXIT_CODES)
-def validate(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML (or a bundled recipe's name)")) -> None:
+def validate(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML (or a bundled recipe's name)"),
+             fast: bool = typer.Option(False, "--fast", help="the rules before CAD only (about a second, no CAD "
+                                       "library loaded): not the solid model and its STL triangle limits")) -> None:
     """Check the spec and run every rule a build applies (synthesis, layup, limits, fabrication
     plan, the solid model and the STL triangles it needs); writes nothing."""
     # numpy is not imported yet: its BLAS in one thread (a thread pool costs more than it saves on
     # validate's small problems — 100× on a busy 2-core machine for one 400×400 eigvalsh)
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
-    spec, plan = _load(spec_path, solids=True)
+    spec, plan = _load(spec_path, solids=not fast)
     stdout_console().print(checks_table(plan.checks))
     failed = [c.name for c in plan.checks if c.status == "fail"]
     if failed:                      # as build: exit 1 when a check fails

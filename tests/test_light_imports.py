@@ -1,4 +1,4 @@
-"""``make-lens --help`` and ``make-lens validate`` load no CAD, DXF or plotting library:
+"""``make-lens --help`` and ``make-lens validate --fast`` load no CAD, DXF or plotting library:
 they answer in about a second because OCP (~1 s), trimesh, manifold3d, ezdxf and
 matplotlib are imported where a build uses them. Checked in a fresh interpreter by the modules it
 holds after the command, not by a timing."""
@@ -39,14 +39,20 @@ def test_help_loads_no_cad_library():
 
 @pytest.mark.parametrize("recipe", ONE_PER_KIND)
 def test_validate_loads_no_cad_library(recipe):
-    assert _loaded("validate", f"recipes/{recipe}.yaml") == ([], "0")
+    assert _loaded("validate", "--fast", f"recipes/{recipe}.yaml") == ([], "0")
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("recipe", sorted(p.stem for p in (ROOT / "recipes").glob("*.yaml")
                                           if p.stem not in ONE_PER_KIND))
 def test_validate_every_recipe_loads_no_cad_library(recipe):
-    assert _loaded("validate", f"recipes/{recipe}.yaml") == ([], "0")
+    assert _loaded("validate", "--fast", f"recipes/{recipe}.yaml") == ([], "0")
+
+
+def test_full_validate_builds_the_solid_model():
+    """Without --fast, validate builds the solid model (its triangle limits): it loads OCP."""
+    loaded, code = _loaded("validate", "recipes/ptfe-lens-120mm.yaml")
+    assert code == "0" and "OCP" in loaded
 
 
 def test_probe_sees_a_build_import_them(tmp_path):

@@ -230,3 +230,18 @@ def test_pdf_headings_keep_greek_letters():
     assert [type(a) for a in greek.artists] == [PathPatch] and not greek.texts
     assert len(greek.artists[0].get_path().vertices) > 100                      # every glyph's outline
     assert [t.get_text() for t in plain.texts] == ["Cut list"] and not plain.artists
+
+
+def test_a_family_of_many_curves_names_only_its_ends():
+    """56 planes' curves: one colour ramp, the legend names the first and last and the limits — a
+    legend of 56 entries ran past the PDF page."""
+    import matplotlib.pyplot as plt
+
+    from antenna_cad.export.plots import MAX_LEGEND, draw_plot
+    from antenna_cad.verification import Plot, Series
+    curves = tuple(Series(f"z {z} mm", (0.0, 1.0), (0.0, z / 100)) for z in range(100, 1200, 20))
+    fig, ax = plt.subplots()
+    draw_plot(ax, Plot("family", "many", "r", "phase", curves, hlines=(("+11.25°", 11.25),)))
+    names = [t.get_text() for t in ax.get_legend().get_texts()]
+    plt.close(fig)
+    assert len(curves) > MAX_LEGEND and names == ["z 100 mm", "z 1180 mm", "+11.25°"]

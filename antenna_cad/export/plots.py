@@ -19,6 +19,7 @@ from matplotlib.tri import Triangulation  # noqa: E402
 
 from antenna_cad.verification import Plot  # noqa: E402
 
+MAX_LEGEND = 12        # more curves than this: coloured in order, only the first and last named
 STYLE = {"svg.hashsalt": "antenna_cad", "svg.fonttype": "path", "font.size": 9, "axes.grid": True,
          "grid.alpha": 0.3, "figure.dpi": 100}
 
@@ -29,16 +30,19 @@ def draw_plot(ax, plot: Plot) -> None:
         data, (r0, r1, z0, z1) = plot.image
         im = ax.imshow(np.asarray(data), extent=(z0, z1, r0, r1), origin="lower", aspect="equal", cmap="viridis")
         ax.figure.colorbar(im, ax=ax, shrink=0.8, label="dB")
-    for s in plot.series:
+    many = len(plot.series) > MAX_LEGEND        # a family (planes, shells): coloured in order, ends labelled
+    colours = plt.get_cmap("viridis")(np.linspace(0, 0.9, len(plot.series))) if many else [None] * len(plot.series)
+    for i, (s, colour) in enumerate(zip(plot.series, colours)):
         x, y = np.asarray(s.x, float), np.asarray(s.y, float)
+        label = s.label if not many or i in (0, len(plot.series) - 1) else "_nolegend_"
         if s.style == "fill":
-            ax.fill_between(x, y, alpha=0.35, label=s.label, linewidth=0)
+            ax.fill_between(x, y, alpha=0.35, label=label, linewidth=0, color=colour)
         elif s.style == "points":
-            ax.plot(x, y, ".", markersize=3, label=s.label)
+            ax.plot(x, y, ".", markersize=3, label=label, color=colour)
         elif s.style == "steps":
-            ax.step(x, y, where="post", label=s.label, linewidth=1.2)
+            ax.step(x, y, where="post", label=label, linewidth=1.2, color=colour)
         else:
-            ax.plot(x, y, "--" if s.style == "dashed" else "-", label=s.label, linewidth=1.2)
+            ax.plot(x, y, "--" if s.style == "dashed" else "-", label=label, linewidth=1.2, color=colour)
     for label, value in plot.hlines:
         ax.axhline(value, color="0.3", linestyle=":", linewidth=1.0, label=label)
     if plot.equal_aspect:
@@ -47,7 +51,8 @@ def draw_plot(ax, plot: Plot) -> None:
     ax.set_xlabel(plot.x_label)
     ax.set_ylabel(plot.y_label)
     if any(s.label for s in plot.series) or plot.hlines:
-        ax.legend(loc="best", fontsize=8)
+        title = f"{len(plot.series)} curves, dark to light in order" if many else None
+        ax.legend(loc="best", fontsize=8, title=title, title_fontsize=8)
 
 
 def plot_svg(plot: Plot) -> str:

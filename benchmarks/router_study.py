@@ -10,16 +10,14 @@ Prints a Markdown table per recipe.
 
 from __future__ import annotations
 
-import json
 import sys
-import tempfile
 from pathlib import Path
 
 import yaml
 
-from antenna_cad.export.check_cam import check_cam
 from antenna_cad.pipeline import prepare
 from antenna_cad.spec import parse_spec
+from taper_study import cam_findings       # benchmarks/ is the script's folder
 
 ROOT = Path(__file__).resolve().parents[1]
 METAL = {"tool_diameter_mm": 1.0, "pass_depth_mm": 0.5, "feed_mm_min": 600, "plunge_mm_min": 100,
@@ -33,13 +31,7 @@ def study(recipe: str, fabrication: dict) -> list[str]:
     data["outputs"] = {"step": False, "stl": False, "templates": False}
     spec = parse_spec(data)
     plan = prepare(spec)
-    with tempfile.TemporaryDirectory() as tmp:
-        folder = Path(tmp)
-        for name, text in plan.fab.files.items():
-            (folder / name).parent.mkdir(parents=True, exist_ok=True)
-            (folder / name).write_text(text)
-        manifest = {"spec": json.loads(spec.model_dump_json()), "cam": list(plan.fab.cam.entries)}
-        findings = {f.file: f for f in check_cam(folder, manifest)}
+    findings = {f.file: f for f in cam_findings(spec, plan)}
     rows = [f"### {recipe}", "", "| file | parts | machine time min | toolpath error mm | check |", "|---|---|---|---|---|"]
     errors = []
     for e in plan.fab.cam.entries:

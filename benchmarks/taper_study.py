@@ -43,16 +43,21 @@ def spec_of(recipe: str, **fabrication):
     return parse_spec(data)
 
 
-def cam_figures(spec, plan) -> tuple[float, float]:
-    """(total cut seconds, largest reconstruction error mm) of the plan's G-code."""
+def cam_findings(spec, plan) -> list:
+    """``make-lens check``'s G-code findings on the plan's files, written to a scratch folder."""
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
         for name, text in plan.fab.files.items():
             (folder / name).parent.mkdir(parents=True, exist_ok=True)
             (folder / name).write_text(text)
         manifest = {"spec": json.loads(spec.model_dump_json()), "cam": list(plan.fab.cam.entries)}
-        errors = [float(f.message.split(": ")[1].split(" mm")[0]) for f in check_cam(folder, manifest)
-                  if f.check == "cam_surface" and "cone" in f.message]
+        return check_cam(folder, manifest)
+
+
+def cam_figures(spec, plan) -> tuple[float, float]:
+    """(total cut seconds, largest reconstruction error mm) of the plan's G-code."""
+    errors = [float(f.message.split(": ")[1].split(" mm")[0]) for f in cam_findings(spec, plan)
+              if f.check == "cam_surface" and "cone" in f.message]
     return plan.fab.cam.seconds, max(errors)
 
 

@@ -35,7 +35,7 @@ from antenna_cad.limits import counts, limit_checks, template_pages
 from antenna_cad.progress import Progress, reporting
 from antenna_cad.registry import adapter
 from antenna_cad.spec.common import SpecBase, resolve_material
-from antenna_cad.synthesis.checks import Check, DesignError, solving
+from antenna_cad.synthesis.checks import Check, solving
 
 STAGES = ("synthesize", "fabricate", "model", "verify", "step", "stl", "templates", "report", "manifest")
 IN_PROGRESS: set[Path] = set()      # temporary folders being written (removed on Ctrl-C by the CLI)
@@ -107,15 +107,10 @@ def mesh_checks(spec: SpecBase, model) -> list[Check]:
     ``outputs.mesh_tolerance_mm``; above the soft limit a warning check."""
     if not spec.outputs.stl:
         return []
-    from antenna_cad.export.mesh import MAX_TRIANGLES, part_triangles
-    tolerance, total = spec.outputs.mesh_tolerance_mm, 0
-    for part in model.parts:
-        count = part_triangles(part.shape, tolerance, part.prism)
-        if count > MAX_TRIANGLES:
-            raise DesignError("outputs.mesh_tolerance_mm", f"part {part.label} needs about {count:.3g} triangles "
-                              f"at {tolerance:g} mm, over the limit of {MAX_TRIANGLES:.3g} a part (a coarser "
-                              "tolerance?)")
-        total += count
+    from antenna_cad.export.mesh import part_triangles, within_limit
+    tolerance = spec.outputs.mesh_tolerance_mm
+    total = sum(within_limit(part_triangles(part.shape, tolerance, part.prism), tolerance, f"part {part.label}")
+                for part in model.parts)
     return limit_checks({"triangles": total})
 
 

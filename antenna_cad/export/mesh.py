@@ -73,10 +73,7 @@ def mesh_shape(shape: Shape, tolerance_mm: float, meshers: tuple[str, ...] = tup
     prism = x_prism(shape, tolerance_mm)
     if prism is not None:
         return mesh_prism(prism, tolerance_mm)
-    estimate = estimate_triangles(shape, tolerance_mm)
-    if estimate > MAX_TRIANGLES:
-        raise DesignError("outputs.mesh_tolerance_mm", f"a part needs about {estimate:.3g} triangles at "
-                          f"{tolerance_mm:g} mm, over the limit of {MAX_TRIANGLES:.3g} (a coarser tolerance?)")
+    within_limit(estimate_triangles(shape, tolerance_mm), tolerance_mm)
     for name in meshers:
         if not _triangulate(shape, tolerance_mm, name, parallel=False) and name != meshers[-1]:
             continue
@@ -91,6 +88,15 @@ def mesh_shape(shape: Shape, tolerance_mm: float, meshers: tuple[str, ...] = tup
                               "bodies_watertight": all(b.is_watertight for b in bodies)}
             return mesh
     raise ValueError("mesh_shape: no mesher given")
+
+
+def within_limit(count: int, tolerance_mm: float, part: str = "a part") -> int:
+    """``count`` (a part's estimated triangles), or DesignError naming ``outputs.mesh_tolerance_mm``
+    when it is over :data:`MAX_TRIANGLES`."""
+    if count > MAX_TRIANGLES:
+        raise DesignError("outputs.mesh_tolerance_mm", f"{part} needs about {count:.3g} triangles at "
+                          f"{tolerance_mm:g} mm, over the limit of {MAX_TRIANGLES:.3g} a part (a coarser tolerance?)")
+    return count
 
 
 def picture_meshes(shapes: list[Shape], tolerance_mm: float,

@@ -404,6 +404,24 @@ def test_an_interrupted_sweep_resumes_where_it_stopped(local, tmp_path, monkeypa
     assert (again / "results.csv").read_bytes() == whole
 
 
+def test_ending_a_cluster_never_ends_this_process():
+    """A nanny whose worker has already gone has no pid; psutil.Process(None) is this process, so the
+    sweep once sent itself SIGTERM while closing after Ctrl-C (exit -15 instead of 130)."""
+    from types import SimpleNamespace
+
+    from antenna_cad.sweep.execute import _descendants
+    child = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(30)"])
+    try:
+        cluster = SimpleNamespace(workers={"gone": SimpleNamespace(process=None),
+                                           "closing": SimpleNamespace(process=SimpleNamespace(pid=None)),
+                                           "self": SimpleNamespace(process=SimpleNamespace(pid=os.getpid())),
+                                           "alive": SimpleNamespace(process=SimpleNamespace(pid=child.pid))})
+        assert [p.pid for p in _descendants(cluster)] == [child.pid]
+    finally:
+        child.kill()
+        child.wait()
+
+
 @pytest.mark.slow
 def test_ctrl_c_on_a_local_sweep_ends_every_worker_and_resumes(tmp_path):
     """Ctrl-C (SIGINT to the process group) on `make-lens sweep --workers 2`: exit 130 saying how many

@@ -150,11 +150,14 @@ def connect(scheduler: str | None = None, workers: int | None = None, security=N
 
 
 def _descendants(cluster) -> list:
-    """The worker processes of a LocalCluster and everything they started (psutil processes)."""
+    """The worker processes of a LocalCluster and everything they started (psutil processes); never
+    this process (``psutil.Process(None)`` is this process: a nanny whose worker has gone has no pid)."""
     import psutil
     found = []
     for nanny in list(cluster.workers.values()):
         pid = getattr(getattr(nanny, "process", None), "pid", None)
+        if not isinstance(pid, int) or pid == os.getpid():
+            continue
         try:
             worker = psutil.Process(pid)
             found += [worker, *worker.children(recursive=True)]

@@ -58,6 +58,17 @@ def test_staircase_medium_becomes_ring_rectangles():
                                 (pytest.approx(1.21), 3.0, 8.0, 0.0, 10.0)]
 
 
+def test_taper_cut_rings_become_trapezoids():
+    """A taper-cut ring's cones: its quadrilateral's corners are the cones at the two sheet faces
+    (a disc's inner edge on the axis)."""
+    st = Staircase.from_cones([-10.0, 0.0, 10.0], [[((0.0, 0.0), (4.0, 6.0), 1.4), ((4.0, 6.0), (8.0, 9.0), 1.2)],
+                                                  [((0.0, 0.0), (6.0, 3.0), 1.1)]])
+    assert [(round(p["eps_r"], 6), p["polygon"]) for p in medium_parts(st, "as_built")] == [
+        (1.96, [[0.0, -10.0], [4.0, -10.0], [6.0, 0.0], [0.0, 0.0]]),
+        (1.44, [[4.0, -10.0], [8.0, -10.0], [9.0, 0.0], [6.0, 0.0]]),
+        (1.21, [[0.0, 0.0], [6.0, 0.0], [3.0, 10.0], [0.0, 10.0]])]
+
+
 def test_mie_focal_gain_limits():
     """Gain of a dipole-fed lens by reciprocity, 1.5·|E(focus)|²: an air sphere gives the dipole's
     1.76 dBi; the continuous law (thin Mie shells, converged in their count) stays below the uniform

@@ -47,22 +47,25 @@ SPOT_LAMBDA = 1.5           # focal-spot plot out to this radius
 
 def medium_parts(medium, label: str) -> list[dict]:
     """A traced medium as the runner's (r, z) parts: shells as half discs/annuli (a feed boss
-    dropped: it is not of revolution about the axis), a staircase as one rectangle per ring."""
+    dropped: it is not of revolution about the axis), a staircase as one quadrilateral per ring
+    (a rectangle, or a trapezoid for a taper-cut ring's cones)."""
     if isinstance(medium, Shells):
         return shell_parts(medium.radii, np.square(medium.n))
     assert isinstance(medium, Staircase), medium
+    slopes = np.zeros_like(medium.breaks) if medium.slopes is None else medium.slopes
     parts = []
     for k in range(len(medium.z_edges) - 1):
-        z0, z1 = (round(float(z), 4) for z in medium.z_edges[k:k + 2])
-        inner = 0.0
-        for outer, n in zip(medium.breaks[k], medium.n[k]):
-            if not np.isfinite(outer):
+        z0, z1 = (float(z) for z in medium.z_edges[k:k + 2])
+        inner = (0.0, 0.0)
+        for b, s, n in zip(medium.breaks[k], slopes[k], medium.n[k]):
+            if not np.isfinite(b):
                 break
-            if n > 1.0 and outer > inner:
+            outer = (float(b), float(b + s * (z1 - z0)))
+            if n > 1.0 and max(outer[0] - inner[0], outer[1] - inner[1]) > 0:
+                corners = [(inner[0], z0), (outer[0], z0), (outer[1], z1), (inner[1], z1)]
                 parts.append({"label": f"{label}-sheet-{k + 1:02d}", "eps_r": float(n * n),
-                              "polygon": [[round(inner, 4), z0], [round(float(outer), 4), z0],
-                                          [round(float(outer), 4), z1], [round(inner, 4), z1]]})
-            inner = float(outer)
+                              "polygon": [[round(r, 4), round(z, 4)] for r, z in corners]})
+            inner = outer
     return parts
 
 

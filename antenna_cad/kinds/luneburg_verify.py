@@ -9,7 +9,9 @@ shells and the cylinder, the in-plane fan for a sheet stack):
   mid-planes: the shell boundaries become sheet faces and ring edges);
 * as built — the grades actually chosen (nearest available εr) and the real geometry: shells
   with the foam feed boss in the vertical plane that holds it; a sphere layup as sized
-  (``contain``: rings turned to the spheres, i.e. shells; ``mid_plane``: the staircase).
+  (``contain``: rings turned to the spheres, i.e. shells; ``mid_plane``: the staircase;
+  ``edge: taper``: every ring edge the cone through its sphere at the sheet's two faces, stepped
+  and as built alike).
 
 Feeds: on the axis, and scanned 45° and 90° from it (the sheets' normal). A lens of revolution
 about its centre (graded law, shells) is the same at every scan angle, so only staircases are
@@ -100,18 +102,22 @@ def _shells(design: LuneburgDesign, eps, radius_shift=None, boss=None) -> Shells
 
 
 def _staircase(design: LuneburgDesign, layup: RingLayupPlan, eps, sheet_shift=None) -> Staircase:
-    """Rings at the sheet mid-planes (as planned, z nominal), each with its shell's εr; sheets
-    thickened by ``sheet_shift`` and the stack re-centred."""
+    """Rings at the sheet mid-planes (as planned, z nominal), or the taper-cut rings' cones as cut
+    (``edge: taper``, their faces the spheres' radii at the sheet faces), each with its shell's εr;
+    sheets thickened by ``sheet_shift`` (a cone keeps its two face radii) and the stack re-centred."""
     ri = np.array([L.r_inner_mm for L in design.layers])
     ro = np.array([L.r_outer_mm for L in design.layers])
     n = np.sqrt(np.asarray(eps, float))
     rings = []
     for s in layup.sheets:
+        if layup.edge == "taper":
+            rings.append([(r.cone_inner_mm, r.cone_outer_mm, n[r.shell_index - 1]) for r in s.rings])
+            continue
         inner, outer = ring_radii(ri, ro, s.z_min_mm, s.z_max_mm, "mid_plane")
-        rings.append([(a, b, nn) for a, b, nn in zip(inner, outer, n) if b - a > 1e-9])
+        rings.append([((a, a), (b, b), nn) for a, b, nn in zip(inner, outer, n) if b - a > 1e-9])
     t = np.array([s.thickness_mm for s in layup.sheets]) + (0.0 if sheet_shift is None else sheet_shift)
     z = np.concatenate([[0.0], np.cumsum(t)])
-    return Staircase.from_rings(z - 0.5 * z[-1], rings)
+    return Staircase.from_cones(z - 0.5 * z[-1], rings)
 
 
 def staircase_as_facets(design: LuneburgDesign, layup: RingLayupPlan) -> bool:
@@ -139,7 +145,7 @@ def _lenses(spec, design: LuneburgDesign, layup: RingLayupPlan | None, grade_eps
     if isinstance(fab, LuneburgShellsSpec) and fab.feed_boss is not None and design.shape == "sphere":
         rb, length = fab.feed_boss.diameter_mm / 2, fab.feed_boss.length_mm
         boss = (-rb, rb, -R - length, 0.0, math.sqrt(grade_eps[-1]))
-    if stair and layup.sizing == "mid_plane":
+    if stair and (layup.sizing == "mid_plane" or layup.edge == "taper"):
         built = _staircase_lens(design, layup, grade_eps, facets, sheet_shift)
     else:                                   # shells (+ boss), cylinder, or a layup turned to the spheres
         built = _traced(design, _shells(design, grade_eps, radius_shift, boss),

@@ -111,32 +111,44 @@ class Shells:
 class Staircase:
     """Sheet k spans ``z_edges[k] ≤ z ≤ z_edges[k+1]``; within it, |y| between ``breaks[k, i−1]``
     and ``breaks[k, i]`` (breaks[k, −1] = 0) has index ``n[k, i]``; rows are padded with +inf
-    breaks, and |y| beyond a sheet's last finite break, or z outside the stack, is air (1)."""
+    breaks, and |y| beyond a sheet's last finite break, or z outside the stack, is air (1).
+    ``slopes[k, i]``: d(break)/dz within the sheet, the break being ``breaks[k, i]`` at its front
+    face z_edges[k] — a taper-cut ring's edge is a cone, a straight line in this plane (all zero:
+    vertical ring edges)."""
 
     z_edges: np.ndarray      # (K+1,)
     breaks: np.ndarray       # (K, M) increasing per row, +inf padded
     n: np.ndarray            # (K, M + 1), n[k, M] = 1 (beyond the padding)
+    slopes: np.ndarray | None = None    # (K, M), zero where padded; None: all zero
 
     @staticmethod
     def from_rings(z_edges, rings: list[list[tuple[float, float, float]]]) -> "Staircase":
         """``rings[k]``: (r_inner, r_outer, n) of sheet k, non-overlapping; gaps between them are air."""
+        return Staircase.from_cones(z_edges, [[((a, a), (b, b), n) for a, b, n in sheet] for sheet in rings])
+
+    @staticmethod
+    def from_cones(z_edges, rings) -> "Staircase":
+        """``rings[k]``: ((inner front, inner back), (outer front, outer back), n) of sheet k, its
+        edges straight from its front face to its back face, non-overlapping; gaps are air."""
+        z_edges = np.asarray(z_edges, float)
         rows = []
-        for sheet in rings:
-            edges, ns = [], []
-            for r_in, r_out, n in sorted(sheet):
-                if r_in > (edges[-1] if edges else 0.0) + 1e-12:      # air gap before this ring
-                    edges.append(r_in)
+        for k, sheet in enumerate(rings):
+            t = z_edges[k + 1] - z_edges[k]
+            edges, slopes, ns = [], [], []
+            for inner, outer, n in sorted(sheet):
+                last = edges[-1] if edges else (0.0, 0.0)
+                if max(inner[0] - last[0], inner[1] - last[1]) > 1e-12:      # air gap before this ring
+                    edges.append(tuple(inner))
                     ns.append(1.0)
-                edges.append(r_out)
+                edges.append(tuple(outer))
                 ns.append(n)
-            rows.append((edges, ns))
-        M = max(1, max(len(e) for e, _ in rows))
-        breaks = np.full((len(rows), M), np.inf)
+            rows.append(([e[0] for e in edges], [(e[1] - e[0]) / t for e in edges], ns))
+        M = max(1, max(len(e) for e, _, _ in rows))
+        breaks, slope = np.full((len(rows), M), np.inf), np.zeros((len(rows), M))
         n = np.ones((len(rows), M + 1))
-        for k, (edges, ns) in enumerate(rows):
-            breaks[k, :len(edges)] = edges
-            n[k, :len(ns)] = ns
-        return Staircase(np.asarray(z_edges, float), breaks, n)
+        for k, (edges, ds, ns) in enumerate(rows):
+            breaks[k, :len(edges)], slope[k, :len(ds)], n[k, :len(ns)] = edges, ds, ns
+        return Staircase(z_edges, breaks, n, slope if slope.any() else None)
 
     @property
     def boundaries(self) -> int:
@@ -144,14 +156,21 @@ class Staircase:
 
     @property
     def size(self) -> float:
-        finite = np.where(np.isfinite(self.breaks), self.breaks, 0.0)
+        back = self.breaks + (0.0 if self.slopes is None else self.slopes * np.diff(self.z_edges)[:, None])
+        finite = np.where(np.isfinite(self.breaks), np.maximum(self.breaks, back), 0.0)
         return float(np.hypot(finite.max(), np.abs(self.z_edges).max()))
+
+    def _radii(self, kc: np.ndarray, z: np.ndarray) -> np.ndarray:
+        """The breaks of sheets ``kc`` at depths ``z`` (one row per point)."""
+        if self.slopes is None:
+            return self.breaks[kc]
+        return self.breaks[kc] + self.slopes[kc] * (z - self.z_edges[kc])[:, None]
 
     def _cell(self, p: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         k = np.searchsorted(self.z_edges, p[:, 0], side="right") - 1
         inside = (k >= 0) & (k < len(self.z_edges) - 1)
         kc = np.clip(k, 0, len(self.z_edges) - 2)
-        j = np.sum(self.breaks[kc] <= np.abs(p[:, 1])[:, None], axis=1)
+        j = np.sum(self._radii(kc, p[:, 0]) <= np.abs(p[:, 1])[:, None], axis=1)
         return k, kc, np.where(inside, j, -1)
 
     def index(self, p: np.ndarray) -> np.ndarray:
@@ -159,6 +178,10 @@ class Staircase:
         return np.where(j >= 0, self.n[kc, np.maximum(j, 0)], 1.0)
 
     def next_hit(self, p: np.ndarray, d: np.ndarray, tiny: float) -> tuple[np.ndarray, np.ndarray]:
+        """Distance to the next sheet face or ring edge, and the normal there. The edges of the
+        ray's cell, on its side σ of the axis, are y = σ(b + s(z − z_k)) (the central cell's lower
+        one is its upper one mirrored across the axis); the ray meets one where it closes on it,
+        p_y + t d_y = σ(b + s(p_z + t d_z − z_k)); the edge's normal is (−σs, 1)/√(1 + s²)."""
         q = p + tiny * d                                  # the cell the ray is travelling through
         k, kc, j = self._cell(q)
         inside = j >= 0
@@ -169,17 +192,25 @@ class Staircase:
             face = np.where(k >= K, np.where(d[:, 0] < 0, self.z_edges[-1], np.nan), face)
             tz = (face - p[:, 0]) / d[:, 0]
             side = np.where(q[:, 1] != 0, np.sign(q[:, 1]), np.sign(d[:, 1]))
-            outward = side * d[:, 1] > 0
             jc = np.maximum(j, 0)
             padded = np.concatenate([self.breaks, np.full((K, 1), np.inf)], axis=1)
-            up = padded[kc, jc]
-            down = np.where(jc > 0, padded[kc, np.maximum(jc - 1, 0)], -padded[kc, 0])  # central cell: across the axis
-            target = side * np.where(outward, up, down)
-            ty = np.where(inside, (target - p[:, 1]) / d[:, 1], np.inf)
+            tilt = np.zeros_like(padded) if self.slopes is None else np.concatenate([self.slopes, np.zeros((K, 1))], 1)
+            central = jc == 0
+            upper = (side, jc, 1.0)                                            # (σ, edge, the cell below it: +1)
+            lower = (np.where(central, -side, side), np.where(central, 0, jc - 1), np.where(central, 1.0, -1.0))
+            hits = []
+            for sigma, edge, below in (upper, lower):
+                b, s = padded[kc, edge], tilt[kc, edge]
+                closing = below * (sigma * d[:, 1] - s * d[:, 0])             # > 0: the ray gains on the edge
+                t = (sigma * (b + s * (p[:, 0] - self.z_edges[kc])) - p[:, 1]) / (d[:, 1] - sigma * s * d[:, 0])
+                hits.append((np.where(inside & (closing > 0) & np.isfinite(t) & (t > 0), t, np.inf), sigma * s))
+        (t_up, ds_up), (t_low, ds_low) = hits
+        ty = np.minimum(t_up, t_low)
+        ds = np.where(t_up <= t_low, ds_up, ds_low)
         tz = np.where(np.isfinite(tz) & (tz > 0), tz, np.inf)
-        ty = np.where(np.isfinite(ty) & (ty > 0), ty, np.inf)
         across_z = tz <= ty
-        normal = np.where(across_z[:, None], [1.0, 0.0], [0.0, 1.0])
+        edge_normal = np.stack([-ds, np.ones_like(ds)], axis=1) / np.sqrt(1.0 + ds * ds)[:, None]
+        normal = np.where(across_z[:, None], [1.0, 0.0], edge_normal)
         return np.where(across_z, tz, ty), normal
 
 

@@ -118,3 +118,26 @@ def test_luneburg_gain_with_each_feed(radius_lambda, huygens, dipole):
     assert gains["huygens"] == pytest.approx(huygens, abs=1e-3) and gains["dipole"] == pytest.approx(dipole, abs=1e-3)
     assert abs(gains["dipole"] - mie_focal_gain_dbi(*shells, LAM, R)) < 0.1
     assert gains["dipole"] < gains["huygens"] < aperture_gain_dbi(R, LAM)
+
+
+@pytest.mark.slow
+def test_meep_huygens_fed_sphere_against_the_series(meep, fullwave_cache):
+    """Meep (body of revolution, point Huygens element on the surface of a two-layer sphere R = λ,
+    n 1.3 / 1.15, near-to-far surface around both) against the series (2). Meep's error falls as
+    1/res² (measured lens 13.083, 12.980, 12.940 dBi and element alone 4.876, 4.824, 4.802 at 20, 28,
+    36 px/λ; series 12.882 and 4.771): the Richardson extrapolation of 20 and 28 px/λ is within
+    0.05 dB of the series (measured 12.873), and the element alone is 3 (4.77 dBi) within 0.15 dB.
+    About 100 s on one core."""
+    from antenna_cad.fullwave import solver
+    from antenna_cad.fullwave.mie import shell_parts
+    from antenna_cad.fullwave.sphere import C_MM_GHZ, far_directivity_dbi, feed_deck
+    decks = [feed_deck(LAM, parts=parts, graded=[], frequency_ghz=C_MM_GHZ / LAM, resolution=res, feed_z_mm=-LAM,
+                       pattern="huygens", plane_offset_lambda=1.0, field_map=False, far_field=True)
+             for res in (20.0, 28.0) for parts in (shell_parts([LAM / 2, LAM], [1.3 ** 2, 1.15 ** 2]), [])]
+    runs = solver.run_decks(decks, meep, 2)
+    coarse, alone, fine, _ = (far_directivity_dbi(o["far_theta"], o["far_power"]) for o in runs)
+    extrapolated = (28.0 ** 2 * fine - 20.0 ** 2 * coarse) / (28.0 ** 2 - 20.0 ** 2)
+    x = 2 * np.pi
+    series = 10 * np.log10(directivity(x, *seed_coefficients([np.pi, x], [1.3, 1.15], n_max(x))))
+    assert abs(extrapolated - series) < 0.05, (coarse, fine, series)
+    assert fine < coarse and abs(alone - 10 * np.log10(3.0)) < 0.15, alone

@@ -121,7 +121,8 @@ def real_feed_weights(n: int, x: float, pattern, samples: int = 4001) -> np.ndar
     f = np.asarray(pattern(np.pi - t), complex)
     pi, _ = angular(n, t)
     k = np.arange(1, n + 1)
-    kernel = np.exp(1j * x * np.cos(t)) * f / (1 - np.cos(t)) * np.sin(t) ** 3 * np.sqrt(1 + (x / 2 * (1 - np.cos(t))) ** 2)
+    c = np.cos(t)
+    kernel = np.exp(1j * x * c) * f / (1 - c) * np.sin(t) ** 3 * np.sqrt(1 + (x / 2 * (1 - c)) ** 2)
     j, dj = spherical_jn(k, x), spherical_jn(k, x, derivative=True)
     return np.trapezoid(kernel * pi, t, axis=1) / (30 * k * (k + 1) * (1j * (j + x * dj) / x + j) * 1j ** k)
 

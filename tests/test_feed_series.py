@@ -141,3 +141,17 @@ def test_meep_huygens_fed_sphere_against_the_series(meep, fullwave_cache):
     series = 10 * np.log10(directivity(x, *seed_coefficients([np.pi, x], [1.3, 1.15], n_max(x))))
     assert abs(extrapolated - series) < 0.05, (coarse, fine, series)
     assert fine < coarse and abs(alone - 10 * np.log10(3.0)) < 0.15, alone
+
+
+def test_the_full_wave_note_lists_both_feeds():
+    """The Luneburg full-wave note names every lens once per feed: the dipole by reciprocity, then the
+    Huygens element by the series."""
+    from types import SimpleNamespace
+
+    from antenna_cad.kinds.luneburg_fullwave import _note
+    figures = {"mie_ideal_focal_gain_dbi": 25.94, "mie_ideal_huygens_feed_gain_dbi": 28.88,
+               "mie_ideal_dipole_feed_gain_dbi": 25.91, "mie_shells_focal_gain_dbi": 25.83,
+               "mie_shells_huygens_feed_gain_dbi": 28.62, "aperture_gain_limit_dbi": 29.95}
+    message = _note("run", 1.0, SimpleNamespace(budget_s=120), figures, "pass").message
+    assert "by reciprocity (dBi): ideal 25.94, shells 25.83;" in message
+    assert "Huygens element of seed-002 (2): ideal 28.88, shells 28.62;" in message

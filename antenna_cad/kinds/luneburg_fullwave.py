@@ -143,9 +143,10 @@ def _against_mie(figures: dict) -> Check:
 
 
 def _note(why: str, estimate: float, settings, figures: dict, status: str) -> Check:
-    gains = ", ".join(f"{k[4:-15]} {v:.2f}" for k, v in figures.items()
-                      if k.startswith("mie_") and k.endswith("_focal_gain_dbi"))
-    huygens = ", ".join(f"{k[4:-23]} {v:.2f}" for k, v in figures.items() if k.endswith("_huygens_feed_gain_dbi"))
+    def listed(suffix):
+        return ", ".join(f"{k.removeprefix('mie_').removesuffix(suffix)} {v:.2f}" for k, v in figures.items()
+                         if k.startswith("mie_") and k.endswith(suffix))
+    gains, huygens = listed("_focal_gain_dbi"), listed("_huygens_feed_gain_dbi")
     mie = (f"Exact Mie series, gain of a dipole-fed lens by reciprocity (dBi): {gains}; of the lens fed by the "
            f"Huygens element of seed-002 (2): {huygens}; uniform aperture "
            f"{figures['aperture_gain_limit_dbi']:.2f}" if gains else

@@ -16,7 +16,7 @@ SEMICIRCLE_POINTS = 181
 
 
 @contextmanager
-def _quiet_stdout():
+def quiet_stdout():
     """scattnlay's C++ core prints convergence notes on file descriptor 1: send them to /dev/null
     (library code never prints)."""
     sys.stdout.flush()
@@ -35,7 +35,7 @@ def mie_field(radii_mm, eps, wavelength_mm: float, points_mm: np.ndarray) -> np.
     from scattnlay import fieldnlay
     k = 2 * np.pi / wavelength_mm
     p = np.asarray(points_mm, float) * k
-    with _quiet_stdout():
+    with quiet_stdout():
         _, e, _ = fieldnlay(k * np.asarray(radii_mm, float), np.sqrt(np.asarray(eps, complex)), p[:, 0], p[:, 1], p[:, 2])
     return np.asarray(e)
 

@@ -29,7 +29,9 @@ sheet: in front of it (z < sheet) it sees the wave a reflecting body sends back 
 (plus the sheet's own weak back lobe, which a run without parts measures).
 
 Gaussian pulse, DFT at f0. Output: Er, Eφ at f0 on the plane ``plane_z_mm`` (r_i = i/res, Meep 1.25's
-metadata being wrong in cylindrical coordinates) and |E| over the (r, z) cell, decimated.
+metadata being wrong in cylindrical coordinates) and |E| over the (r, z) cell, decimated; with
+``far_field`` the radiated power density against θ from a near-to-far surface around feed and lens
+(its directivity: :func:`antenna_cad.fullwave.sphere.far_directivity_dbi`).
 """
 
 from __future__ import annotations
@@ -46,6 +48,9 @@ SUBSAMPLES = 5
 MAP_MAX_PX = 240               # field map decimated to at most this many pixels a side
 EXTRA_PERIODS = 30.0           # after the pulse has crossed the cell (≤ 0.03° change past 30, fullwave-notes)
 FWIDTH = 0.5                   # Gaussian pulse bandwidth, units of f0
+FAR_MARGIN_LAMBDA = 0.25     # near-to-far surface this far inside the PML-free cell
+FAR_POINTS = 181
+FAR_RADIUS_LAMBDA = 1000.0
 HUYGENS_HP = 1.0               # Hφ/Er of the point Huygens element (η0 = 1): front/back 54 dB toward +z
                                # (an Hr source at r = 0 does nothing in Meep 1.25; the wrong sign radiates to −z)
 
@@ -188,6 +193,29 @@ def point_sources(mp, src, feed: dict, lam: float, zc: float) -> list:
     return sources
 
 
+def far_surface(sim, mp, d: dict):
+    """Near-to-far surface of a deck with ``far_field``: the cylinder side and both end caps
+    ``FAR_MARGIN_LAMBDA`` inside the PML-free cell, enclosing the feed and the lens."""
+    rs = d["r_in"] - FAR_MARGIN_LAMBDA
+    za, zb = d["z0"] - d["zc"] + FAR_MARGIN_LAMBDA, d["z1"] - d["zc"] - FAR_MARGIN_LAMBDA
+    return sim.add_near2far(1.0, 0, 1,
+                            mp.Near2FarRegion(center=mp.Vector3(rs, 0, (za + zb) / 2), size=mp.Vector3(0, 0, zb - za)),
+                            mp.Near2FarRegion(center=mp.Vector3(rs / 2, 0, zb), size=mp.Vector3(rs, 0, 0)),
+                            mp.Near2FarRegion(center=mp.Vector3(rs / 2, 0, za), size=mp.Vector3(rs, 0, 0), weight=-1))
+
+
+def far_power(sim, mp, n2f) -> tuple[np.ndarray, np.ndarray]:
+    """Radial power density Re(E × H*)/2 at f0 against θ from +z, 0 … 180° in FAR_POINTS steps, on a
+    sphere of FAR_RADIUS_LAMBDA (m = 1: the same in every φ plane)."""
+    theta = np.linspace(0.0, np.pi, FAR_POINTS)
+    power = []
+    for t in theta:
+        u = np.array([np.sin(t), 0.0, np.cos(t)])
+        ff = np.asarray(sim.get_farfield(n2f, mp.Vector3(*(FAR_RADIUS_LAMBDA * u))))
+        power.append(float(np.real(0.5 * np.cross(ff[:3], np.conj(ff[3:]))) @ u))
+    return theta, np.array(power)
+
+
 def run(deck: dict) -> dict:
     import meep as mp
     d = domain(deck)
@@ -220,6 +248,7 @@ def run(deck: dict) -> dict:
     zp = deck["plane_z_mm"] / lam - zc
     plane = sim.add_dft_fields([mp.Er, mp.Ep], 1.0, 0, 1, center=mp.Vector3(sr / 2, 0, zp),
                                size=mp.Vector3(sr, 0, 0))
+    far = far_surface(sim, mp, d) if deck.get("far_field") else None
     whole = (sim.add_dft_fields([mp.Er, mp.Ep, mp.Ez], 1.0, 0, 1, center=mp.Vector3(r_in / 2, 0, 0),
                                 size=mp.Vector3(r_in, 0, z1 - z0)) if deck.get("field_map", True) else None)
     t0 = time.perf_counter()
@@ -229,6 +258,8 @@ def run(deck: dict) -> dict:
            "ep": np.asarray(sim.get_dft_array(plane, mp.Ep, 0)),
            "seconds": seconds, "cells": nr * nz, "lambda_mm": lam}
     out["r_mm"] = np.arange(len(out["er"])) / res * lam
+    if far is not None:
+        out["far_theta"], out["far_power"] = far_power(sim, mp, far)
     if whole is not None:
         e = sum(np.abs(np.asarray(sim.get_dft_array(whole, c, 0))) ** 2 for c in (mp.Er, mp.Ep, mp.Ez)) ** 0.5
         if abs(e.shape[0] - r_in * res) > abs(e.shape[0] - (z1 - z0) * res):

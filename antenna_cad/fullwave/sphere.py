@@ -35,6 +35,12 @@ DIPOLE_DIRECTIVITY = 1.5
 PLANE_WAVE_FEED_LAMBDA = 1.0e5   # a feed this far away lights the sphere with a plane wave
 
 
+def far_directivity_dbi(theta: np.ndarray, power: np.ndarray) -> float:
+    """Directivity toward θ = 0 of a runner's ``far_power`` (m = 1, circular polarization: the same in
+    every φ plane): 4π·S(0) / (2π ∫ S sin θ dθ)."""
+    return float(10 * np.log10(2 * power[0] / np.trapezoid(power * np.sin(theta), theta)))
+
+
 def law_table(eps_of_r, radius_mm: float) -> dict:
     """The continuous law as the runner's ``graded`` sphere: ε(r) sampled on 0 ≤ r ≤ R."""
     r = np.linspace(0.0, radius_mm, LAW_SAMPLES)
@@ -44,10 +50,10 @@ def law_table(eps_of_r, radius_mm: float) -> dict:
 
 def feed_deck(radius_mm: float, *, parts: list[dict], graded: list[dict], frequency_ghz: float,
               resolution: float, feed_z_mm: float, pattern: str, plane_offset_lambda: float,
-              field_map: bool = True) -> dict:
+              field_map: bool = True, far_field: bool = False) -> dict:
     """The runner's deck of the sphere fed by a point source on the axis at ``feed_z_mm`` (< 0):
     radial extent R + 1 λ and a 4 λ PML as the collimator's, 2 λ of air behind the feed, the aperture
-    plane ``plane_offset_lambda`` behind the sphere."""
+    plane ``plane_offset_lambda`` behind the sphere; ``far_field``: the radiated pattern as well."""
     lam = C_MM_GHZ / frequency_ghz
     plane = radius_mm + plane_offset_lambda * lam
     return {"frequency_ghz": float(frequency_ghz), "resolution_px_per_lambda": float(resolution), "m": 1,
@@ -55,7 +61,8 @@ def feed_deck(radius_mm: float, *, parts: list[dict], graded: list[dict], freque
             "plane_z_mm": round(plane, 4), "r_max_mm": round(radius_mm + R_MARGIN_LAMBDA * lam, 4),
             "z_min_mm": round(min(-radius_mm, feed_z_mm) - FEED_BACK_LAMBDA * lam, 4),
             "z_max_mm": round(plane + BACK_MARGIN_LAMBDA * lam, 4),
-            "pml_r_lambda": PML_R_LAMBDA, "pml_z_lambda": PML_Z_LAMBDA, "field_map": bool(field_map)}
+            "pml_r_lambda": PML_R_LAMBDA, "pml_z_lambda": PML_Z_LAMBDA, "field_map": bool(field_map)} | (
+            {"far_field": True} if far_field else {})
 
 
 def plane_wave_decks(parts: list[dict], radius_mm: float, focus_mm: float, *, frequency_ghz: float,

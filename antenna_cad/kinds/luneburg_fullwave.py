@@ -20,6 +20,8 @@ Figures on the plane ``plane_offset_lambda`` behind the sphere over 0.5 λ ≤ r
 ``scattnlay``) for plane-wave focusing; the gain of the lens fed by a short dipole at the focus by
 reciprocity, 1.5·|E(focus)/E0|², from Mie for every spherical variant (the law as thin shells), and
 from Meep for the design shells lit by a plane wave — their difference is the stage's own error bar.
+Beside it, the gains of the lens fed by the Huygens element and by the dipole from the feed series
+(2) and the power they radiate (:mod:`antenna_cad.fullwave.feed_series`).
 The cylindrical (parallel-plate) lens is not a body of revolution about its feed axis: no run.
 """
 
@@ -30,6 +32,7 @@ import os
 import numpy as np
 
 from antenna_cad.fullwave.aperture import aperture_stats, difference_stats, phase_deg
+from antenna_cad.fullwave.feed_series import feed_gains_dbi
 from antenna_cad.fullwave.mie import shell_parts
 from antenna_cad.fullwave.sphere import (MIE_MAX_D_LAMBDA, aperture_gain_dbi, feed_deck, fine_shells, focal_gain_dbi,
                                          law_table, mie_focal_field, mie_focal_gain_dbi, plane_wave_decks)
@@ -87,6 +90,8 @@ def luneburg_full_wave(spec, design: LuneburgDesign, media: dict, go: dict) -> V
     if 2 * R / lam > MIE_MAX_D_LAMBDA:
         mie = {}
     figures = {f"mie_{v}_focal_gain_dbi": mie_focal_gain_dbi(*m, lam, b) for v, m in mie.items()}
+    for v, m in mie.items():                      # the feeds' own gains by the series (2) (seed-002 §2.4.5)
+        figures |= {f"mie_{v}_{feed}_feed_gain_dbi": g for feed, g in feed_gains_dbi(*m, lam, b).items()}
     figures["aperture_gain_limit_dbi"] = aperture_gain_dbi(R, lam)
 
     pattern = POINT_FEED[settings.feed_pattern]
@@ -141,8 +146,12 @@ def _against_mie(figures: dict) -> Check:
 
 
 def _note(why: str, estimate: float, settings, figures: dict, status: str) -> Check:
-    gains = ", ".join(f"{k[4:-15]} {v:.2f}" for k, v in figures.items() if k.startswith("mie_"))
-    mie = (f"Exact Mie series, gain of a dipole-fed lens by reciprocity (dBi): {gains}; uniform aperture "
+    def listed(suffix):
+        return ", ".join(f"{k.removeprefix('mie_').removesuffix(suffix)} {v:.2f}" for k, v in figures.items()
+                         if k.startswith("mie_") and k.endswith(suffix))
+    gains, huygens = listed("_focal_gain_dbi"), listed("_huygens_feed_gain_dbi")
+    mie = (f"Exact Mie series, gain of a dipole-fed lens by reciprocity (dBi): {gains}; of the lens fed by the "
+           f"Huygens element of seed-002 (2): {huygens}; uniform aperture "
            f"{figures['aperture_gain_limit_dbi']:.2f}" if gains else
            f"Mie series not evaluated above D/λ = {MIE_MAX_D_LAMBDA:g}")
     return Check("full_wave", status, estimate, settings.budget_s, "s", f"full-wave stage {why}. {mie}")

@@ -46,6 +46,10 @@ class Medium:
         if not self.layers:
             self.layers = [Layer(0.0, np.inf, self.n0**2, -self.m, 0.0)]
 
+    def copy(self) -> "Medium":
+        """An independent copy (the construction tries layers on copies)."""
+        return Medium(self.n0, self.m, [Layer(L.lo, L.hi, L.N, L.p, L.c) for L in self.layers])
+
     @property
     def top(self) -> float:
         return self.layers[-1].hi

@@ -161,7 +161,7 @@ def synthesize_graded(*, params: GradedParams, unit_mm: float, view_angle_deg: f
     half = min(c.surf1[-1].p[1], c.surf2[-1].p[1], params.aperture / 2)
     layers = tuple((float(L.lo), float(min(L.hi, half)), float(L.p if i else -params.m))
                    for i, L in enumerate(c.medium.layers) if L.lo < half)
-    medium = Medium(params.n0, params.m, [type(L)(L.lo, L.hi, L.N, L.p, L.c) for L in c.medium.layers])
+    medium = c.medium.copy()
     x1, x2 = surface_spline(c.surf1), surface_spline(c.surf2)
     checks = [Check.upper("aperture_reached", params.aperture / 2 - half, 0.02 * params.aperture, "",
                           "half aperture the construction reaches short of D/2 (normalised"
@@ -173,15 +173,32 @@ def synthesize_graded(*, params: GradedParams, unit_mm: float, view_angle_deg: f
     jumps = [abs(medium.n2_at(L.lo - 1e-12) - medium.n2_at(L.lo + 1e-12)) for L in medium.layers[1:]]
     checks.append(Check.upper("index_continuity", max(jumps, default=0.0), 1e-9, "",
                               "n² jump at the layer boundaries (C¹ law (3.11))"))
-    n_min = float(np.min(medium.n(np.linspace(0, half, 401))))
+    n_aperture = medium.n(np.linspace(0, half, 401))
+    n_min = float(np.min(n_aperture))
     checks.append(Check("index_above_one", "pass" if n_min >= 1 else "fail", n_min, 1.0, "",
                         f"lowest index in the aperture {n_min:.4f} (≥ 1)"))
+    rise = float(np.max(np.diff(n_aperture), initial=0.0))
+    checks.append(Check.upper("index_falls_outward", rise, 1e-12, "", "largest rise of n(y) from the axis to the "
+                              "edge (the layers' m_i swing in sign; a rising index is their runaway)"))
+    _refuse(checks)
     angles, sigma = sigma_scan(c, medium, x1, x2, half, view_angle_deg / 2, scan_count)
     comp_a, comp_s = _bifocal_comparison(view_angle_deg / 2, scan_count)
     edges, eps = _slabs(medium, half, slab_count)
     foci = {"F": c.F, "F1": c.F1, "F2": c.F2, "F'": c.Fp, "F1'": c.F1p, "F2'": c.F2p}
     return GradedDesign(params, unit_mm, medium, layers, x1, x2, half, foci, angles, sigma, comp_a, comp_s,
                         edges, eps, tuple(checks))
+
+
+REFUSED_BY = {"aperture_reached": "design.m", "side_focus_sigma": "design.y_a", "index_continuity": "design.m",
+              "index_above_one": "design.m", "index_falls_outward": "design.m"}
+
+
+def _refuse(checks: list[Check]) -> None:
+    """A failed construction check is a design the seed's synthesis cannot make: refused, naming
+    the spec field that moves it (the layer law m for the layers, y_A for the side foci)."""
+    for c in checks:
+        if c.status == "fail":
+            raise DesignError(REFUSED_BY[c.name], f"{c.name}: {c.message}; change m, a2, a4 or y_a")
 
 
 def _bifocal_comparison(half_view_deg: float, count: int):

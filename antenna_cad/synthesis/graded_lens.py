@@ -203,9 +203,9 @@ class Construction:
         self.c1 = g.rho1 + L_AB + g.rho1_p
         self.alpha_A = alpha
 
-    def _invariant(self, src, pt: Pt, leftward: bool) -> float:
+    def _invariant(self, src, pt: Pt, leftward: bool, medium: Medium | None = None) -> float:
         """a = n cos(angle to x) of the ray from ``src`` refracted into the lens at ``pt``."""
-        n_in = np.sqrt(self.medium.n2_at(pt.p[1]))
+        n_in = np.sqrt((medium or self.medium).n2_at(pt.p[1]))
         v, ok = refract(_unit(pt.p - src), pt.n, 1.0, n_in)
         return float(n_in * abs(v[0]))
 
@@ -222,21 +222,26 @@ class Construction:
         x1 = surface_spline(surf1)
         slope = x1.derivative()
         a_q = self._invariant(self.Fp, Q, True)
+        continued = _continued(self.medium)
 
         def a_e(y):
-            return self._invariant(self.F, Pt(np.array([float(x1(y)), y]), _unit([1.0, -float(slope(y))])), False)
+            pt = Pt(np.array([float(x1(y)), y]), _unit([1.0, -float(slope(y))]))
+            return self._invariant(self.F, pt, False, continued)
 
-        ys = np.linspace(0.0, h, 200)       # surface 1 extrapolated by a step at most
-        av = np.array([a_e(y) for y in ys]) - a_q
-        k = np.flatnonzero(np.sign(av[:-1]) != np.sign(av[1:]))
-        if not k.size:
+        y_e = None
+        for ys in (np.linspace(0.0, h, 200), np.linspace(h, 1.1 * h, 41)):    # surface 1 extrapolated
+            av = np.array([a_e(y) for y in ys]) - a_q
+            k = np.flatnonzero(np.sign(av[:-1]) != np.sign(av[1:]))
+            if k.size:
+                y_e = brentq(lambda y: a_e(y) - a_q, ys[k[-1]], ys[k[-1] + 1], xtol=1e-14)
+                break
+        if y_e is None:
             raise DesignError("design.m", f"layer {i + 1}: no surface-1 point E with the invariant of the "
                               "central ray through Q (3.25)")
-        y_e = brentq(lambda y: a_e(y) - a_q, ys[k[-1]], ys[k[-1] + 1], xtol=1e-14)
         E = np.array([float(x1(y_e)), y_e])
 
         def trial(m_i):
-            med = Medium(self.g.n0, self.g.m, [type(L)(L.lo, L.hi, L.N, L.p, L.c) for L in self.medium.layers])
+            med = self.medium.copy()
             med.add_layer(m_i)
             ray, s, p = self._launch(self.Fp, Q, True, med)
             xs = np.linspace(p[0], ray.x_end, 400)
@@ -253,12 +258,26 @@ class Construction:
         ms = np.concatenate([-np.geomspace(200.0, 1e-3, 80), np.geomspace(1e-3, 200.0, 80)])
         vals = np.array([trial(m_i)[0] for m_i in ms])
         k = np.flatnonzero(np.isfinite(vals[:-1]) & np.isfinite(vals[1:]) & (np.sign(vals[:-1]) != np.sign(vals[1:])))
-        if not k.size:
+        for j in k:
+            try:
+                m_i = brentq(lambda v: trial(v)[0], ms[j], ms[j + 1], xtol=1e-14)
+                break
+            except ValueError:          # inside the bracket the ray stops turning in the layer (NaN)
+                continue
+        else:
             raise DesignError("design.m", f"no real m_{i + 1} makes the central focus of layer {i + 1} (3.31)")
-        m_i = brentq(lambda v: trial(v)[0], ms[k[0]], ms[k[0] + 1], xtol=1e-14)
         top = trial(m_i)[1]
         self.medium.add_layer(m_i)
         self.medium.close_top(top)
+
+
+def _continued(medium: Medium) -> Medium:
+    """A copy of ``medium`` whose top layer's law goes on above its top: E of (3.25) may lie a little
+    above the top boundary, in the layer being added, whose law matches the top one's to first
+    order there (C¹)."""
+    out = medium.copy()
+    out.layers[-1].hi = np.inf
+    return out
 
 
 def scalar_spline(spline: CubicHermiteSpline):

@@ -252,3 +252,29 @@ def test_luneburg_as_built_traces_the_ring_cones():
         diff, w = cut.opl_mm[ok] - shells.opl_mm[ok], cut.weight[ok]
         rms.append(float(np.sqrt(np.average((diff - np.average(diff, weights=w)) ** 2, weights=w))))
     assert 0.3 < rms[0] < 1.5 and 1.4 < rms[0] / rms[1] < 2.6
+
+
+def test_luneburg_taper_holes_and_feet_go_to_the_router(luneburg):
+    """What the wire cannot cut: every dowel hole of every ring piece is one drilling cycle, in the
+    file of the face it opens on (the bottom face's seen from below, x mirrored), to its depth; the
+    feet are profiled per board and their router files pass the check against the feet alone."""
+    from antenna_cad.export.check_cam import drill_cycles
+    from antenna_cad.fabrication.ring_pieces import FootPiece, RingPiece
+    spec, plan, folder, manifest = luneburg
+    expected, found = {}, {}
+    for piece in (p for p in plan.fab.pieces if isinstance(p, RingPiece)):
+        for h in piece.holes:
+            face, x = ("bottom", -h.x_mm) if h.face == "bottom" else ("top", h.x_mm)
+            depth = piece.thickness_mm if h.face == "through" else h.depth_mm
+            expected.setdefault((piece.label, face), []).append((x, h.y_mm, -depth))
+    for entry in manifest["cam"]:
+        if "-drill-" in entry["file"]:
+            face = entry["file"].removesuffix(".gcode").rsplit("-", 1)[1]
+            found[(entry["part"], face)] = drill_cycles((folder / entry["file"]).read_text())
+    assert expected and sorted(found) == sorted(expected)
+    for key, holes in expected.items():
+        assert len(found[key]) == len(holes)
+        assert np.abs(np.array(sorted(found[key])) - np.array(sorted(holes))).max() < 1e-3
+    boards = [e for e in manifest["cam"] if e["file"].startswith("cam/board-")]
+    feet = {p.label for p in plan.fab.pieces if isinstance(p, FootPiece)}
+    assert boards and {name for e in boards for name in e["part"].split(", ")} == feet

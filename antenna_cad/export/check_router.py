@@ -1,6 +1,7 @@
 """``make-lens check`` of the router files: each board's program parsed back (PyPI ``gcodeparser``,
 via :func:`antenna_cad.export.check_cam.parse_moves`) and held against its parts as the cut list
-nests them, rebuilt from the manifest's spec (the fabrication plan again, not the written files).
+nests them, rebuilt from the manifest's spec (the fabrication plan again, not the written files;
+a taper-cut Luneburg layup's boards hold only its feet, the wire cuts the rings).
 
 Every cutting move's end point, and the midpoint of every move along a contour, must lie one tool
 radius off the nearest part outline within ``CAM_TOL_MM`` and outside every part (no gouge);
@@ -34,7 +35,10 @@ def board_parts(manifest: dict) -> tuple[dict, float]:
         router = spec.fabrication.router
         return drawing_parts(fab.drawings, kind.PLATE_PARTS, spec.fabrication.broad_wall_mm), router.tool_diameter_mm
     d = spec.fabrication.cam.router.tool_diameter_mm
-    return (ring_parts(fab, d) if spec.kind == "luneburg" else panel_parts(panels, fab.placements)), d
+    if spec.kind == "luneburg":
+        from antenna_cad.cam.rings import feet_parts                # a taper-cut layup routes only its feet
+        return (feet_parts(fab, d) if layup.edge == "taper" else ring_parts(fab, d)), d
+    return panel_parts(panels, fab.placements), d
 
 
 def router_error_mm(moves: list[np.ndarray], cutting: list[bool], parts, radius_mm: float) -> tuple[float, bool]:

@@ -79,7 +79,7 @@ def fabricate(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan |
     cam = spec.fabrication.cam
     if cam is not None and layup.edge == "taper":          # the rings' cones on the hot wire
         from antenna_cad.cam.rings import plan_ring_cam
-        toolpaths = plan_ring_cam(layup, cam, {L.index: L for L in design.layers})
+        toolpaths = plan_ring_cam(layup, cam, {L.index: L for L in design.layers}, plan)
     elif cam is not None and cam.router is not None:        # flat rings and feet on the router
         from antenna_cad.cam.boards import ring_parts
         from antenna_cad.cam.plan import plan_board_cam

@@ -34,7 +34,7 @@ from antenna_cad.kinds.taper import Taper
 from antenna_cad.raytrace.collimator import ApertureTrace
 from antenna_cad.raytrace.trace2d import Interface, Slabs, Trace2D, aim_at_face, trace, trace_slabs, \
     transmitted_amplitude
-from antenna_cad.quietzone.verdict import judged
+from antenna_cad.quietzone.verdict import FAST_ERROR_DEG, UNCERTAIN, judged, undecided
 from antenna_cad.quietzone.volume import Zone, radii_mm, stack_ratio, zone_from
 from antenna_cad.spec.common import TestZoneSpec, TolerancesSpec, VerificationSpec
 from antenna_cad.synthesis.checks import Check, DesignError
@@ -247,7 +247,9 @@ def stock_study(sheets: Callable[[float], LayupPlan], lens_for: Callable[[LayupP
                 stocks: tuple[float, ...], settings: VerificationSpec = VerificationSpec()) -> tuple[Candidate, ...]:
     """Every stock thickness laid up and judged unsanded (stepped stack as cut) at the nominal feed:
     GO trace and the fast sub-wavelength model on one plane (for comparison), and the stack's own
-    phase over the quiet zone (:func:`stack_zone`), whose worst p-p decides."""
+    phase over the quiet zone (:func:`stack_zone`), whose worst p-p decides; a candidate the fast
+    model cannot decide (within its measured error of the budget, when that error exceeds a quarter
+    of the budget: :func:`antenna_cad.quietzone.verdict.undecided`) is declined, its note saying so."""
     out = []
     for t in stocks:
         try:
@@ -259,8 +261,9 @@ def stock_study(sheets: Callable[[float], LayupPlan], lens_for: Callable[[LayupP
         st = aperture_stats(lens, *trace_lens(lens, cut_medium(lens, layup), lens.feed))
         model = modelled_stats(lens, fast_model(revolved(lens, layup), settings), "stepped", lens.feed)
         zone = stack_zone(lens, layup)["stepped"]
-        out.append(Candidate(t, layup, st, step_estimate_deg(lens, layup), zone.p2p_deg <= lens.budget_deg,
-                             model=model, zone=zone))
+        unsure = undecided(zone.p2p_deg, lens.budget_deg, FAST_ERROR_DEG["own_phase_p2p_deg"])
+        out.append(Candidate(t, layup, st, step_estimate_deg(lens, layup), zone.p2p_deg <= lens.budget_deg and not unsure,
+                             UNCERTAIN if unsure else "", model=model, zone=zone))
     return tuple(out)
 
 
@@ -365,8 +368,9 @@ def verify_lens(lens: Lens, feeds: tuple[tuple[str, float, float], ...], toleran
         figures |= {f"model_fabricated_{nominal}_p2p_deg": model.p2p_deg, f"model_fabricated_{nominal}_rms_deg":
                     model.rms_deg, f"stack_zone_fabricated_{nominal}_p2p_deg": pp,
                     f"stack_zone_fabricated_{nominal}_rms_deg": zone.rms_deg}
-        checks.append(Check("unsanded_step_phase_error", "warn" if pp > lens.budget_deg else "pass", pp,
-                            lens.budget_deg, "deg",
+        unsure = zone_model == "fast model" and undecided(pp, lens.budget_deg, FAST_ERROR_DEG["own_phase_p2p_deg"])
+        checks.append(Check("unsanded_step_phase_error", "warn" if pp > lens.budget_deg or unsure else "pass", pp,
+                            lens.budget_deg, "deg", (f"{UNCERTAIN}: " if unsure else "") +
                             f"as fabricated, unsanded ({layup.sheet_thickness_mm:g} mm sheets): the stack's own phase "
                             f"over the quiet zone {pp:.1f}° p-p (worst plane {zone.plane_mm:.0f} mm behind the stack; "
                             f"{zone_model}) vs budget {lens.budget_deg:g}°; on one plane {model.p2p_deg:.1f}° "
@@ -410,7 +414,7 @@ def _layer_table(lens: Lens, layup: LayupPlan, fab) -> Table:
 def _candidates_table(study: tuple[Candidate, ...], layup: LayupPlan | None) -> Table:
     rows = tuple((c.thickness_mm, c.layup.count, _r(c.stats.p2p_deg), _r(c.stats.rms_deg), _r(c.model.p2p_deg),
                   _r(c.model.rms_deg), _r(c.zone.p2p_deg), _r(c.zone.rms_deg), _r(c.zone.plane_mm),
-                  _r(c.estimate_deg), "yes" if c.meets else "no")
+                  _r(c.estimate_deg), "yes" if c.meets else (c.note or "no"))
                  if c.layup is not None else (c.thickness_mm, *[None] * 9, f"no: {c.note}")
                  for c in study)
     chosen = f"; chosen: {layup.sheet_thickness_mm:g} mm" if layup is not None else ""

@@ -11,7 +11,7 @@ import numpy as np
 from antenna_cad.fullwave.lens import C_MM_GHZ, RevolvedLens
 from antenna_cad.fullwave.verify import FullWave
 from antenna_cad.kinds.asbuilt import Lens, lens_zone, trace_lens
-from antenna_cad.quietzone.verdict import ModelPlanes, quiet_zone_study
+from antenna_cad.quietzone.verdict import FAST_ERROR_DEG, ModelPlanes, quiet_zone_study
 from antenna_cad.quietzone.volume import Rays, fast_fields, radii_mm
 from antenna_cad.raytrace.trace2d import Slabs, transmitted_amplitude
 from antenna_cad.verification import Verification
@@ -62,7 +62,8 @@ def lens_quiet_zone(lens: Lens, variants, feed: tuple[str, float, float], z_ref:
         models = [ModelPlanes(name, "", {n: meep.get(n, fast_planes[n]) for n, _ in variants}),
                   ModelPlanes(models[0].name, "fast_", fast_planes), models[1]]
     explicit = criteria.zone.diameter_mm is not None or aut is not None
-    return quiet_zone_study(zone, models, feed[0], cross, explicit)
+    error = 0.0 if meep is not None else FAST_ERROR_DEG["phase_p2p_deg"]
+    return quiet_zone_study(zone, models, feed[0], cross, explicit, error)
 
 
 def _full_wave_planes(full_wave: FullWave | None, zone, z_ref: float, variants: list[str]):

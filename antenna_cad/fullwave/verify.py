@@ -8,7 +8,8 @@ processes, cached, stopped at ``budget_s``: what did not finish keeps the fast m
 plane): from Meep when it ran, else from the fast sub-wavelength model
 (:mod:`antenna_cad.fullwave.fastmodel`); the stock choice, the sanding check and the tolerance budget
 add it to the GO phase of the ideal lens (GO is exact for the smooth lens, DESIGN.md
-"Verification models").
+"Verification models"). Given the quiet zone's depth, each run also records the field over it
+(:class:`FullWave` ``volume``), from which the quiet-zone figures and the sanding verdict are taken.
 """
 
 from __future__ import annotations

@@ -2,7 +2,8 @@
 field handed to :mod:`antenna_cad.quietzone` for the nominal feed on the axis — GO through each
 variant (ideal, stepped as cut, as fabricated), and the fast model: the ideal lens's GO field by the
 angular spectrum, a layup's stepped sections by the fast sub-wavelength model on top (a taper-cut
-stack's cones have no sections: GO only there)."""
+stack's cones have no sections: GO only there); and, when the full-wave stage ran, its runs' fields
+over the zone's volume (:class:`antenna_cad.fullwave.volume.VolumeField`), which then come first."""
 
 from __future__ import annotations
 

@@ -2,7 +2,8 @@
 
 Each figure is the worst over the planes (largest phase p-p, phase RMS, ripple and |taper|; smallest
 diameter within the limits): ``quiet_zone_<lens>_<feed>_<figure>`` from the best model that ran (its
-name in the tables and the check), ``quiet_zone_go_<lens>_<feed>_<figure>`` from GO beside it. The
+name in the tables and the check: full-wave, else the fast model), ``quiet_zone_fast_…`` (when
+full-wave ran) and ``quiet_zone_go_…`` from the others beside it. The
 cross-polarization is GO's for both: the Fresnel transmissions of the two polarizations differ, and a
 linearly polarized feed on the axis of a body of revolution then gets a cross-polar field
 (τ∥ − τ⊥)/2·sin 2φ against the co-polar (τ∥ + τ⊥)/2 (largest at φ = 45°); the scalar fast model

@@ -43,12 +43,12 @@ def rows(case, python: str) -> list[list]:
     runs = solver.run_decks(decks, python, 1)
     wall = time.perf_counter() - t0
     volume = {v: VolumeField.from_run(o) for v, o in zip(("ideal", "stepped"), runs)}
-    radii = sorted({s.radius_mm for s in layup.sheets})
+    ring = float(np.max(np.diff([0.0, *sorted({s.radius_mm for s in layup.sheets})]))) / lam
     out = []
     for (name, (*_, zone)) in zip(("default", "wide"), zones):
         meep = zone_figures(zone, {v: f.planes(z_ref + zone.planes_mm) for v, f in volume.items()})
         fast = zone_figures(zone, fast_zone_planes(lens, rl, z_ref, zone))
-        out.append([*case, name, SETTINGS.resolution_px_per_lambda, round(float(np.max(np.diff([0.0, *radii]))) / lam, 2),
+        out.append([*case, name, SETTINGS.resolution_px_per_lambda, round(ring, 2),
                     round(zone.diameter_mm, 1), round(zone.distance_mm, 1), round(zone.depth_mm, 1), len(zone.planes_mm),
                     *(round(d[f], 3) for f in FIGURES for d in (meep, fast)), round(wall, 1),
                     "meep 1.25 cylindrical m=+1, Er over the zone's (r, z) half-plane, benchmarks/quiet_zone_table.py"])

@@ -202,7 +202,8 @@ def deck_files(variants: list[str], decks: list[dict]) -> dict[str, str]:
     ``resolution_px_per_lambda`` in the deck)."""
     files = {f"fullwave/{v}.json": json.dumps(d, indent=1, sort_keys=True) + "\n" for v, d in zip(variants, decks)}
     lines = ["#!/bin/sh", "# Rerun the full-wave decks with Debian's python3-meep; raise resolution_px_per_lambda in",
-             "# a deck for a finer run. Results: <variant>.npz (Er, Ephi on the aperture plane, |E| map).",
+             "# a deck for a finer run. Results: <variant>.npz (Er, Ephi on the aperture plane, |E| map; Er over",
+             "# the quiet zone's depth, volume_z_mm).",
              'cd "$(dirname "$0")"', 'PY="${ANTENNA_CAD_MEEP_PYTHON:-/usr/bin/python3}"']
     lines += [f'"$PY" runner.py {shlex.quote(v + ".json")} {shlex.quote(v + ".npz")}' for v in variants]
     files["fullwave/rerun.sh"] = "\n".join(lines) + "\n"

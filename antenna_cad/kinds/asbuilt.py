@@ -262,8 +262,9 @@ def stock_study(sheets: Callable[[float], LayupPlan], lens_for: Callable[[LayupP
         model = modelled_stats(lens, fast_model(revolved(lens, layup), settings), "stepped", lens.feed)
         zone = stack_zone(lens, layup)["stepped"]
         unsure = undecided(zone.p2p_deg, lens.budget_deg, FAST_ERROR_DEG["own_phase_p2p_deg"])
-        out.append(Candidate(t, layup, st, step_estimate_deg(lens, layup), zone.p2p_deg <= lens.budget_deg and not unsure,
-                             UNCERTAIN if unsure else "", model=model, zone=zone))
+        meets = zone.p2p_deg <= lens.budget_deg and not unsure
+        out.append(Candidate(t, layup, st, step_estimate_deg(lens, layup), meets, UNCERTAIN if unsure else "",
+                             model=model, zone=zone))
     return tuple(out)
 
 

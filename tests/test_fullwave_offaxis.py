@@ -118,7 +118,7 @@ def test_auto_runs_the_scan_edge_only_when_every_order_fits_the_budget(monkeypat
     from antenna_cad.fullwave import verify
     from antenna_cad.kinds import asbuilt
     monkeypatch.setattr(asbuilt, "full_wave_study",          # the on-axis stage without running Meep
-                        lambda lens, settings, go: verify.FullWave(verify.fast_model(lens, settings)))
+                        lambda lens, settings, go, volume_z_mm: verify.FullWave(verify.fast_model(lens, settings)))
     v = _verify(_recipe())
     edge = next(c for c in v.checks if c.name == "full_wave_scan_edge")
     assert edge.value > edge.limit == 120.0

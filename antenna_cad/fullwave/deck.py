@@ -49,13 +49,16 @@ def slab_parts(slabs: Slabs, eps_r: float, labels: list[str] | None = None) -> l
 
 def make_deck(parts: list[dict], *, frequency_ghz: float, resolution: float, feed_z_mm: float,
               feed_pattern: str, feed_q: float, radius_mm: float, plane_offset_lambda: float,
-              field_map: bool = True, m: int = 1, reflected: bool = False, point_feed: str | None = None) -> dict:
+              field_map: bool = True, m: int = 1, reflected: bool = False, point_feed: str | None = None,
+              volume_z_mm: tuple[float, float] | None = None) -> dict:
     """The runner's input: named parameters (εr per part, geometry in mm, feed, frequency, resolution)
     and the domain: sheet 1.5 λ before the foremost part, the aperture plane ``plane_offset_lambda``
     behind the hindmost (``reflected``: in front of the sheet, for a body that sends the beam back
     through it, seed-004; the feed itself is not meshed, so it blocks nothing), radial PML 4 λ, axial 2 λ.
     ``point_feed`` (``dipole``/``huygens``): no sheet, the runner's point source at ``feed_z_mm`` (a feed
-    on the body's surface, seed-004 f0 = 0); a reflected beam's plane is then measured from the feed."""
+    on the body's surface, seed-004 f0 = 0); a reflected beam's plane is then measured from the feed.
+    ``volume_z_mm`` (z0, z1): the runner also records the field over the (r, z) half-plane between them
+    (the quiet zone's depth), the domain reaching past z1."""
     lam = 299.792458 / frequency_ghz
     pts = np.array([p for part in parts for p in part["polygon"]]) if parts else np.zeros((1, 2))
     z_front, z_back = float(pts[:, 1].min()), float(pts[:, 1].max())
@@ -65,10 +68,12 @@ def make_deck(parts: list[dict], *, frequency_ghz: float, resolution: float, fee
         z_min, z_max = plane - BACK_MARGIN_LAMBDA * lam, z_back + BACK_MARGIN_LAMBDA * lam
     else:
         plane = z_back + plane_offset_lambda * lam
-        z_min, z_max = sheet - 0.5 * lam, plane + BACK_MARGIN_LAMBDA * lam
+        z_min, z_max = sheet - 0.5 * lam, max([plane, *(volume_z_mm or ())]) + BACK_MARGIN_LAMBDA * lam
     feed = ({"kind": "point", "z_mm": float(feed_z_mm), "pattern": point_feed} if point_feed else
             {"z_mm": float(feed_z_mm), "pattern": feed_pattern, "q": float(feed_q)})
     where = {} if point_feed else {"sheet_z_mm": round(sheet, 4)}
+    if volume_z_mm is not None:
+        where["volume_z_mm"] = [round(float(z), 4) for z in volume_z_mm]
     return {"frequency_ghz": float(frequency_ghz), "resolution_px_per_lambda": float(resolution), "m": int(m),
             "parts": parts, "feed": feed, **where, "plane_z_mm": round(plane, 4),
             "r_max_mm": round(radius_mm + R_MARGIN_LAMBDA * lam, 4),

@@ -40,12 +40,15 @@ class RevolvedLens:
             return ideal_parts(self.front_z, self.back_z, self.radius_mm, self.eps_r)
         return slab_parts(self.sections[variant], self.eps_r)
 
-    def deck(self, variant: str, settings, field_map: bool = True) -> dict:
-        """The runner's deck of ``variant`` with the spec's ``verification`` settings."""
+    def deck(self, variant: str, settings, field_map: bool = True,
+             volume_z_mm: tuple[float, float] | None = None) -> dict:
+        """The runner's deck of ``variant`` with the spec's ``verification`` settings; ``volume_z_mm``:
+        the quiet zone's depth, recorded over (r, z)."""
         return make_deck(self.parts(variant), frequency_ghz=self.frequency_ghz,
                          resolution=settings.resolution_px_per_lambda, feed_z_mm=self.feed_z_mm,
                          feed_pattern=settings.feed_pattern, feed_q=settings.feed_q, radius_mm=self.radius_mm,
-                         plane_offset_lambda=settings.plane_offset_lambda, field_map=field_map)
+                         plane_offset_lambda=settings.plane_offset_lambda, field_map=field_map,
+                         volume_z_mm=volume_z_mm)
 
     def excess_mm(self, variant: str, r: np.ndarray) -> np.ndarray:
         """Foam along z at radius r in the section (its y ≥ 0 half) minus the ideal lens's: Δd(r)."""

@@ -31,7 +31,10 @@ sheet: in front of it (z < sheet) it sees the wave a reflecting body sends back 
 Gaussian pulse, DFT at f0. Output: Er, Eφ at f0 on the plane ``plane_z_mm`` (r_i = i/res, Meep 1.25's
 metadata being wrong in cylindrical coordinates) and |E| over the (r, z) cell, decimated; with
 ``far_field`` the radiated power density against θ from a near-to-far surface around feed and lens
-(its directivity: :func:`antenna_cad.fullwave.sphere.far_directivity_dbi`).
+(its directivity: :func:`antenna_cad.fullwave.sphere.far_directivity_dbi`). With ``volume_z_mm``
+[z0, z1] (the quiet zone's depth, :mod:`antenna_cad.quietzone`), also the complex Er over the (r, z)
+half-plane r ≤ ``r_max_mm``, z0 ≤ z ≤ z1, undecimated (``volume_er`` [r, z], its axes
+``volume_r_mm``, ``volume_z_mm``): one run gives every plane of the zone.
 """
 
 from __future__ import annotations
@@ -251,6 +254,11 @@ def run(deck: dict) -> dict:
     far = far_surface(sim, mp, d) if deck.get("far_field") else None
     whole = (sim.add_dft_fields([mp.Er, mp.Ep, mp.Ez], 1.0, 0, 1, center=mp.Vector3(r_in / 2, 0, 0),
                                 size=mp.Vector3(r_in, 0, z1 - z0)) if deck.get("field_map", True) else None)
+    volume = deck.get("volume_z_mm")
+    if volume is not None:
+        zv0, zv1 = volume[0] / lam - zc, volume[1] / lam - zc
+        volume = sim.add_dft_fields([mp.Er], 1.0, 0, 1, center=mp.Vector3(r_in / 2, 0, (zv0 + zv1) / 2),
+                                    size=mp.Vector3(r_in, 0, zv1 - zv0))
     t0 = time.perf_counter()
     sim.run(until_after_sources=d["after"])
     seconds = time.perf_counter() - t0
@@ -267,7 +275,20 @@ def run(deck: dict) -> dict:
         step = max(1, int(np.ceil(max(e.shape) / MAP_MAX_PX)))
         out["map_abs"] = e[::step, ::step]
         out["map_extent_mm"] = np.array([0.0, r_in * lam, z0 * lam, z1 * lam])
+    if volume is not None:
+        out |= volume_field(sim, mp, volume, d)
     return out
+
+
+def volume_field(sim, mp, volume, d: dict) -> dict:
+    """The DFT Er over the quiet zone's half-plane as [r, z] with its axes in mm: r_i = i/res (as on the
+    plane), z from Meep's metadata (right along z)."""
+    e = np.asarray(sim.get_dft_array(volume, mp.Er, 0))
+    z = np.asarray(sim.get_array_metadata(dft_cell=volume)[2], float)
+    if e.shape[1] != len(z):
+        e = e.T
+    return {"volume_er": e, "volume_r_mm": np.arange(e.shape[0]) / d["res"] * d["lam"],
+            "volume_z_mm": (z + d["zc"]) * d["lam"]}
 
 
 def die_with_parent() -> None:

@@ -47,15 +47,17 @@ class ScanEdgePlan:
         return self.decision.python
 
 
-def plan_scan_edge(lens: RevolvedLens, settings, feed_y_mm: float) -> ScanEdgePlan:
+def plan_scan_edge(lens: RevolvedLens, settings, feed_y_mm: float,
+                   volume_z_mm: tuple[float, float] | None = None) -> ScanEdgePlan:
     """Decks of the scan-edge feed (at transverse displacement ``feed_y_mm``) for the ideal lens and the
-    lens as built (its last section: as fabricated, else as cut), and whether they run."""
+    lens as built (its last section: as fabricated, else as cut), and whether they run, within the
+    budget left by the on-axis runs (which record the quiet zone's depth ``volume_z_mm``)."""
     variants = ("ideal", *list(lens.sections)[-1:])
     decks, choices = {}, {}
     if settings.full_wave != "off" and solver.meep_python() is not None:
         for v in variants:
             decks[v], choices[v] = order_decks(lens.deck(v, settings, field_map=False), feed_y_mm)
-    every = on_axis_decks(lens, settings) + [d for v in variants for d in decks.get(v, [])]
+    every = on_axis_decks(lens, settings, volume_z_mm) + [d for v in variants for d in decks.get(v, [])]
     jobs = os.cpu_count() or 1
     decision = budget_decision(settings, every, jobs)
     if decision.python is not None:

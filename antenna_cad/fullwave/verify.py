@@ -8,7 +8,8 @@ processes, cached, stopped at ``budget_s``: what did not finish keeps the fast m
 plane): from Meep when it ran, else from the fast sub-wavelength model
 (:mod:`antenna_cad.fullwave.fastmodel`); the stock choice, the sanding check and the tolerance budget
 add it to the GO phase of the ideal lens (GO is exact for the smooth lens, DESIGN.md
-"Verification models").
+"Verification models"). Given the quiet zone's depth, each run also records the field over it
+(:class:`FullWave` ``volume``), from which the quiet-zone figures and the sanding verdict are taken.
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ from antenna_cad.fullwave import solver
 from antenna_cad.fullwave.aperture import aperture_stats, difference_stats, phase_deg, window
 from antenna_cad.fullwave.budget import Budget, budget_for
 from antenna_cad.fullwave.lens import RevolvedLens
+from antenna_cad.fullwave.volume import VolumeField
 from antenna_cad.synthesis.checks import Check, DesignError, Status
 from antenna_cad.verification import Plot, Series
 
@@ -51,6 +53,8 @@ class FullWave:
     checks: tuple[Check, ...] = ()
     plots: tuple[Plot, ...] = ()
     files: dict[str, str] = field(default_factory=dict)
+    volume: dict[str, VolumeField] = field(default_factory=dict)   # variant → its field over the quiet zone
+    volume_model: str = ""                                         # the model (and run) that gave it
 
 
 def fast_model(lens: RevolvedLens, settings) -> PhaseModel:
@@ -58,9 +62,10 @@ def fast_model(lens: RevolvedLens, settings) -> PhaseModel:
     return PhaseModel(FAST, r, {v: lens.fast_difference_deg(v, settings.plane_offset_lambda, r) for v in lens.sections})
 
 
-def on_axis_decks(lens: RevolvedLens, settings) -> list[dict]:
-    """The decks of the on-axis feed: the ideal lens, then each stepped section."""
-    return [lens.deck(v, settings) for v in ("ideal", *lens.sections)]
+def on_axis_decks(lens: RevolvedLens, settings, volume_z_mm: tuple[float, float] | None = None) -> list[dict]:
+    """The decks of the on-axis feed: the ideal lens, then each stepped section (``volume_z_mm``: each
+    also records the field over the quiet zone's depth)."""
+    return [lens.deck(v, settings, volume_z_mm=volume_z_mm) for v in ("ideal", *lens.sections)]
 
 
 @dataclass(frozen=True)
@@ -141,11 +146,13 @@ def run_named(names: list[str], decks: list[dict], decision: Decision, jobs: int
                len(cached), tuple(n for n, _ in cut), len({k for _, k in cut}), decision.budget.seconds)
 
 
-def full_wave_study(lens: RevolvedLens, settings, go: dict[str, tuple[np.ndarray, np.ndarray]]) -> FullWave:
+def full_wave_study(lens: RevolvedLens, settings, go: dict[str, tuple[np.ndarray, np.ndarray]],
+                    volume_z_mm: tuple[float, float] | None = None) -> FullWave:
     """The full-wave stage; ``go``: variant → (y, phase deg) of the GO trace at the on-axis feed, drawn
-    under the full-wave curves. Variants the budget cut keep the fast model."""
+    under the full-wave curves; ``volume_z_mm``: the quiet zone's depth, whose field each run records
+    (:class:`FullWave` ``volume``). Variants the budget cut keep the fast model."""
     variants = ["ideal", *lens.sections]
-    decks = on_axis_decks(lens, settings)
+    decks = on_axis_decks(lens, settings, volume_z_mm)
     jobs = max(1, min(len(decks), os.cpu_count() or 1))
     decision = budget_decision(settings, decks, jobs)
     files = deck_files(variants, decks)
@@ -177,7 +184,11 @@ def full_wave_study(lens: RevolvedLens, settings, go: dict[str, tuple[np.ndarray
     elif ran.cut:
         model = PhaseModel(f"{FAST} (the full-wave runs were cut by the budget)", fast.r_mm, fast.added_deg)
     note = _note(f"{decision.why}; {ran.text()}", model.name, decision, ran.status)
-    return FullWave(model, figures, (note,), _plots(lens, results, go, settings) if results else (), files)
+    volume = {v: VolumeField.from_run(o) for v, o in results.items() if "volume_er" in o}
+    meep = (f"full-wave (Meep {next(iter(results.values()))['meep_version']}, "
+            f"{settings.resolution_px_per_lambda:g} px/λ, one run per lens over the zone's depth)") if results else ""
+    return FullWave(model, figures, (note,), _plots(lens, results, go, settings) if results else (), files,
+                    volume, meep)
 
 
 def _note(why: str, model: str, decision: Decision, status: str) -> Check:
@@ -191,7 +202,8 @@ def deck_files(variants: list[str], decks: list[dict]) -> dict[str, str]:
     ``resolution_px_per_lambda`` in the deck)."""
     files = {f"fullwave/{v}.json": json.dumps(d, indent=1, sort_keys=True) + "\n" for v, d in zip(variants, decks)}
     lines = ["#!/bin/sh", "# Rerun the full-wave decks with Debian's python3-meep; raise resolution_px_per_lambda in",
-             "# a deck for a finer run. Results: <variant>.npz (Er, Ephi on the aperture plane, |E| map).",
+             "# a deck for a finer run. Results: <variant>.npz (Er, Ephi on the aperture plane, |E| map; Er over",
+             "# the quiet zone's depth, volume_z_mm).",
              'cd "$(dirname "$0")"', 'PY="${ANTENNA_CAD_MEEP_PYTHON:-/usr/bin/python3}"']
     lines += [f'"$PY" runner.py {shlex.quote(v + ".json")} {shlex.quote(v + ".npz")}' for v in variants]
     files["fullwave/rerun.sh"] = "\n".join(lines) + "\n"

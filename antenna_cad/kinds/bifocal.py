@@ -235,9 +235,9 @@ def verify(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None, fa
              if layup is not None else ())
     lens, feeds = _lens(spec, design, layup), (("focus", 0.0, design.focus_offset_mm),
                                                ("edge", 0.0, st.usable_half_range_mm))
-    v = verify_lens(lens, feeds, spec.tolerances, layup, fab, study, spec.verification)
+    v, fw = verify_lens(lens, feeds, spec.tolerances, layup, fab, study, spec.verification)
     v = v.merged(lens_patterns(lens, lens_variants(lens, layup, fab), feeds,
-                               criteria_from(spec.design.aut, spec.design.test_zone), _height(spec)))
+                               criteria_from(spec.design.aut, spec.design.test_zone), _height(spec), full_wave=fw))
     scan = {"usable_feed_half_range_mm": st.usable_half_range_mm, "usable_half_angle_deg": st.usable_half_angle_deg,
             "usable_feed_inner_mm": st.usable_inner_mm,
             "single_surface_usable_feed_half_range_mm": st.single_usable_half_range_mm,

@@ -8,7 +8,7 @@ from functools import partial
 import numpy as np
 
 from antenna_cad.fabrication.layup import LayupPlan
-from antenna_cad.kinds.asbuilt import Lens, lens_variants, stock_study, verify_lens
+from antenna_cad.kinds.asbuilt import Lens, lens_variants, stock_study, verify_lens, zone_depth_mm
 from antenna_cad.kinds.asbuilt_fullwave import revolved, scan_edge_go
 from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks, plan_layup_and_box, plan_sheets
 from antenna_cad.kinds.patterns import collimator_feed_limits, criteria_from, lens_patterns
@@ -122,12 +122,13 @@ def verify(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | No
              if layup is not None else ())
     lens, feeds = _lens(spec, design, layup), (("on_axis", -f, 0.0), ("edge", -f, edge))
     # decided before the on-axis runs, so that auto's estimate counts every run still to do
-    edge_plan = plan_scan_edge(revolved(lens, layup, fab), spec.verification, edge)
-    v = verify_lens(lens, feeds, spec.tolerances, layup, fab, study, spec.verification)
+    rl = revolved(lens, layup, fab)
+    edge_plan = plan_scan_edge(rl, spec.verification, edge, zone_depth_mm(lens, rl.plane_z_mm(0.0)))
+    v, fw = verify_lens(lens, feeds, spec.tolerances, layup, fab, study, spec.verification)
     go_edge = scan_edge_go(lens, layup, fab, (-f, edge)) if edge_plan.python else {}
     v = v.merged(scan_edge_study(edge_plan, go_edge))
     crit = criteria_from(spec.design.aut, spec.design.test_zone)
-    v = v.merged(lens_patterns(lens, lens_variants(lens, layup, fab), feeds, crit)).merged(
+    v = v.merged(lens_patterns(lens, lens_variants(lens, layup, fab), feeds, crit, full_wave=fw)).merged(
         collimator_feed_limits(design, gap, crit.aut.height_mm if crit.aut else D, crit.aut.taper_k if crit.aut else 0,
                                crit.difference, SCAN_GRID))
     return replace(v, figures={"scan_half_range_mm": edge,

@@ -31,6 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from antenna_cad.fullwave.verify import FullWave
 from antenna_cad.kinds.asbuilt import Lens, Medium, trace_lens
 from antenna_cad.kinds.quiet_zone import lens_quiet_zone
 from antenna_cad.radiation.aperture import PatternFigures, bor_aperture, grid_aperture, pattern_figures
@@ -169,10 +170,11 @@ def _r(v: float, nd: int = 3):
 
 
 def lens_patterns(lens: Lens, variants: list[tuple[str, Medium]], feeds, criteria: Criteria,
-                  height_mm: float | None = None) -> Verification:
+                  height_mm: float | None = None, full_wave: FullWave | None = None) -> Verification:
     """Patterns, test zone and AUT errors of every lens variant at every feed (module docstring).
     ``variants``: (name, medium), ideal first and the as-built last; ``feeds``: (name, z, y), the
-    nominal first; ``height_mm``: a cylindrical lens's height (None: a lens of revolution)."""
+    nominal first; ``height_mm``: a cylindrical lens's height (None: a lens of revolution);
+    ``full_wave``: the full-wave stage, whose fields over the quiet zone come first when they ran."""
     lam, R = lens.wavelength_mm, lens.radius_mm
     z_ref = float(np.max(lens.back_z(np.linspace(0.0, R, 401))))
     for _, medium in variants:
@@ -237,7 +239,8 @@ def lens_patterns(lens: Lens, variants: list[tuple[str, Medium]], feeds, criteri
     if not on_axis:
         return v
     half = ef.y_mm >= 0
-    return v.merged(lens_quiet_zone(lens, variants, feeds[0], z_ref, criteria, (ef.y_mm[half], ef.field[half])))
+    return v.merged(lens_quiet_zone(lens, variants, feeds[0], z_ref, criteria, (ef.y_mm[half], ef.field[half]),
+                                    full_wave))
 
 
 def _test_zone(lens: Lens, variants, fields, nominal: str, distance: float, criteria: Criteria):

@@ -2,15 +2,17 @@
 field handed to :mod:`antenna_cad.quietzone` for the nominal feed on the axis — GO through each
 variant (ideal, stepped as cut, as fabricated), and the fast model: the ideal lens's GO field by the
 angular spectrum, a layup's stepped sections by the fast sub-wavelength model on top (a taper-cut
-stack's cones have no sections: GO only there)."""
+stack's cones have no sections: GO only there); and, when the full-wave stage ran, its runs' fields
+over the zone's volume (:class:`antenna_cad.fullwave.volume.VolumeField`), which then come first."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from antenna_cad.fullwave.lens import C_MM_GHZ, RevolvedLens
+from antenna_cad.fullwave.verify import FullWave
 from antenna_cad.kinds.asbuilt import Lens, lens_zone, trace_lens
-from antenna_cad.quietzone.verdict import ModelPlanes, quiet_zone_study
+from antenna_cad.quietzone.verdict import FAST_ERROR_DEG, ModelPlanes, quiet_zone_study
 from antenna_cad.quietzone.volume import Rays, fast_fields, radii_mm
 from antenna_cad.raytrace.trace2d import Slabs, transmitted_amplitude
 from antenna_cad.verification import Verification
@@ -32,9 +34,11 @@ def _rays(lens: Lens, medium, feed) -> tuple[Rays, float]:
 
 
 def lens_quiet_zone(lens: Lens, variants, feed: tuple[str, float, float], z_ref: float, criteria,
-                    ideal_exit) -> Verification:
+                    ideal_exit, full_wave: FullWave | None = None) -> Verification:
     """Quiet-zone figures of every variant at the nominal on-axis ``feed`` (name, z, y); ``ideal_exit``:
-    the ideal lens's GO field on the plane ``z_ref`` (the back of the stack), (y ≥ 0 uniform, E)."""
+    the ideal lens's GO field on the plane ``z_ref`` (the back of the stack), (y ≥ 0 uniform, E);
+    ``full_wave``: the full-wave stage, whose fields over the zone's volume come first when they cover
+    the zone (the fast model then follows as ``quiet_zone_fast_*``)."""
     lam, R = lens.wavelength_mm, lens.radius_mm
     aut = criteria.aut
     aut_d = None if aut is None else (aut.height_mm if aut.circular else float(np.hypot(aut.width_mm, aut.height_mm)))
@@ -49,8 +53,26 @@ def lens_quiet_zone(lens: Lens, variants, feed: tuple[str, float, float], z_ref:
     screens = {n: (lambda r, n=n: rl.excess_mm(n, r), lens.n, R, z_ref - rl.screen_z_mm()) for n in sections}
     fast = fast_fields(*ideal_exit, lam, zone.planes_mm, rho, screens)
     kept = [n for n, _ in variants if n not in fast]
-    best = FAST + (f"; GO for {', '.join(kept)} (taper-cut cones: no stepped section)" if kept else "")
-    models = [ModelPlanes(best, "", {n: [(rho, e) for e in fast[n]] if n in fast else go[n] for n, _ in variants}),
-              ModelPlanes(GO, "go_", go)]
+    name = FAST + (f"; GO for {', '.join(kept)} (taper-cut cones: no stepped section)" if kept else "")
+    fast_planes = {n: [(rho, e) for e in fast[n]] if n in fast else go[n] for n, _ in variants}
+    models = [ModelPlanes(name, "", fast_planes), ModelPlanes(GO, "go_", go)]
+    meep = _full_wave_planes(full_wave, zone, z_ref, [n for n, _ in variants])
+    if meep is not None:
+        cut = [n for n, _ in variants if n not in meep]
+        name = full_wave.volume_model + (f"; the fast model for {', '.join(cut)} (cut by the budget)" if cut else "")
+        models = [ModelPlanes(name, "", {n: meep.get(n, fast_planes[n]) for n, _ in variants}),
+                  ModelPlanes(models[0].name, "fast_", fast_planes), models[1]]
     explicit = criteria.zone.diameter_mm is not None or aut is not None
-    return quiet_zone_study(zone, models, feed[0], cross, explicit)
+    error = 0.0 if meep is not None else FAST_ERROR_DEG["phase_p2p_deg"]
+    return quiet_zone_study(zone, models, feed[0], cross, explicit, error)
+
+
+def _full_wave_planes(full_wave: FullWave | None, zone, z_ref: float, variants: list[str]):
+    """variant → [(r, E) per plane] from the full-wave fields over the zone's volume, or None when none
+    ran or they do not cover the zone (its planes and its disc)."""
+    if full_wave is None or not full_wave.volume:
+        return None
+    z = z_ref + zone.planes_mm
+    fields = {n: v.planes(z) for n, v in full_wave.volume.items()
+              if n in variants and v.covers(z, zone.diameter_mm / 2)}
+    return fields or None

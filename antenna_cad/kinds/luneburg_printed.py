@@ -11,12 +11,15 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.rings import FabPlanRings
 from antenna_cad.materials import Material
 from antenna_cad.printed.fill import FillMap, fill_integral_mm3, fill_map
 from antenna_cad.printed.homogenization import table_rows
 from antenna_cad.printed.lattice import Printable
+from antenna_cad.raytrace.media import Shells
 from antenna_cad.spec.common import resolve_material
 from antenna_cad.spec.printed import C_MM_GHZ, PrintedSpec
 from antenna_cad.synthesis.checks import Check
@@ -24,6 +27,7 @@ from antenna_cad.synthesis.luneburg import eps_profile
 from antenna_cad.verification import Table, Verification
 
 VOLUME_TOLERANCE = 0.02     # meshed lattice + skin vs ∫fill dV + skin: cell-centre sampling and facets
+PROFILE_SHELLS = 48         # shells of the printed εr(r) seen by the GO, Mie and full-wave checks
 WIDTH_STEP_NOZZLES = 1 / 8  # rod widths rounded to an eighth of the nozzle (what a slicer can place)
 
 
@@ -47,15 +51,34 @@ def law(design):
     return lambda r: eps_profile(r / R, design.law, design.focal_distance_ratio, design.outer_shell)
 
 
+def _fill(spec, design) -> tuple[Material, FillMap]:
+    fab: PrintedSpec = spec.fabrication
+    m = resolve_material(spec.material)
+    printable = Printable(fab.lattice, fab.cell_mm, fab.wall_mm, fab.gap_mm)
+    return m, fill_map(law(design), design.radius_mm, fab.lattice, m.eps_r, printable)
+
+
+def printed_medium(spec, design, shells: int = PROFILE_SHELLS) -> Shells:
+    """The lens as printed, for the GO, Mie and full-wave checks ("fabricated"): the lattice's
+    εr_eff(fill) (clipped) on ``shells`` equal-thickness shells under the skin, and the skin of solid
+    filament."""
+    m, fmap = _fill(spec, design)
+    R, skin = design.radius_mm, spec.fabrication.skin_mm
+    edges = np.linspace(0.0, R - skin, shells + 1)
+    mid = (edges[:-1] + edges[1:]) / 2
+    eps = np.interp(mid, fmap.r_mm, fmap.eps_printed)
+    if skin > 0:
+        edges, eps = np.append(edges, R), np.append(eps, m.eps_r)
+    return Shells(edges[1:], np.sqrt(eps))
+
+
 def fabricate_printed(spec, design) -> PrintedFabPlan:
     from antenna_cad.printed.export3mf import stl_bytes, three_mf_bytes
     from antenna_cad.printed.parts import Pins, build_printed_lens, closed_and_oriented
     fab: PrintedSpec = spec.fabrication
-    m = resolve_material(spec.material)
+    m, fmap = _fill(spec, design)
     R = design.radius_mm
     skin = fab.skin_mm
-    printable = Printable(fab.lattice, fab.cell_mm, fab.wall_mm, fab.gap_mm)
-    fmap = fill_map(law(design), R, fab.lattice, m.eps_r, printable)
     shape = design.shape
     if shape == "sphere":
         ref = fill_integral_mm3(fmap, R - skin, shape) + 4 / 3 * math.pi * (R**3 - (R - skin) ** 3)

@@ -48,6 +48,7 @@ from antenna_cad.raytrace.luneburg import (RUZE_DB_PER_RAD2, Fan, added_phase_rm
                                            feed_move_opl, first_order_opl, focus_shift)
 from antenna_cad.raytrace.media import Shells, Staircase, trace_media
 from antenna_cad.spec.luneburg import LuneburgShellsSpec
+from antenna_cad.spec.printed import PrintedSpec
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.luneburg import LuneburgDesign, traced_law
 from antenna_cad.verification import Plot, Series, Table, Verification
@@ -139,7 +140,10 @@ def _lenses(spec, design: LuneburgDesign, layup: RingLayupPlan | None, grade_eps
     if isinstance(fab, LuneburgShellsSpec) and fab.feed_boss is not None and design.shape == "sphere":
         rb, length = fab.feed_boss.diameter_mm / 2, fab.feed_boss.length_mm
         boss = (-rb, rb, -R - length, 0.0, math.sqrt(grade_eps[-1]))
-    if stair and layup.sizing == "mid_plane":
+    if isinstance(fab, PrintedSpec):        # the lattice homogenized, clipped where unprintable, and its skin
+        from antenna_cad.kinds.luneburg_printed import printed_medium
+        built = _traced(design, printed_medium(spec, design))
+    elif stair and layup.sizing == "mid_plane":
         built = _staircase_lens(design, layup, grade_eps, facets, sheet_shift)
     else:                                   # shells (+ boss), cylinder, or a layup turned to the spheres
         built = _traced(design, _shells(design, grade_eps, radius_shift, boss),

@@ -28,16 +28,19 @@ _DATE = (2020, 1, 1, 0, 0, 0)
 GAP_MM = 10.0       # between build items laid out in a row
 
 
-def _rows(fmt: str, array: np.ndarray) -> str:
-    """Every row of ``array`` through ``fmt`` (vectorized: one format of the flattened table)."""
-    if not len(array):
-        return ""
-    return (fmt * len(array)) % tuple(array.ravel().tolist())
+CHUNK = 50_000      # rows formatted at a time (bounds the memory of the Python floats)
 
 
-def model_xml(objects: list[dict], metadata: dict[str, str]) -> str:
-    """The 3dmodel.model text: ``objects`` are dicts with name, vertices (n, 3), faces (m, 3) and
-    their own metadata; build items in a row along x, each on the bed."""
+def _rows(fmt: str, array: np.ndarray):
+    """Every row of ``array`` through ``fmt``, a chunk of rows per piece of text."""
+    for i in range(0, len(array), CHUNK):
+        part = array[i:i + CHUNK]
+        yield (fmt * len(part)) % tuple(part.ravel().tolist())
+
+
+def model_xml(objects: list[dict], metadata: dict[str, str]):
+    """The 3dmodel.model text, in pieces: ``objects`` are dicts with name, vertices (n, 3), faces (m, 3)
+    and their own metadata; build items in a row along x, each on the bed."""
     out = [f'<?xml version="1.0" encoding="UTF-8"?>\n<model unit="millimeter" xml:lang="en-US" xmlns="{_NS}">\n']
     out += [f'<metadata name={quoteattr(k)}>{escape(str(v))}</metadata>\n' for k, v in sorted(metadata.items())]
     out.append("<resources>\n")
@@ -51,27 +54,30 @@ def model_xml(objects: list[dict], metadata: dict[str, str]) -> str:
         for key, value in sorted(obj.get("metadata", {}).items()):
             out.append(f'<metadata name={quoteattr(key)}>{escape(str(value))}</metadata>\n')
         out.append("<mesh><vertices>\n")
-        out.append(_rows('<vertex x="%.4f" y="%.4f" z="%.4f"/>\n', v))
-        out.append("</vertices><triangles>\n")
-        out.append(_rows('<triangle v1="%d" v2="%d" v3="%d"/>\n', f))
-        out.append("</triangles></mesh></object>\n")
+        yield "".join(out)
+        yield from _rows('<vertex x="%.4f" y="%.4f" z="%.4f"/>\n', v)
+        yield "</vertices><triangles>\n"
+        yield from _rows('<triangle v1="%d" v2="%d" v3="%d"/>\n', f)
+        out = ["</triangles></mesh></object>\n"]
         lo = v.min(axis=0)
         items.append(f'<item objectid="{oid}" transform="1 0 0 0 1 0 0 0 1 {x - lo[0]:.4f} {-lo[1]:.4f} {-lo[2]:.4f}"/>\n')
         x += float(v[:, 0].max() - lo[0]) + GAP_MM
     out.append("</resources>\n<build>\n")
     out += items
     out.append("</build>\n</model>\n")
-    return "".join(out)
+    yield "".join(out)
 
 
 def three_mf_bytes(objects: list[dict], metadata: dict[str, str]) -> bytes:
     buf = io.BytesIO()
     with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED, compresslevel=6) as z:
-        for name, text in (("[Content_Types].xml", _CONTENT_TYPES), ("_rels/.rels", _RELS),
-                           ("3D/3dmodel.model", model_xml(objects, metadata))):
+        for name, pieces in (("[Content_Types].xml", [_CONTENT_TYPES]), ("_rels/.rels", [_RELS]),
+                             ("3D/3dmodel.model", model_xml(objects, metadata))):
             info = zipfile.ZipInfo(name, _DATE)
             info.compress_type = zipfile.ZIP_DEFLATED
-            z.writestr(info, text.encode("utf-8"))
+            with z.open(info, "w") as member:
+                for text in pieces:
+                    member.write(text.encode("utf-8"))
     return buf.getvalue()
 
 

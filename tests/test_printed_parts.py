@@ -130,3 +130,22 @@ def test_cli_refuses_a_bad_printed_spec_with_exit_2(tmp_path):
     assert run.returncode == 2
     lines = [line for line in (run.stdout + run.stderr).splitlines() if line.strip()]
     assert len(lines) == 1 and "fabrication.cell_mm" in lines[0] and "Traceback" not in run.stderr
+
+
+def test_printed_cylinder_holds_whole_cells_and_flags_a_cut_without_room_for_pins():
+    with pytest.raises(SpecError) as exc:
+        parse_spec(BASE | {"design": {"diameter_mm": 100, "shape": "cylinder", "height_mm": 6.0}}, "s.yaml")
+    assert "fabrication.cell_mm: a cylinder's height must be a whole number of cells" in exc.value.lines[0]
+    R, a, h = 20.0, 3.0, 6.0
+    fm = fill_map(lambda r: 2 - (r / R) ** 2, R, "cubic", 2.7, Printable("cubic", a, 0.8, 0.8))
+    ref = fill_integral_mm3(fm, R - 0.8, "cylinder", h) + math.pi * (R**2 - (R - 0.8) ** 2) * h
+    lens = build_printed_lens("cylinder", R, h, fm, skin_mm=0.8, wall_mm=0.8, gap_mm=0.8, width_step_mm=0.05,
+                              bed_mm=(25.0, 100.0, 100.0), pins=Pins(5.0, 8.0, 0.2, 0.8), tolerance_mm=0.02,
+                              reference_volume_mm3=ref)
+    assert abs(lens.body_volume_mm3 / ref - 1) < 0.02
+    assert lens.cuts == 1 and lens.unpinned_cuts == 1 and lens.pins == 0
+    assert all(closed_and_oriented(p.faces) and p.size_mm[2] == pytest.approx(h) for p in lens.parts)
+    thin = build_printed_lens("cylinder", R, h, fm, skin_mm=0.8, wall_mm=0.8, gap_mm=0.8, width_step_mm=0.05,
+                              bed_mm=(25.0, 100.0, 100.0), pins=Pins(3.0, 8.0, 0.2, 0.8), tolerance_mm=0.02,
+                              reference_volume_mm3=ref)
+    assert thin.unpinned_cuts == 0 and thin.pins == 2                # a Ø3 mm pin's boss fits the 6 mm slab

@@ -154,6 +154,10 @@ def _checks(spec, fab, m, fmap: FillMap, lens, closed) -> list[Check]:
     out.append(Check.upper("printed_volume", abs(rel), VOLUME_TOLERANCE, "",
                            f"meshed lattice + skin {lens.body_volume_mm3 / 1000:.1f} cm³ vs analytic ∫fill dV + skin "
                            f"{lens.reference_volume_mm3 / 1000:.1f} cm³ ({rel:+.2%})"))
+    if fab.registration is not None and lens.unpinned_cuts:
+        out.append(Check("printed_registration", "warn", float(lens.unpinned_cuts), 0.0, "cuts",
+                         f"{lens.unpinned_cuts} bed cuts leave no room for a Ø{fab.registration.diameter_mm:g} mm pin "
+                         "boss: align those parts by hand (a jig) or use a larger bed"))
     bed = (fab.bed.x_mm, fab.bed.y_mm, fab.bed.z_mm)
     over = [p.label for p in lens.parts if any(s > b + 1e-6 for s, b in zip(p.size_mm, bed))]
     out.append(Check("printed_parts_fit_bed", "fail" if over else "pass", float(len(over)), 0.0, "parts",

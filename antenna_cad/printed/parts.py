@@ -70,6 +70,7 @@ class PrintedLens:
     reference_volume_mm3: float  # ∫ fill dV + skin, analytic
     pins: int                   # pins across all cuts
     cuts: int                   # bed cuts (besides a sphere's equator)
+    unpinned_cuts: int          # cuts with no room for a pin boss (aligned by hand)
 
 
 def mesh_volume(vertices: np.ndarray, faces: np.ndarray) -> float:
@@ -192,7 +193,7 @@ def build_printed_lens(shape: str, radius_mm: float, height_mm: float | None, fm
     if height > bed_mm[2]:
         raise ValueError(f"fabrication.bed.z_mm: a part {height:.1f} mm tall does not fit the bed "
                          f"({bed_mm[2]:g} mm); horizontal cuts are not made")
-    pin_count = 0
+    pin_count = unpinned = 0
     if pins is not None:
         bosses, holes = [], []
         pn = segments(pins.boss_radius, tolerance_mm)
@@ -206,7 +207,9 @@ def build_printed_lens(shape: str, radius_mm: float, height_mm: float | None, fm
             pin_count += 3
         for axis in (0, 1):
             for c in planes[axis]:
-                for u, z in _vertical_pin_points(axis, c, planes, r_in, height, pins, shape):
+                points = _vertical_pin_points(axis, c, planes, r_in, height, pins, shape)
+                unpinned += not points
+                for u, z in points:
                     at = [0.0, 0.0, z]
                     at[axis], at[1 - axis] = c, u
                     rot = [0.0, 0.0, 0.0] if axis == 0 else [0.0, 0.0, 90.0]
@@ -233,5 +236,5 @@ def build_printed_lens(shape: str, radius_mm: float, height_mm: float | None, fm
                                          segments(pins.diameter_mm / 2, tolerance_mm)))
         parts.append(PrintedPart("pin", "pin", pin_count, pv - pv.min(axis=0), pf))
     return PrintedLens(tuple(parts), len(idx) * copies, len(f) * copies, body_volume, reference_volume_mm3,
-                       pin_count, len(planes[0]) + len(planes[1]))
+                       pin_count, len(planes[0]) + len(planes[1]), unpinned)
 

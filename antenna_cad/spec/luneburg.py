@@ -120,6 +120,8 @@ class LuneburgSpec(SpecBase):
         fab, d = self.fabrication, self.design
         if isinstance(fab, PrintedSpec):
             fab.check_lens(self.material, self.frequency_ghz)
+            if d.shape == "cylinder":
+                fab.check_height(d.height_mm)
         if isinstance(fab, LuneburgLayupSpec) and fab.edge == "taper":
             if d.shape != "sphere":
                 raise ValueError("fabrication.edge: taper is for the sphere (a cylinder's rings are already exact)")

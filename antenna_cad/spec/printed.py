@@ -88,3 +88,12 @@ class PrintedSpec(StrictModel):
         if self.cell_mm > limit:
             raise ValueError(f"fabrication.cell_mm: must be ≤ λ/(4·√εr) = {limit:.3g} mm at {frequency_ghz:g} GHz "
                              f"in εr {eps:g} (got {self.cell_mm:g})")
+
+    def check_height(self, height_mm: float) -> None:
+        """A parallel-plate lens holds a whole number of cells between its plates (a cell cut by a plate
+        has another fill than the table's)."""
+        cells = height_mm / self.cell_mm
+        if round(cells) < 1 or abs(cells - round(cells)) > 1e-3:
+            whole = max(1, round(cells))
+            raise ValueError(f"fabrication.cell_mm: a cylinder's height must be a whole number of cells "
+                             f"({height_mm:g} mm / {self.cell_mm:g} mm = {cells:.3g}; e.g. {height_mm / whole:.4g} mm)")

@@ -149,3 +149,46 @@ def test_printed_cylinder_holds_whole_cells_and_flags_a_cut_without_room_for_pin
                               bed_mm=(25.0, 100.0, 100.0), pins=Pins(3.0, 8.0, 0.2, 0.8), tolerance_mm=0.02,
                               reference_volume_mm3=ref)
     assert thin.unpinned_cuts == 0 and thin.pins == 2                # a Ø3 mm pin's boss fits the 6 mm slab
+
+
+def test_the_fabricated_variant_is_the_printed_profile_under_its_skin():
+    from antenna_cad.kinds.luneburg import synthesize
+    from antenna_cad.kinds.luneburg_printed import printed_medium
+    spec = parse_spec(BASE | {"fabrication": {"method": "printed", "cell_mm": 3.6, "skin_mm": 0.8}}, "s.yaml")
+    design = synthesize(spec)
+    medium = printed_medium(spec, design, shells=40)
+    R = design.radius_mm
+    eps = medium.n**2
+    assert medium.radii[-1] == R and medium.radii[-2] == pytest.approx(R - 0.8) and eps[-1] == 2.7
+    mid = (np.concatenate([[0.0], medium.radii[:-2]]) + medium.radii[:-1]) / 2
+    law = 2 - (mid / R) ** 2
+    free = law > 1.17                                        # inside the printable range (εr ≥ 1.164)
+    assert np.abs(eps[:-1][free] - law[free]).max() < 1e-5     # the fill map sampled on 401 radii
+    assert np.all(eps[:-1][~free] == pytest.approx(eps[:-1][~free][0]))   # clipped to the thinnest wall
+    assert eps[:-1][~free][0] > law[~free].max()
+
+
+@pytest.mark.slow
+def test_printed_recipe_builds_and_its_files_read_back(tmp_path, monkeypatch):
+    import csv
+    import json
+    from pathlib import Path
+    from antenna_cad.pipeline import build
+    from antenna_cad.spec import load_spec
+    monkeypatch.setenv("ANTENNA_CAD_MEEP_PYTHON", "/usr/bin/false")
+    spec = load_spec(Path(__file__).resolve().parents[1] / "recipes" / "luneburg-printed-120mm-pla.yaml")
+    result = build(spec, tmp_path)
+    assert result.status != "fail"
+    out = result.out_dir
+    ns = {"m": "http://schemas.microsoft.com/3dmanufacturing/core/2015/02"}
+    root = ET.fromstring(zipfile.ZipFile(out / "printed" / f"{spec.name}.3mf").read("3D/3dmodel.model"))
+    assert [o.get("name") for o in root.findall("m:resources/m:object", ns)] == ["lens-01", "pin"]
+    stl = (out / "printed" / "lens-01.stl").read_bytes()
+    tris = np.frombuffer(stl[84:], dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])["v"].astype(float)
+    volume = float(np.einsum("ij,ij->i", tris[:, 0], np.cross(tris[:, 1], tris[:, 2])).sum() / 6)
+    rows = list(csv.DictReader((out / "cutlist.csv").open(encoding="utf-8")))
+    halves = [r for r in rows if r["kind"] == "printed-lens"]
+    assert len(halves) == 2 and float(halves[0]["mass_kg"]) == pytest.approx(volume * 1240e-9, abs=5e-4)
+    figures = json.loads((out / "manifest.json").read_text(encoding="utf-8"))["verification"]["figures"]
+    assert figures["mie_fabricated_focal_gain_dbi"] < figures["mie_ideal_focal_gain_dbi"]
+    assert abs(figures["printed_volume_error"]) < 0.02

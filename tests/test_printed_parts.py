@@ -192,3 +192,12 @@ def test_printed_recipe_builds_and_its_files_read_back(tmp_path, monkeypatch):
     figures = json.loads((out / "manifest.json").read_text(encoding="utf-8"))["verification"]["figures"]
     assert figures["mie_fabricated_focal_gain_dbi"] < figures["mie_ideal_focal_gain_dbi"]
     assert abs(figures["printed_volume_error"]) < 0.02
+
+
+def test_kinds_without_a_printed_method_refuse_it_by_name():
+    data = {"name": "g", "kind": "collimator", "frequency_ghz": 12, "material": "pla",
+            "fabrication": {"method": "printed", "cell_mm": 3}}
+    with pytest.raises(SpecError) as exc:
+        parse_spec(data, "s.yaml")
+    assert any("fabrication.method: must be one of" in line and "kind luneburg so far" in line
+               for line in exc.value.lines)

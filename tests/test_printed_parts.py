@@ -201,3 +201,11 @@ def test_kinds_without_a_printed_method_refuse_it_by_name():
         parse_spec(data, "s.yaml")
     assert any("fabrication.method: must be one of" in line and "kind luneburg so far" in line
                for line in exc.value.lines)
+
+
+def test_a_hemisphere_taller_than_the_bed_is_refused():
+    data = BASE | {"fabrication": {"method": "printed", "cell_mm": 3.6, "bed": {"z_mm": 50}}}
+    with pytest.raises(SpecError) as exc:
+        parse_spec(data, "s.yaml")
+    assert exc.value.lines == ["s.yaml: fabrication.bed.z_mm: a hemisphere 60 mm tall does not fit (horizontal cuts "
+                               "are not made; got 50)"]

@@ -165,6 +165,36 @@ def _vertical_pin_points(axis: int, c: float, planes: dict, r_in: float, zmax: f
     return [tuple(p[a]), tuple(p[b])]
 
 
+def _pin_solids(shape: str, pins: Pins, planes: dict, r_in: float, height: float, copies: int,
+                tolerance_mm: float) -> tuple[list, list, int, int]:
+    """(bosses, holes, pins to print, cuts without room for a pin): a sphere's three equator pins at
+    0°, 120°, 240° against the skin, and two across every vertical bed cut."""
+    bosses, holes = [], []
+    count = unpinned = 0
+    pn = segments(pins.boss_radius, tolerance_mm)
+    if shape == "sphere":
+        rho = r_in - pins.boss_radius
+        for q in range(3):
+            t = 2 * math.pi * q / 3
+            at = [rho * math.cos(t), rho * math.sin(t), 0.0]
+            bosses.append(_cylinder_along(2, pins.boss_radius, 0.0, pins.depth + pins.wall_mm, pn).translate(at))
+            holes.append(_cylinder_along(2, pins.hole_radius, -1.0, pins.depth, pn).translate(at))
+        count += 3
+    span = pins.depth + pins.wall_mm
+    for axis in (0, 1):
+        rot = [0.0, 0.0, 0.0] if axis == 0 else [0.0, 0.0, 90.0]
+        for c in planes[axis]:
+            points = _vertical_pin_points(axis, c, planes, r_in, height, pins, shape)
+            unpinned += not points
+            for u, z in points:
+                at = [0.0, 0.0, z]
+                at[axis], at[1 - axis] = c, u
+                bosses.append(_cylinder_along(0, pins.boss_radius, -span, span, pn).rotate(rot).translate(at))
+                holes.append(_cylinder_along(0, pins.hole_radius, -pins.depth, pins.depth, pn).rotate(rot).translate(at))
+                count += copies
+    return bosses, holes, count, unpinned
+
+
 def build_printed_lens(shape: str, radius_mm: float, height_mm: float | None, fmap: FillMap, *, skin_mm: float,
                        wall_mm: float, gap_mm: float, width_step_mm: float, bed_mm: tuple[float, float, float],
                        pins: Pins | None, tolerance_mm: float, reference_volume_mm3: float) -> PrintedLens:
@@ -195,28 +225,7 @@ def build_printed_lens(shape: str, radius_mm: float, height_mm: float | None, fm
                          f"({bed_mm[2]:g} mm); horizontal cuts are not made")
     pin_count = unpinned = 0
     if pins is not None:
-        bosses, holes = [], []
-        pn = segments(pins.boss_radius, tolerance_mm)
-        if shape == "sphere":
-            rho = r_in - pins.boss_radius
-            for q in range(3):
-                t = 2 * math.pi * q / 3
-                x, y = rho * math.cos(t), rho * math.sin(t)
-                bosses.append(_cylinder_along(2, pins.boss_radius, 0.0, pins.depth + pins.wall_mm, pn).translate([x, y, 0]))
-                holes.append(_cylinder_along(2, pins.hole_radius, -1.0, pins.depth, pn).translate([x, y, 0]))
-            pin_count += 3
-        for axis in (0, 1):
-            for c in planes[axis]:
-                points = _vertical_pin_points(axis, c, planes, r_in, height, pins, shape)
-                unpinned += not points
-                for u, z in points:
-                    at = [0.0, 0.0, z]
-                    at[axis], at[1 - axis] = c, u
-                    rot = [0.0, 0.0, 0.0] if axis == 0 else [0.0, 0.0, 90.0]
-                    span = pins.depth + pins.wall_mm
-                    bosses.append(_cylinder_along(0, pins.boss_radius, -span, span, pn).rotate(rot).translate(at))
-                    holes.append(_cylinder_along(0, pins.hole_radius, -pins.depth, pins.depth, pn).rotate(rot).translate(at))
-                    pin_count += copies
+        bosses, holes, pin_count, unpinned = _pin_solids(shape, pins, planes, r_in, height, copies, tolerance_mm)
         if bosses:
             inner = Manifold.sphere(radius_mm, n) if shape == "sphere" else _cylinder_along(2, radius_mm, 0, height, n)
             body = (body + (Manifold.batch_boolean(bosses, OpType.Add) ^ inner)) - Manifold.batch_boolean(holes, OpType.Add)

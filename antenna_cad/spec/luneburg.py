@@ -122,6 +122,10 @@ class LuneburgSpec(SpecBase):
             fab.check_lens(self.material, self.frequency_ghz)
             if d.shape == "cylinder":
                 fab.check_height(d.height_mm)
+            tall = d.diameter_mm / 2 if d.shape == "sphere" else d.height_mm
+            if tall > fab.bed.z_mm:
+                raise ValueError(f"fabrication.bed.z_mm: a {'hemisphere' if d.shape == 'sphere' else 'lens'} "
+                                 f"{tall:g} mm tall does not fit (horizontal cuts are not made; got {fab.bed.z_mm:g})")
         if isinstance(fab, LuneburgLayupSpec) and fab.edge == "taper":
             if d.shape != "sphere":
                 raise ValueError("fabrication.edge: taper is for the sphere (a cylinder's rings are already exact)")

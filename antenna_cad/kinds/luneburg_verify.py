@@ -140,14 +140,14 @@ def _lenses(spec, design: LuneburgDesign, layup: RingLayupPlan | None, grade_eps
     if isinstance(fab, LuneburgShellsSpec) and fab.feed_boss is not None and design.shape == "sphere":
         rb, length = fab.feed_boss.diameter_mm / 2, fab.feed_boss.length_mm
         boss = (-rb, rb, -R - length, 0.0, math.sqrt(grade_eps[-1]))
-    if isinstance(fab, PrintedSpec):        # the lattice homogenized, clipped where unprintable, and its skin
-        from antenna_cad.kinds.luneburg_printed import printed_medium
-        built = _traced(design, printed_medium(spec, design))
-    elif stair and layup.sizing == "mid_plane":
+    if stair and layup.sizing == "mid_plane":
         built = _staircase_lens(design, layup, grade_eps, facets, sheet_shift)
     else:                                   # shells (+ boss), cylinder, or a layup turned to the spheres
         built = _traced(design, _shells(design, grade_eps, radius_shift, boss),
                         in_scan_plane=_traced(design, _shells(design, grade_eps, radius_shift)) if boss else None)
+    if isinstance(fab, PrintedSpec):        # the lattice homogenized, clipped where unprintable, and its skin
+        from antenna_cad.kinds.luneburg_printed import printed_medium
+        built = _traced(design, printed_medium(spec, design))
     if as_built_only:
         return {"as_built": built}
     law = traced_law(design.law, design.focal_distance_ratio, design.outer_shell, R)

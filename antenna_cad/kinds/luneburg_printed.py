@@ -15,6 +15,7 @@ import numpy as np
 
 from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.rings import FabPlanRings
+from antenna_cad.limits import LIMITS
 from antenna_cad.materials import Material
 from antenna_cad.printed.fill import FillMap, fill_integral_mm3, fill_map
 from antenna_cad.printed.homogenization import table_rows
@@ -76,8 +77,10 @@ def fabricate_printed(spec, design) -> PrintedFabPlan:
     from antenna_cad.printed.export3mf import stl_bytes, three_mf_bytes
     from antenna_cad.printed.parts import Pins, build_printed_lens, closed_and_oriented
     fab: PrintedSpec = spec.fabrication
-    m, fmap = _fill(spec, design)
     R = design.radius_mm
+    body = 4 / 3 * math.pi * R**3 if design.shape == "sphere" else math.pi * R**2 * design.height_mm
+    too_many = LIMITS["cells"].check(round(body / fab.cell_mm**3))     # before any meshing
+    m, fmap = _fill(spec, design)
     skin = fab.skin_mm
     shape = design.shape
     if shape == "sphere":
@@ -125,7 +128,7 @@ def fabricate_printed(spec, design) -> PrintedFabPlan:
                "printed_eps_min": fmap.eps_range[0], "printed_eps_max": fmap.eps_range[1],
                "printed_max_eps_error": float(abs(fmap.eps_error).max()),
                "printed_volume_error": lens.body_volume_mm3 / lens.reference_volume_mm3 - 1}
-    checks = _checks(spec, fab, m, fmap, lens, closed_and_oriented)
+    checks = too_many + _checks(spec, fab, m, fmap, lens, closed_and_oriented)
     return PrintedFabPlan((), {}, {}, (), tuple(rows), {m.name: mass_kg, "all": mass_kg}, {}, 0.0, {}, {},
                           files=files, lens=lens, fill=fmap, material=m, check_list=tuple(checks), figures=figures)
 

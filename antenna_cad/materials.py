@@ -28,6 +28,16 @@ class Material:
 
 _TYPICAL = "density: typical datasheet value (not in the seed)"
 
+_FILAMENT = ("FDM filament, printed solid; εr and tanδ near 10 GHz: typical published values (printed lenses "
+             "use the table of antenna_cad.printed for the lattice); " + _TYPICAL)
+FILAMENTS: tuple[Material, ...] = (
+    Material("pla", 2.7, 1e-2, 1240.0, _FILAMENT),
+    Material("petg", 2.6, 7e-3, 1270.0, _FILAMENT),
+    Material("abs", 2.5, 5e-3, 1040.0, _FILAMENT),
+    Material("hips", 2.45, 3e-3, 1040.0, _FILAMENT),
+    Material("abs_ceramic_4.4", 4.4, 4e-3, 1900.0, "ceramic-filled ABS filament (low-loss, εr 4.4 grade); " + _FILAMENT),
+)
+
 LIBRARY: dict[str, Material] = {m.name: m for m in (
     Material("xps", 1.047, 2e-4, 33.0, "extruded polystyrene foam board; εr as seed-000 §2–§3; " + _TYPICAL),
     Material("ptfe", 2.08, 3.7e-4, 2200.0, "PTFE (Fluoroplast-4); " + _TYPICAL),
@@ -40,7 +50,8 @@ LIBRARY: dict[str, Material] = {m.name: m for m in (
     Material("glass", 4.2, 2.9e-3, 2500.0, "glass C38-1; " + _TYPICAL),
     Material("ceramic", 5.2, 3e-3, 2900.0, _TYPICAL),
     Material("plywood", 2.0, 5e-2, 650.0, "birch plywood for boxes (structural, not a lens material); " + _TYPICAL),
-)}
+) + FILAMENTS}
+
 
 
 def get_material(name: str) -> Material:

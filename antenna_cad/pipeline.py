@@ -225,7 +225,10 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
         (tmp / "cutlist.csv").write_text(cutlist_csv(list(p.fab.rows), p.fab.totals_kg), encoding="utf-8")
         for file_name, text in (p.fab.files | verification.files).items():
             (tmp / file_name).parent.mkdir(parents=True, exist_ok=True)
-            (tmp / file_name).write_text(text, encoding="utf-8")
+            if isinstance(text, bytes):                   # printed parts: 3MF and binary STL
+                (tmp / file_name).write_bytes(text)
+            else:
+                (tmp / file_name).write_text(text, encoding="utf-8")
         if spec.outputs.step or spec.outputs.report:    # the assembly for viewing: beside the STEP, in the report
             view = write_view(tmp / f"{spec.name}.glb", model)
         if spec.outputs.report:

@@ -3,7 +3,8 @@
 ``fabrication.method: shells``: every layer a separate shell split into front/back hemispheres
 with foam pins (cylinder: rings of the plate spacing); ``sheet_layup``: sheets of concentric
 rings per grade (``fabrication.rings``), vertical-edged or taper-cut (``edge: taper``: cones through
-the spheres, hot-wire files per ring edge, :mod:`antenna_cad.cam.rings`). CAD imports stay inside
+the spheres, hot-wire files per ring edge, :mod:`antenna_cad.cam.rings`); ``printed``: the law as a
+graded lattice of one filament (:mod:`antenna_cad.kinds.luneburg_printed`). CAD imports stay inside
 ``model``.
 """
 
@@ -21,7 +22,8 @@ from antenna_cad.fabrication.rings import FabPlanRings, RingLayupPlan, fabricate
 from antenna_cad.kinds.taper import cone_gap_mm
 from antenna_cad.materials import Material
 from antenna_cad.spec.common import resolve_material
-from antenna_cad.spec.luneburg import LuneburgLayupSpec, LuneburgSpec
+from antenna_cad.spec.luneburg import LuneburgLayupSpec, LuneburgShellsSpec, LuneburgSpec
+from antenna_cad.spec.printed import PrintedSpec
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.luneburg import LuneburgDesign, synthesize_luneburg
 
@@ -44,9 +46,10 @@ def synthesize(spec: LuneburgSpec) -> LuneburgDesign:
 def layer_materials(spec: LuneburgSpec, design: LuneburgDesign) -> list[Material]:
     """One foam material per layer, named by its grade εr (layers on one grade share it)."""
     base = resolve_material(spec.material)
+    medium = "lattice" if isinstance(spec.fabrication, PrintedSpec) else "foam"
     out = []
     for L in design.layers:
-        name = f"{base.name}-foam-{L.eps_r:.3f}"
+        name = f"{base.name}-{medium}-{L.eps_r:.3f}"
         out.append(Material(name, L.eps_r, L.tan_delta, float(L.density_kg_m3),
                             f"{base.name} foam, fill factor {L.fill_factor:.4f} (seed-002 §2.7)"))
     return out
@@ -69,10 +72,18 @@ def model(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | Non
     base = resolve_material(spec.material)
     if layup is not None:
         return build_layup_model(layup, base)
+    if isinstance(spec.fabrication, PrintedSpec):          # the envelope and graded shells, for reference
+        shells = build_model(design, layer_materials(spec, design),
+                             LuneburgShellsSpec(method="shells", pins_per_shell=0, feed_boss=None), base)
+        return replace(shells, parts=tuple(replace(p, label=f"reference-{p.label}", role="reference")
+                                           for p in shells.parts))
     return build_model(design, layer_materials(spec, design), spec.fabrication, base)
 
 
 def fabricate(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | None, panels):
+    if isinstance(spec.fabrication, PrintedSpec):
+        from antenna_cad.kinds.luneburg_printed import fabricate_printed
+        return fabricate_printed(spec, design)
     if layup is None:
         return _fabricate_blanks(spec, design)
     plan = fabricate_rings(layup, spec.name, drawings=spec.outputs.templates)
@@ -233,6 +244,9 @@ def verify(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | No
     (:mod:`antenna_cad.kinds.luneburg_verify`)."""
     from antenna_cad.kinds.luneburg_verify import verify_luneburg   # the tracers and full-wave: a build's cost only
     v = verify_luneburg(spec, design, layup, fab, layer_materials(spec, design))
+    if isinstance(spec.fabrication, PrintedSpec):
+        from antenna_cad.kinds.luneburg_printed import printed_verification
+        v = v.merged(printed_verification(fab))
     if layup is None or layup.edge != "taper":
         return v
     return v.merged(Verification(tables=(_ring_cone_table(layup, {L.index: L for L in design.layers}),)))

@@ -50,6 +50,7 @@ from antenna_cad.raytrace.luneburg import (RUZE_DB_PER_RAD2, Fan, added_phase_rm
                                            feed_move_opl, first_order_opl, focus_shift)
 from antenna_cad.raytrace.media import Shells, Staircase, trace_media
 from antenna_cad.spec.luneburg import LuneburgShellsSpec
+from antenna_cad.spec.printed import PrintedSpec
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.luneburg import LuneburgDesign, traced_law
 from antenna_cad.verification import Plot, Series, Table, Verification
@@ -150,6 +151,9 @@ def _lenses(spec, design: LuneburgDesign, layup: RingLayupPlan | None, grade_eps
     else:                                   # shells (+ boss), cylinder, or a layup turned to the spheres
         built = _traced(design, _shells(design, grade_eps, radius_shift, boss),
                         in_scan_plane=_traced(design, _shells(design, grade_eps, radius_shift)) if boss else None)
+    if isinstance(fab, PrintedSpec):        # the lattice homogenized, clipped where unprintable, and its skin
+        from antenna_cad.kinds.luneburg_printed import printed_medium
+        built = _traced(design, printed_medium(spec, design))
     if as_built_only:
         return {"as_built": built}
     law = traced_law(design.law, design.focal_distance_ratio, design.outer_shell, R)

@@ -82,6 +82,8 @@ def _format(source: str, err: dict) -> str:
             msg, got = f"required field is missing (one of {ctx.get('expected_tags', '?')})", ""
         else:
             msg, got = f"must be one of {ctx.get('expected_tags', '?')}", f" (got {_got(ctx.get('tag'))})"
+            if key == "method" and ctx.get("tag") == "printed":
+                msg += " (a printed lattice is made for kind luneburg so far)"
     return f"{source}: {loc or '<root>'}: {msg}{got}"
 
 

@@ -46,7 +46,7 @@ MaterialRef = Annotated[
     Union[Annotated[str, Tag("library")], Annotated[InlineMaterial, Tag("inline")]],
     Discriminator(lambda v: "library" if isinstance(v, str) else "inline"),
     Field(description="a library material name, or inline {eps_r, tan_delta, density_kg_m3}")]
-UNION_TAGS = {"library", "inline", "builtin", "profile_file", "sheet_layup", "solid", "shells", "number", "auto"}
+UNION_TAGS = {"library", "inline", "builtin", "profile_file", "sheet_layup", "solid", "shells", "printed", "number", "auto"}
 # (tags are stripped from error paths)
 
 

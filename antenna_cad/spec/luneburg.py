@@ -13,6 +13,7 @@ from pydantic import Field, model_validator
 from antenna_cad.spec.bounds import MAX_LIST, MIN_RATIO, MIN_SHEET_MM
 from antenna_cad.spec.cam import CamSpec
 from antenna_cad.spec.common import BoardSpec, SpecBase, StrictModel, or_auto
+from antenna_cad.spec.printed import PrintedSpec
 
 
 MAX_LAYERS = 100      # shells of a multilayer lens (seed-002 designs use 3–20)
@@ -110,12 +111,21 @@ class LuneburgLayupSpec(StrictModel):
 class LuneburgSpec(SpecBase):
     kind: Literal["luneburg"]
     design: LuneburgDesignSpec
-    fabrication: Annotated[Union[LuneburgShellsSpec, LuneburgLayupSpec], Field(discriminator="method")] = \
+    fabrication: Annotated[Union[LuneburgShellsSpec, LuneburgLayupSpec, PrintedSpec],
+                           Field(discriminator="method")] = \
         LuneburgShellsSpec(method="shells")
 
     @model_validator(mode="after")
     def _stand(self):
         fab, d = self.fabrication, self.design
+        if isinstance(fab, PrintedSpec):
+            fab.check_lens(self.material, self.frequency_ghz)
+            if d.shape == "cylinder":
+                fab.check_height(d.height_mm)
+            tall = d.diameter_mm / 2 if d.shape == "sphere" else d.height_mm
+            if tall > fab.bed.z_mm:
+                raise ValueError(f"fabrication.bed.z_mm: a {'hemisphere' if d.shape == 'sphere' else 'lens'} "
+                                 f"{tall:g} mm tall does not fit (horizontal cuts are not made; got {fab.bed.z_mm:g})")
         if isinstance(fab, LuneburgLayupSpec) and fab.edge == "taper":
             if d.shape != "sphere":
                 raise ValueError("fabrication.edge: taper is for the sphere (a cylinder's rings are already exact)")

@@ -1,0 +1,90 @@
+"""Fill mapping: the local lattice fill whose homogenized εr follows a lens law, clipped to what the
+printer can make, and the εr error where it is clipped.
+
+εr_eff(fill) comes from the shipped unit-cell table (:func:`antenna_cad.printed.homogenization.homogenized`);
+the printable fill range from the thinnest wall and the narrowest gap
+(:class:`antenna_cad.printed.lattice.Printable`). A fill below the range (law εr near 1, the outer
+shells of a Luneburg lens) is raised to the thinnest printable wall, one above it lowered to the
+narrowest gap: the lens there is denser or lighter than the law, and the table says by how much.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from antenna_cad.printed.homogenization import homogenized
+from antenna_cad.printed.lattice import Printable, fill_fraction, parameter_for
+
+
+@dataclass(frozen=True)
+class FillMap:
+    """Fill along the lens law's coordinate r (mm), sampled on ``r_mm``."""
+    lattice: str
+    eps_f: float
+    cell_mm: float
+    fill_range: tuple[float, float]
+    eps_range: tuple[float, float]         # εr_eff of the printable fill range
+    r_mm: np.ndarray
+    eps_law: np.ndarray
+    fill: np.ndarray                       # chosen (clipped) fill
+    eps_printed: np.ndarray                # εr_eff of the chosen fill
+    anisotropy: float                      # |εx − εy| of the table (0: isotropic lattice)
+
+    @property
+    def eps_error(self) -> np.ndarray:
+        return self.eps_printed - self.eps_law
+
+    def clipped_regions(self) -> list[dict]:
+        """Contiguous radius intervals where the fill is clipped: the law's εr there, the printed
+        εr, and the largest |εr error|."""
+        bad = np.abs(self.eps_error) > 1e-9
+        rows = []
+        i = 0
+        while i < len(bad):
+            if not bad[i]:
+                i += 1
+                continue
+            j = i
+            while j + 1 < len(bad) and bad[j + 1]:
+                j += 1
+            sl = slice(i, j + 1)
+            rows.append({"r_from_mm": float(self.r_mm[i]), "r_to_mm": float(self.r_mm[j]),
+                         "eps_law_min": float(self.eps_law[sl].min()), "eps_law_max": float(self.eps_law[sl].max()),
+                         "eps_printed": float(self.eps_printed[i]),
+                         "max_abs_eps_error": float(np.abs(self.eps_error[sl]).max()),
+                         "side": "below the thinnest wall" if self.fill[i] <= self.fill_range[0] + 1e-12
+                         else "above the narrowest gap"})
+            i = j + 1
+        return rows
+
+
+def fill_map(law: Callable[[np.ndarray], np.ndarray], r_max_mm: float, lattice: str, eps_f: float,
+             printable: Printable, samples: int = 401) -> FillMap:
+    """The fill that makes εr_eff(fill) = law(r) on 0 ≤ r ≤ ``r_max_mm``, clipped to the printable range."""
+    h = homogenized(lattice, eps_f)
+    lo, hi = printable.fill_range
+    r = np.linspace(0.0, r_max_mm, samples)
+    eps = np.asarray(law(r), float)
+    fill = np.clip(h.fill_for(eps), lo, hi)
+    return FillMap(lattice, eps_f, printable.cell_mm, (lo, hi), (float(h.eps_at(lo)), float(h.eps_at(hi))), r, eps,
+                   fill, h.eps_at(fill), float(h.anisotropy))
+
+
+def rod_width_mm(fmap: FillMap, r_mm) -> np.ndarray:
+    """Cubic lattice: the rod width of the clipped fill at radius ``r_mm`` (interpolated)."""
+    f = np.interp(r_mm, fmap.r_mm, fmap.fill)
+    return parameter_for("cubic", f) * fmap.cell_mm
+
+
+def fill_integral_mm3(fmap: FillMap, r_in_mm: float, shape: str, height_mm: float | None = None) -> float:
+    """Solid volume of the lattice ∫ fill dV over the inner body of radius ``r_in_mm`` (sphere: 4π∫f r² dr;
+    cylinder of ``height_mm``: 2πh∫f r dr), the analytic reference for the meshed lattice."""
+    r = np.linspace(0.0, r_in_mm, 2001)
+    w = rod_width_mm(fmap, r) / fmap.cell_mm
+    f = fill_fraction("cubic", w)
+    if shape == "sphere":
+        return float(4 * np.pi * np.trapezoid(f * r * r, r))
+    return float(2 * np.pi * height_mm * np.trapezoid(f * r, r))

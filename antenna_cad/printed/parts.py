@@ -1,0 +1,249 @@
+"""Printable parts of a lattice lens: the graded cubic lattice (:mod:`lattice_mesh`) trimmed to the
+lens body by manifold3d, its solid skin, registration pins, and the split to the printer bed.
+
+Frame: the printer's; z up from the bed. A sphere is printed as two identical hemispheres on their
+flat faces (the lattice grid is offset by half a cell so the equator is a cell-face plane and the
+hemisphere is its own mirror image; pins at 0°, 120°, 240° map onto themselves when the lower half
+is turned over). A cylinder (parallel-plate lens) is printed flat, its plates' faces on the bed.
+Parts larger than the bed are cut by vertical planes, pins across every cut.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from manifold3d import Manifold, Mesh, OpType
+
+from antenna_cad.printed.fill import FillMap, rod_width_mm
+from antenna_cad.printed.lattice_mesh import lattice_triangles, weld
+
+MAX_SEGMENTS = 256
+
+
+@dataclass(frozen=True)
+class Pins:
+    diameter_mm: float
+    length_mm: float
+    clearance_mm: float
+    wall_mm: float
+
+    @property
+    def hole_radius(self) -> float:
+        return (self.diameter_mm + self.clearance_mm) / 2
+
+    @property
+    def boss_radius(self) -> float:
+        return self.hole_radius + self.wall_mm
+
+    @property
+    def depth(self) -> float:
+        """Blind-hole depth on each side of a cut (half a pin and 0.5 mm to spare)."""
+        return self.length_mm / 2 + 0.5
+
+
+@dataclass(frozen=True)
+class PrintedPart:
+    label: str
+    role: str                   # "lens" or "pin"
+    count: int                  # copies to print
+    vertices: np.ndarray        # placed on the bed: bounding box from the origin
+    faces: np.ndarray
+
+    @property
+    def size_mm(self) -> tuple[float, float, float]:
+        ext = self.vertices.max(axis=0) - self.vertices.min(axis=0)
+        return float(ext[0]), float(ext[1]), float(ext[2])
+
+    @property
+    def volume_mm3(self) -> float:
+        return mesh_volume(self.vertices, self.faces)
+
+
+@dataclass(frozen=True)
+class PrintedLens:
+    parts: tuple[PrintedPart, ...]
+    cells: int                  # lattice cells (all copies)
+    lattice_triangles: int      # before trimming (all copies)
+    body_volume_mm3: float      # lattice + skin, before pins (all copies)
+    reference_volume_mm3: float  # ∫ fill dV + skin, analytic
+    pins: int                   # pins across all cuts
+    cuts: int                   # bed cuts (besides a sphere's equator)
+    unpinned_cuts: int          # cuts with no room for a pin boss (aligned by hand)
+
+
+def mesh_volume(vertices: np.ndarray, faces: np.ndarray) -> float:
+    t = vertices[faces]
+    return float(np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])).sum() / 6.0)
+
+
+def closed_and_oriented(faces: np.ndarray) -> bool:
+    """Every directed edge once and its reverse once: watertight, consistently oriented, 2-manifold edges."""
+    e = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]).astype(np.int64)
+    n = int(e.max()) + 1
+    fwd = e[:, 0] * n + e[:, 1]
+    rev = e[:, 1] * n + e[:, 0]
+    fwd_sorted = np.sort(fwd)
+    if np.any(fwd_sorted[1:] == fwd_sorted[:-1]):
+        return False
+    return bool(np.isin(rev, fwd_sorted, assume_unique=False).all())
+
+
+def segments(radius_mm: float, tolerance_mm: float) -> int:
+    """Facets around a circle of ``radius_mm`` for a chord deviation ≤ ``tolerance_mm``."""
+    n = math.pi / math.acos(max(1 - tolerance_mm / radius_mm, -1.0))
+    return int(min(MAX_SEGMENTS, max(16, 4 * math.ceil(n / 4))))
+
+
+def _cells(shape: str, r_in: float, height: float | None, cell: float) -> tuple[np.ndarray, np.ndarray]:
+    """Integer indices of the cells (centres (i, j, k + ½)·a, k ≥ 0) touching the inner body, and their
+    centres' radius of the law (sphere: |c|; cylinder: in the plane)."""
+    n = int(math.ceil(r_in / cell)) + 1
+    top = n if shape == "sphere" else int(math.ceil(height / cell))
+    g = np.arange(-n, n + 1)
+    i, j, k = np.meshgrid(g, g, np.arange(top), indexing="ij")
+    idx = np.stack([i, j, k], -1).reshape(-1, 3)
+    c = idx * cell + np.array([0.0, 0.0, cell / 2])
+    rad = np.linalg.norm(c if shape == "sphere" else c[:, :2], axis=1)
+    keep = rad < r_in + cell * (math.sqrt(3) / 2 if shape == "sphere" else math.sqrt(2) / 2)
+    return idx[keep], rad[keep]
+
+
+def _widths(fmap: FillMap, rad: np.ndarray, step: float, wall: float, gap: float) -> np.ndarray:
+    """Rod widths at the cell centres, rounded to ``step`` and kept printable."""
+    w = rod_width_mm(fmap, rad)
+    lo, hi = math.ceil(wall / step) * step, math.floor((fmap.cell_mm - gap) / step) * step
+    return np.clip(np.round(w / step) * step, lo, hi)
+
+
+def _to_manifold(vertices: np.ndarray, faces: np.ndarray) -> Manifold:
+    m = Manifold(Mesh(vert_properties=np.ascontiguousarray(vertices, np.float32),
+                      tri_verts=np.ascontiguousarray(faces, np.uint32)))
+    if m.status().name != "NoError":
+        raise RuntimeError(f"lattice mesh rejected by manifold3d: {m.status().name}")
+    return m
+
+
+def _arrays(m: Manifold) -> tuple[np.ndarray, np.ndarray]:
+    mesh = m.to_mesh()
+    return np.asarray(mesh.vert_properties[:, :3], float), np.asarray(mesh.tri_verts, np.int64)
+
+
+def _cylinder_along(axis: int, radius: float, z0: float, z1: float, n: int) -> Manifold:
+    """A cylinder of ``radius`` from z0 to z1 along ``axis`` (0 x, 2 z), through the origin."""
+    c = Manifold.cylinder(z1 - z0, radius, radius, n).translate([0.0, 0.0, z0])
+    return c if axis == 2 else c.rotate([0.0, 90.0, 0.0])
+
+
+def _bed_planes(extent: float, bed: float, lo: float) -> list[float]:
+    count = math.ceil(extent / bed - 1e-9)
+    return [lo + extent * q / count for q in range(1, count)]
+
+
+def _vertical_pin_points(axis: int, c: float, planes: dict, r_in: float, zmax: float, pins: Pins,
+                         shape: str) -> list[tuple[float, float]]:
+    """Two pin positions (along the other horizontal axis, z) on the cut plane x_axis = c, inside the
+    inner body and clear of the other cuts: the farthest-apart pair of a grid of candidates."""
+    other = 1 - axis
+    rb = pins.boss_radius
+    grid = np.arange(-r_in, r_in, rb)
+    zs = np.arange(rb + 1, zmax - rb, rb)
+    cand = []
+    for u in grid:
+        if any(abs(u - q) < rb + pins.depth for q in planes[other]):
+            continue
+        for z in zs:
+            rho = math.sqrt(c * c + u * u + (z * z if shape == "sphere" else 0.0))
+            if rho < r_in - rb - 1:
+                cand.append((u, z))
+    if len(cand) < 2:
+        return cand
+    p = np.array(cand)
+    d = np.linalg.norm(p[:, None] - p[None], axis=2)
+    a, b = np.unravel_index(np.argmax(d), d.shape)
+    return [tuple(p[a]), tuple(p[b])]
+
+
+def _pin_solids(shape: str, pins: Pins, planes: dict, r_in: float, height: float, copies: int,
+                tolerance_mm: float) -> tuple[list, list, int, int]:
+    """(bosses, holes, pins to print, cuts without room for a pin): a sphere's three equator pins at
+    0°, 120°, 240° against the skin, and two across every vertical bed cut."""
+    bosses, holes = [], []
+    count = unpinned = 0
+    pn = segments(pins.boss_radius, tolerance_mm)
+    if shape == "sphere":
+        rho = r_in - pins.boss_radius
+        for q in range(3):
+            t = 2 * math.pi * q / 3
+            at = [rho * math.cos(t), rho * math.sin(t), 0.0]
+            bosses.append(_cylinder_along(2, pins.boss_radius, 0.0, pins.depth + pins.wall_mm, pn).translate(at))
+            holes.append(_cylinder_along(2, pins.hole_radius, -1.0, pins.depth, pn).translate(at))
+        count += 3
+    span = pins.depth + pins.wall_mm
+    for axis in (0, 1):
+        rot = [0.0, 0.0, 0.0] if axis == 0 else [0.0, 0.0, 90.0]
+        for c in planes[axis]:
+            points = _vertical_pin_points(axis, c, planes, r_in, height, pins, shape)
+            unpinned += not points
+            for u, z in points:
+                at = [0.0, 0.0, z]
+                at[axis], at[1 - axis] = c, u
+                bosses.append(_cylinder_along(0, pins.boss_radius, -span, span, pn).rotate(rot).translate(at))
+                holes.append(_cylinder_along(0, pins.hole_radius, -pins.depth, pins.depth, pn).rotate(rot).translate(at))
+                count += copies
+    return bosses, holes, count, unpinned
+
+
+def build_printed_lens(shape: str, radius_mm: float, height_mm: float | None, fmap: FillMap, *, skin_mm: float,
+                       wall_mm: float, gap_mm: float, width_step_mm: float, bed_mm: tuple[float, float, float],
+                       pins: Pins | None, tolerance_mm: float, reference_volume_mm3: float) -> PrintedLens:
+    """The printable parts of a sphere (two hemispheres) or a parallel-plate cylinder of ``radius_mm``."""
+    a = fmap.cell_mm
+    r_in = radius_mm - skin_mm
+    height = radius_mm if shape == "sphere" else height_mm
+    copies = 2 if shape == "sphere" else 1
+    idx, rad = _cells(shape, r_in, height_mm, a)
+    w = _widths(fmap, rad, width_step_mm, wall_mm, gap_mm)
+    v, f = weld(lattice_triangles(idx, w, a))
+    v = v + np.array([0.0, 0.0, a / 2])
+    body = _to_manifold(v, f)
+    n = segments(radius_mm, tolerance_mm)
+    keep = Manifold.sphere(r_in + skin_mm / 2, n) if shape == "sphere" else \
+        _cylinder_along(2, r_in + skin_mm / 2, 0.0, height, n)
+    body = body ^ keep
+    if skin_mm > 0:
+        if shape == "sphere":
+            shell = (Manifold.sphere(radius_mm, n) - Manifold.sphere(r_in, n)).trim_by_plane([0.0, 0.0, 1.0], 0.0)
+        else:
+            shell = _cylinder_along(2, radius_mm, 0.0, height, n) - _cylinder_along(2, r_in, -1.0, height + 1, n)
+        body = body + shell
+    body_volume = body.volume() * copies
+    planes = {0: _bed_planes(2 * radius_mm, bed_mm[0], -radius_mm), 1: _bed_planes(2 * radius_mm, bed_mm[1], -radius_mm)}
+    if height > bed_mm[2]:
+        raise ValueError(f"fabrication.bed.z_mm: a part {height:.1f} mm tall does not fit the bed "
+                         f"({bed_mm[2]:g} mm); horizontal cuts are not made")
+    pin_count = unpinned = 0
+    if pins is not None:
+        bosses, holes, pin_count, unpinned = _pin_solids(shape, pins, planes, r_in, height, copies, tolerance_mm)
+        if bosses:
+            inner = Manifold.sphere(radius_mm, n) if shape == "sphere" else _cylinder_along(2, radius_mm, 0, height, n)
+            body = (body + (Manifold.batch_boolean(bosses, OpType.Add) ^ inner)) - Manifold.batch_boolean(holes, OpType.Add)
+    pieces = [body]
+    for axis in (0, 1):
+        normal = [0.0, 0.0, 0.0]
+        normal[axis] = 1.0
+        for c in planes[axis]:
+            pieces = [p for piece in pieces for p in piece.split_by_plane(normal, c) if not p.is_empty()]
+    parts = []
+    for q, piece in enumerate(sorted(pieces, key=lambda m: tuple(np.round(m.bounding_box(), 6)))):
+        pv, pf = _arrays(piece)
+        label = f"lens-{q + 1:02d}" if len(pieces) > 1 or shape == "sphere" else "lens"
+        parts.append(PrintedPart(label, "lens", copies, pv - pv.min(axis=0), pf))
+    if pin_count:
+        pv, pf = _arrays(_cylinder_along(2, pins.diameter_mm / 2, 0.0, pins.length_mm,
+                                         segments(pins.diameter_mm / 2, tolerance_mm)))
+        parts.append(PrintedPart("pin", "pin", pin_count, pv - pv.min(axis=0), pf))
+    return PrintedLens(tuple(parts), len(idx) * copies, len(f) * copies, body_volume, reference_volume_mm3,
+                       pin_count, len(planes[0]) + len(planes[1]), unpinned)
+

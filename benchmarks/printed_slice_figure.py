@@ -2,7 +2,7 @@
 another diameter) built with its slicer check, its 3MF sliced by PrusaSlicer, the G-code's extrusion
 moves drawn as one layer (the lattice's rods cut by the layer) and a stack of layers.
 
-    PYTHONPATH=. python benchmarks/printed_slice_figure.py [--diameter 40] [-o docs/guide/img/printed-slice.png]
+    PYTHONPATH=. python benchmarks/printed_slice_figure.py [--diameter 40] [-o docs/images/printed-slice.png]
 """
 
 from __future__ import annotations
@@ -28,7 +28,7 @@ RECIPE = ROOT / "recipes" / "luneburg-printed-120mm-pla.yaml"
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--diameter", type=float, default=40.0)
-    ap.add_argument("-o", "--output", default=str(ROOT / "docs" / "guide" / "img" / "printed-slice.png"))
+    ap.add_argument("-o", "--output", default=str(ROOT / "docs" / "images" / "printed-slice.png"))
     args = ap.parse_args(argv)
     data = load_spec(RECIPE).model_dump(mode="json")
     data["design"]["diameter_mm"] = args.diameter

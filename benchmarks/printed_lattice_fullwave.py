@@ -11,7 +11,7 @@ Set-up: unit length λ0; an x-polarized point dipole on the axis just outside th
 The directivity on axis from the aperture plane z = R + ``GAP`` λ: U = k²/(32π²η)·|∫(Ex + η·Hy) dA|²
 (the Huygens aperture integral), D = 4πU/P with P the flux out of a box around lens and feed.
 
-    PYTHONPATH=. python benchmarks/printed_lattice_fullwave.py [--diameter-lambda 3] [--resolution 40]
+    PYTHONPATH=. python benchmarks/printed_lattice_fullwave.py [--diameter-lambda 3] [--resolution 24] [-o out.json]
 
 The driver (this file, the project's Python) computes the voxel ε of both models, writes them to an npz,
 runs this same file under the interpreter that has Meep (``--meep in.npz out.npz``) once per model, and
@@ -93,9 +93,10 @@ def _subpoints(x: float, centers: np.ndarray, offs: np.ndarray) -> np.ndarray:
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--diameter-lambda", type=float, default=3.0)
-    ap.add_argument("--resolution", type=int, default=40, help="px per λ0")
+    ap.add_argument("--resolution", type=int, default=24, help="px per λ0")
     ap.add_argument("--python", default=os.environ.get("ANTENNA_CAD_MEEP_PYTHON", "/usr/bin/python3"))
     ap.add_argument("--only", choices=("lattice", "twin"))
+    ap.add_argument("-o", "--output", default=str(RESULTS))
     args = ap.parse_args(argv)
     lam = C_MM_GHZ / F_GHZ
     radius = args.diameter_lambda * lam / 2
@@ -125,7 +126,7 @@ def main(argv: list[str] | None = None) -> int:
         a, b = out["runs"]["lattice"], out["runs"]["twin"]
         out["gain_error_db"] = a["directivity_dbi"] - b["directivity_dbi"]
         out["phase_rms_deg"] = _phase_rms(a, b, radius / lam)
-    RESULTS.write_text(json.dumps(out, indent=1) + "\n")
+    Path(args.output).write_text(json.dumps(out, indent=1) + "\n")
     brief = {k: v for k, v in out.items() if k != "runs"} | {
         k: {kk: vv for kk, vv in v.items() if not isinstance(vv, list)} for k, v in out["runs"].items()}
     print(json.dumps(brief, indent=1))

@@ -9,7 +9,8 @@ Set-up: unit length λ0; an x-polarized point dipole on the axis just outside th
 ``SUB``³ sub-samples of the geometry (rods or twin), given to Meep as a MaterialGrid on its own pixels
 (no further averaging): a rod narrower than a pixel is a partly filled voxel, not lost. Lossless PLA.
 The directivity on axis from the aperture plane z = R + ``GAP`` λ: U = k²/(32π²η)·|∫(Ex + η·Hy) dA|²
-(the Huygens aperture integral), D = 4πU/P with P the flux out of a box around lens and feed.
+(the Huygens aperture integral), D = 4πU/P with P the flux out of a box around lens and feed (Meep's
+flux is ∫Re(E*×H), twice the mean power: P = flux/2).
 
     PYTHONPATH=. python benchmarks/printed_lattice_fullwave.py [--diameter-lambda 3] [--resolution 24] [-o out.json]
 
@@ -123,9 +124,7 @@ def main(argv: list[str] | None = None) -> int:
                                  "amp_x": r["amp_x"].tolist(), "amp_y": r["amp_y"].tolist(),
                                  "axis_lambda": r["axis"].tolist()}
     if len(out["runs"]) == 2:
-        a, b = out["runs"]["lattice"], out["runs"]["twin"]
-        out["gain_error_db"] = a["directivity_dbi"] - b["directivity_dbi"]
-        out["phase_rms_deg"] = _phase_rms(a, b, radius / lam)
+        out |= compare(out["runs"]["lattice"], out["runs"]["twin"], radius / lam)
     Path(args.output).write_text(json.dumps(out, indent=1) + "\n")
     brief = {k: v for k, v in out.items() if k != "runs"} | {
         k: {kk: vv for kk, vv in v.items() if not isinstance(vv, list)} for k, v in out["runs"].items()}
@@ -133,18 +132,23 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
-def _phase_rms(a: dict, b: dict, radius_lambda: float) -> float:
-    """RMS over the lens aperture (|ρ| ≤ 0.8 R, both cuts) of the lattice's phase minus the twin's, after
-    removing the mean difference."""
-    d = []
-    for cut in ("x", "y"):
-        axis = np.asarray(a["axis_lambda"])
-        keep = np.abs(axis) <= 0.8 * radius_lambda
-        diff = np.angle(np.exp(1j * np.radians(np.asarray(a[f"phase_deg_{cut}"]) - np.asarray(b[f"phase_deg_{cut}"]))))
-        d.append(diff[keep])
-    d = np.concatenate(d)
-    d = np.angle(np.exp(1j * (d - np.angle(np.mean(np.exp(1j * d))))))
-    return float(np.degrees(np.sqrt(np.mean(d**2))))
+def compare(a: dict, b: dict, radius_lambda: float) -> dict:
+    """Lattice ``a`` against twin ``b``: directivity difference, and over the lens aperture (|ρ| ≤ 0.8 R,
+    both cuts) the mean phase difference and the RMS of the difference about that mean."""
+    keep = np.abs(np.asarray(a["axis_lambda"])) <= 0.8 * radius_lambda
+    phase = {k: np.radians(np.concatenate([np.asarray(run[f"phase_deg_{c}"])[keep] for c in "xy"]))
+             for k, run in (("lattice", a), ("twin", b))}
+    mean, rms = _spread(phase["lattice"] - phase["twin"])
+    return {"gain_error_db": a["directivity_dbi"] - b["directivity_dbi"], "phase_mean_deg": mean, "phase_rms_deg": rms,
+            "aperture_phase_rms_lattice_deg": _spread(phase["lattice"])[1],
+            "aperture_phase_rms_twin_deg": _spread(phase["twin"])[1]}
+
+
+def _spread(phase: np.ndarray) -> tuple[float, float]:
+    """Circular mean of the phases (deg) and their RMS about it (deg)."""
+    z = np.exp(1j * phase)
+    mean = np.angle(np.mean(z))
+    return float(np.degrees(mean)), float(np.degrees(np.sqrt(np.mean(np.angle(z * np.exp(-1j * mean)) ** 2))))
 
 
 # ---------------------------------------------------------------- Meep side (Debian's python3-meep)
@@ -189,7 +193,7 @@ def meep_run(deck_path: str, out_path: str) -> None:
     u = k**2 / (32 * math.pi**2) * abs(np.sum(ex + hy) * da) ** 2
     axis = np.linspace(-span / 2, span / 2, ex.shape[0])
     mid_x, mid_y = ex.shape[0] // 2, ex.shape[1] // 2
-    np.savez(out_path, directivity_dbi=10 * math.log10(4 * math.pi * u / p), voxels=int(np.prod(
+    np.savez(out_path, directivity_dbi=10 * math.log10(4 * math.pi * u / (p / 2)), voxels=int(np.prod(
         [int(round(c * res)) for c in (cell.x, cell.y, cell.z)])), steps=int(round(sim.meep_time() * res * 2)),
         phase_x=np.degrees(np.angle(ex[:, mid_y])), phase_y=np.degrees(np.angle(ex[mid_x, :])),
         amp_x=np.abs(ex[:, mid_y]), amp_y=np.abs(ex[mid_x, :]), axis=axis, shape=np.array(ex.shape))

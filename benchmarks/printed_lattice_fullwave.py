@@ -1,6 +1,6 @@
 """Homogenization error of a real printed lattice: a direct 3-D Meep run of a small printed Luneburg sphere
-(classic law, PLA, cubic lattice of the 120 mm recipe's cell, wall and skin) with its rods as they are
-printed, against its homogenized twin (the unit-cell table's εr_eff of each cell's fill, on a continuous
+(classic law, PLA, cubic lattice of the 120 mm recipe's cell, wall and skin; Ø3 λ by default, the
+printed-lenses guide gives the cost) with its rods as printed, against its homogenized twin (the unit-cell table's εr_eff of each cell's fill, on a continuous
 εr(r), the skin solid), same grid, same feed. Reports the forward directivity (from the aperture plane's
 E and H, over the power the feed radiates) and the aperture phase across the lens.
 

@@ -30,6 +30,7 @@ from antenna_cad.verification import Table, Verification
 VOLUME_TOLERANCE = 0.02     # meshed lattice + skin vs ∫fill dV + skin: cell-centre sampling and facets
 PROFILE_SHELLS = 48         # shells of the printed εr(r) seen by the GO, Mie and full-wave checks
 WIDTH_STEP_NOZZLES = 1 / 8  # rod widths rounded to an eighth of the nozzle (what a slicer can place)
+SLICER_FACTOR = 1.25        # slicer's filament vs our volume: extrusion overlap, perimeter/infill seams
 
 
 @dataclass(frozen=True)
@@ -128,7 +129,10 @@ def fabricate_printed(spec, design) -> PrintedFabPlan:
                "printed_eps_min": fmap.eps_range[0], "printed_eps_max": fmap.eps_range[1],
                "printed_max_eps_error": float(abs(fmap.eps_error).max()),
                "printed_volume_error": lens.body_volume_mm3 / lens.reference_volume_mm3 - 1}
-    checks = too_many + _checks(spec, fab, m, fmap, lens, closed_and_oriented)
+    slice_check, slice_figures = _slicer_check(fab, files[f"printed/{spec.name}.3mf"],
+                                               sum(p.volume_mm3 for p in lens.parts), area)
+    figures |= slice_figures
+    checks = too_many + _checks(spec, fab, m, fmap, lens, closed_and_oriented) + [slice_check]
     return PrintedFabPlan((), {}, {}, (), tuple(rows), {m.name: mass_kg, "all": mass_kg}, {}, 0.0, {}, {},
                           files=files, lens=lens, fill=fmap, material=m, check_list=tuple(checks), figures=figures)
 
@@ -167,6 +171,31 @@ def _checks(spec, fab, m, fmap: FillMap, lens, closed) -> list[Check]:
                      f"{sum(p.count for p in lens.parts)} parts within the {bed[0]:g}×{bed[1]:g}×{bed[2]:g} mm bed "
                      f"({lens.cuts} bed cuts, {lens.pins} registration pins)"))
     return out
+
+
+def _slicer_check(fab: PrintedSpec, three_mf: bytes, plate_mm3: float, area_mm2: float) -> tuple[Check, dict]:
+    """The 3MF sliced by PrusaSlicer (each part once, one plate), its filament and time beside ours for
+    the same plate; skip when not asked for or no slicer is on the PATH."""
+    from antenna_cad.printed.slicer import EXECUTABLE, SlicerError, find_slicer, slice_3mf
+    ours_h = plate_mm3 / fab.flow_mm3_s / 3600
+    if not fab.slicer_check or find_slicer() is None:
+        why = "off (fabrication.slicer_check: false)" if not fab.slicer_check else f"{EXECUTABLE} not on the PATH"
+        return Check("printed_slicer", "skip", 0.0, SLICER_FACTOR, "×", f"slicer check not run: {why}"), {}
+    try:
+        s = slice_3mf(three_mf, nozzle_mm=fab.nozzle_mm, layer_height_mm=fab.layer_height_mm,
+                      filament_diameter_mm=fab.filament_diameter_mm)
+    except SlicerError as err:
+        return Check("printed_slicer", "fail", 0.0, SLICER_FACTOR, "×", f"the 3MF does not slice: {err}"), {}
+    ratio = s.filament_cm3 * 1000 / plate_mm3
+    ok = 1 / SLICER_FACTOR <= ratio <= SLICER_FACTOR
+    figures = {"printed_slicer_layers": float(s.layers), "printed_slicer_filament_m": s.filament_mm / 1000,
+               "printed_slicer_volume_cm3": s.filament_cm3, "printed_slicer_time_h": s.time_s / 3600,
+               "printed_plate_filament_m": plate_mm3 / area_mm2 / 1000, "printed_plate_time_h": ours_h}
+    return Check("printed_slicer", "pass" if ok else "warn", ratio, SLICER_FACTOR, "×",
+                 f"{s.slicer} slices the 3MF (each part once, solid, {s.layers} layers): filament "
+                 f"{s.filament_cm3:.1f} cm³ / {s.filament_mm / 1000:.2f} m, {s.time_s / 3600:.2f} h; ours "
+                 f"{plate_mm3 / 1000:.1f} cm³ / {plate_mm3 / area_mm2 / 1000:.2f} m, {ours_h:.2f} h at "
+                 f"{fab.flow_mm3_s:g} mm³/s (filament ratio {ratio:.3f}, expected within ×{SLICER_FACTOR:g})"), figures
 
 
 def _fill_csv(fmap: FillMap) -> str:

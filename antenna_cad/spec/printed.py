@@ -51,6 +51,9 @@ class PrintedSpec(StrictModel):
     registration: PinsSpec | None = Field(PinsSpec(), description="pins across every cut; none: align by hand")
     filament_diameter_mm: float = Field(1.75, ge=1, le=3)
     flow_mm3_s: float = Field(8.0, ge=0.5, le=100, description="mean volumetric flow, for the print-time estimate")
+    slicer_check: bool = Field(False, description="slice the 3MF with PrusaSlicer (prusa-slicer on the PATH) and "
+                               "report its print time and filament beside the build's estimate; minutes for a "
+                               "large lens")
 
     @property
     def wall_mm(self) -> float:

@@ -44,13 +44,21 @@ def thickness_added_deg(tr: Trace2D, keep: np.ndarray, faces: int, z_front_mm: f
     return 360.0 / wavelength_mm * added[keep]
 
 
+def _weights(y_mm: np.ndarray) -> np.ndarray:
+    return np.abs(y_mm) + 1e-12 * (1.0 + np.abs(y_mm).max())
+
+
+def residual_deg(y_mm: np.ndarray, added_deg: np.ndarray) -> np.ndarray:
+    """An added phase on rays at ``y_mm`` (across the disc) with its area-weighted tilt and piston removed."""
+    w = _weights(y_mm)
+    p = added_deg - np.polyval(np.polyfit(y_mm, added_deg, 1, w=np.sqrt(w)), y_mm)
+    return p - np.average(p, weights=w)
+
+
 def added_figures(y_mm: np.ndarray, added_deg: np.ndarray) -> tuple[float, float]:
     """(p-p, area-weighted RMS) of an added phase over the disc, its tilt and piston removed (weight |y|)."""
-    w = np.abs(y_mm) + 1e-12
-    tilt = np.polyfit(y_mm, added_deg, 1, w=np.sqrt(w))
-    p = added_deg - np.polyval(tilt, y_mm)
-    p = p - np.average(p, weights=w)
-    return float(p.max() - p.min()), float(np.sqrt(np.average(p * p, weights=w)))
+    p = residual_deg(y_mm, added_deg)
+    return float(p.max() - p.min()), float(np.sqrt(np.average(p * p, weights=_weights(y_mm))))
 
 
 def aperture_efficiency(r_mm: np.ndarray, field: np.ndarray) -> float:

@@ -382,9 +382,10 @@ def verify_lens(lens: Lens, feeds: tuple[tuple[str, float, float], ...], toleran
     if study:
         tables.append(_candidates_table(study, layup))
     own = (zone.p2p_deg, zone.rms_deg) if layup is not None else None
+    own_error = FAST_ERROR_DEG["own_phase_p2p_deg"] if layup is not None and zone_model == "fast model" else 0.0
     added_fab = (lambda y: fw.model.added("fabricated", y)) if "fabricated" in fw.model.added_deg else None
     sens_table, sens_plot, sens_figures, sens_check = _sensitivity(lens, section, tolerances, layup, own, added_fab,
-                                                                   model)
+                                                                   model, own_error)
     figures |= sens_figures
     return Verification(figures, tuple(checks + [sens_check]), tuple(tables + [sens_table]),
                         tuple(plots + [_fan_plot(lens, as_built, section), sens_plot]) + fw.plots, fw.files), fw
@@ -436,13 +437,14 @@ def _candidates_table(study: tuple[Candidate, ...], layup: LayupPlan | None) -> 
 
 def _sensitivity(lens: Lens, section: Slabs | Taper | None, tol: TolerancesSpec, layup: LayupPlan | None,
                  own: tuple[float, float] | None = None, added_fab: Callable | None = None,
-                 model: Stats | None = None):
+                 model: Stats | None = None, own_error_deg: float = 0.0):
     """The tolerance budget: εr spread, sheet (or lens) thickness and feed position, each at ± its
     tolerance, as what it adds to the smooth lens (εr and thickness to first order along its rays, the
     feed by retracing it: :mod:`antenna_cad.quietzone.tolerance`), root-sum-squared with the stack's own
     figure ``own`` (its quiet-zone p-p and RMS; the smooth lens's own when None); the gain loss from the
     aperture efficiency of the ideal field against the fabricated one (``added_fab``: its added phase at
-    y) with every term at its worse end. Kept for comparison: the old figures, GO through the steps with
+    y) with every term at its worse end; "uncertain — run full-wave" when ``own_error_deg`` (the error of
+    the model that gave ``own``) cannot decide the budget. Kept for comparison: the old figures, GO through the steps with
     the single-plane ``model`` as nominal and Ruze's loss (``tolerance_single_plane_ruze_*``)."""
     t_ref = layup.sheet_thickness_mm if layup is not None else float(lens.back_z(0.0) - lens.front_z(0.0))
     z_front = layup.sheets[0].z_min_mm if layup is not None else float(lens.front_z(0.0))
@@ -500,8 +502,9 @@ def _sensitivity(lens: Lens, section: Slabs | Taper | None, tol: TolerancesSpec,
                "tolerance_dominant_added_rms_deg": added[dominant][1],
                "tolerance_single_plane_ruze_rss_p2p_deg": old_p2p, "tolerance_single_plane_ruze_rss_rms_deg": old_rms,
                "tolerance_single_plane_ruze_gain_loss_db": ruze_loss_db(old_rms)}
-    check = Check("tolerance_budget", "warn" if p2p > lens.budget_deg else "pass", p2p, lens.budget_deg, "deg",
-                  f"as built with every tolerance (the stack's own {own[0]:.1f}° p-p ⊕ each tolerance's change of the "
+    unsure = undecided(p2p, lens.budget_deg, own_error_deg)
+    check = Check("tolerance_budget", "warn" if p2p > lens.budget_deg or unsure else "pass", p2p, lens.budget_deg,
+                  "deg", (f"{UNCERTAIN}: " if unsure else "") + f"as built with every tolerance (the stack's own {own[0]:.1f}° p-p ⊕ each tolerance's change of the "
                   f"smooth lens, RSS): {p2p:.1f}° p-p, {rms:.1f}° RMS vs budget {lens.budget_deg:g}°; dominant: "
                   f"{dominant} (+{added[dominant][1]:.2f}° RMS); gain loss {loss:.3f} dB (aperture efficiency, every "
                   f"tolerance at its worse end); the old GO-through-the-steps figure {old_p2p:.1f}° p-p")

@@ -232,3 +232,12 @@ def test_build_with_an_unusable_scheduler_says_so_in_one_line(address, message, 
     done = CliRunner().invoke(app, ["build", "xps-collimator-0.5m", "-o", str(tmp_path / "out"), "--scheduler", address])
     assert done.exit_code == 2 and message in done.output and "Traceback" not in done.output
     assert not (tmp_path / "out").exists()
+
+
+def test_a_run_that_fails_on_the_cluster_is_one_line_naming_the_scheduler(fullwave_cache):
+    from antenna_cad.sweep.execute import connect
+    from antenna_cad.synthesis.checks import DesignError
+    with connect(None, workers=1) as client, solver.on_cluster(client):
+        with pytest.raises(DesignError, match=r"^--scheduler: a full-wave run failed on the cluster "
+                                              r"\(FullWaveError: Meep runner failed \(exit 1\)"):
+            solver.run_decks([_deck()], "/usr/bin/false", 1, budget.Budget(60.0))

@@ -37,6 +37,7 @@ import numpy as np
 
 from antenna_cad.fullwave import budget, runner
 from antenna_cad.fullwave.deck import make_deck
+from antenna_cad.synthesis.checks import DesignError
 
 RUNNER = Path(runner.__file__)
 MISSING = "Meep not found, install python3-meep"
@@ -180,7 +181,12 @@ def _run_on_cluster(client, decks: list[dict], keys: list[str], pending: list[in
             for i, fut in list(futures.items()):
                 if fut.done():
                     del futures[i]
-                    data, wall_s = fut.result()
+                    try:
+                        data, wall_s = fut.result()
+                    except Exception as exc:     # noqa: BLE001 — anything from the cluster: one line
+                        raise DesignError("--scheduler", f"a full-wave run failed on the cluster ({type(exc).__name__}: "
+                                          f"{' '.join(str(exc).split())[:160]}); the scheduler and its workers need "
+                                          "this antenna_cad and Meep") from None
                     done[keys[i]] = _kept(data, keys[i], decks[i], wall_s, cache)
             within.heartbeat(f"{what}s on the cluster: {len(done)} of {len(pending)} finished")
             time.sleep(POLL_S)

@@ -184,9 +184,9 @@ def _run_on_cluster(client, decks: list[dict], keys: list[str], pending: list[in
                     try:
                         data, wall_s = fut.result()
                     except Exception as exc:     # noqa: BLE001 — anything from the cluster: one line
-                        raise DesignError("--scheduler", f"a full-wave run failed on the cluster ({type(exc).__name__}: "
-                                          f"{' '.join(str(exc).split())[:160]}); the scheduler and its workers need "
-                                          "this antenna_cad and Meep") from None
+                        why = f"{type(exc).__name__}: {' '.join(str(exc).split())[:160]}"
+                        raise DesignError("--scheduler", f"a full-wave run failed on the cluster ({why}); the "
+                                          "scheduler and its workers need this antenna_cad and Meep") from None
                     done[keys[i]] = _kept(data, keys[i], decks[i], wall_s, cache)
             within.heartbeat(f"{what}s on the cluster: {len(done)} of {len(pending)} finished")
             time.sleep(POLL_S)

@@ -444,8 +444,8 @@ def _sensitivity(lens: Lens, section: Slabs | Taper | None, tol: TolerancesSpec,
     figure ``own`` (its quiet-zone p-p and RMS; the smooth lens's own when None); the gain loss from the
     aperture efficiency of the ideal field against the fabricated one (``added_fab``: its added phase at
     y) with every term at its worse end; "uncertain — run full-wave" when ``own_error_deg`` (the error of
-    the model that gave ``own``) cannot decide the budget. Kept for comparison: the old figures, GO through the steps with
-    the single-plane ``model`` as nominal and Ruze's loss (``tolerance_single_plane_ruze_*``)."""
+    the model that gave ``own``) cannot decide the budget. Kept for comparison: the old figures, GO through
+    the steps with the single-plane ``model`` as nominal and Ruze's loss (``tolerance_single_plane_ruze_*``)."""
     t_ref = layup.sheet_thickness_mm if layup is not None else float(lens.back_z(0.0) - lens.front_z(0.0))
     z_front = layup.sheets[0].z_min_mm if layup is not None else float(lens.front_z(0.0))
     z0, y0 = lens.feed
@@ -504,10 +504,10 @@ def _sensitivity(lens: Lens, section: Slabs | Taper | None, tol: TolerancesSpec,
                "tolerance_single_plane_ruze_gain_loss_db": ruze_loss_db(old_rms)}
     unsure = undecided(p2p, lens.budget_deg, own_error_deg)
     check = Check("tolerance_budget", "warn" if p2p > lens.budget_deg or unsure else "pass", p2p, lens.budget_deg,
-                  "deg", (f"{UNCERTAIN}: " if unsure else "") + f"as built with every tolerance (the stack's own {own[0]:.1f}° p-p ⊕ each tolerance's change of the "
-                  f"smooth lens, RSS): {p2p:.1f}° p-p, {rms:.1f}° RMS vs budget {lens.budget_deg:g}°; dominant: "
-                  f"{dominant} (+{added[dominant][1]:.2f}° RMS); gain loss {loss:.3f} dB (aperture efficiency, every "
-                  f"tolerance at its worse end); the old GO-through-the-steps figure {old_p2p:.1f}° p-p")
+                  "deg", (f"{UNCERTAIN}: " if unsure else "") + "as built with every tolerance (the stack's own "
+                  f"{own[0]:.1f}° p-p ⊕ each tolerance's change of the smooth lens, RSS): {p2p:.1f}° p-p, "
+                  f"{rms:.1f}° RMS vs budget {lens.budget_deg:g}°; dominant: {dominant} (+{added[dominant][1]:.2f}° "
+                  f"RMS); gain loss {loss:.3f} dB (aperture efficiency, every tolerance at its worse end); the old GO-through-the-steps figure {old_p2p:.1f}° p-p")
     table = Table("sensitivity", "Phase error each build tolerance adds (nominal feed)",
                   ("tolerance", "deviation", "added p-p deg", "added RMS deg", "old: GO through the steps p-p deg",
                    "old: GO RMS deg"),

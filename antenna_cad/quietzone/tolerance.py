@@ -8,8 +8,8 @@ smooth changes of the lens, so each is taken to first order along the rays of th
   lens and Δn = √(εr + δ) − √εr (≈ δ/2n);
 * thickness (every sheet, or the lens, thicker by a factor 1 + ε about the stack's front): each face
   moves by δz = ε·(z − z_front) where the ray crosses it, and the path changes by
-  δz·(n₁·d₁z − n₂·d₂z) (the index and direction before and after the face; n₁d₁ − n₂d₂ is normal to the
-  face by Snell's law, so only the normal part of the move counts).
+  δz·(n₁·d₁z − n₂·d₂z) (the index and direction before and after the face; n₁d₁ − n₂d₂ is normal
+  to the face by Snell's law, so only the normal part of the move counts).
 
 An added phase is judged as the quiet-zone figures are: over the disc (weight |y|, the revolved area),
 with its tilt and piston removed, peak-to-peak and area-weighted RMS. The gain follows the aperture

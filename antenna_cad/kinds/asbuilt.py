@@ -507,7 +507,8 @@ def _sensitivity(lens: Lens, section: Slabs | Taper | None, tol: TolerancesSpec,
                   "deg", (f"{UNCERTAIN}: " if unsure else "") + "as built with every tolerance (the stack's own "
                   f"{own[0]:.1f}° p-p ⊕ each tolerance's change of the smooth lens, RSS): {p2p:.1f}° p-p, "
                   f"{rms:.1f}° RMS vs budget {lens.budget_deg:g}°; dominant: {dominant} (+{added[dominant][1]:.2f}° "
-                  f"RMS); gain loss {loss:.3f} dB (aperture efficiency, every tolerance at its worse end); the old GO-through-the-steps figure {old_p2p:.1f}° p-p")
+                  f"RMS); gain loss {loss:.3f} dB (aperture efficiency, every tolerance at its worse end); the old "
+                  f"GO-through-the-steps figure {old_p2p:.1f}° p-p")
     table = Table("sensitivity", "Phase error each build tolerance adds (nominal feed)",
                   ("tolerance", "deviation", "added p-p deg", "added RMS deg", "old: GO through the steps p-p deg",
                    "old: GO RMS deg"),

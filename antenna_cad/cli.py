@@ -1,7 +1,9 @@
 """``make-lens``: thin Typer front end over :mod:`antenna_cad.api` (no logic here).
 
     make-lens SPEC [-o OUT] [-q|-v]  build everything into OUT/<name>/ (default exports/)
-    make-lens build SPEC [-o OUT]    the same; options may come before or after SPEC
+    make-lens build SPEC [-o OUT] [--scheduler tcp://HOST:PORT]
+                                     the same; options may come before or after SPEC; the
+                                     full-wave runs on the dask scheduler's workers
     make-lens validate SPEC          every rule a build applies (the solid model in memory); writes nothing
     make-lens validate --fast SPEC   the rules before CAD only, in about a second
     make-lens schema [-o FILE]       the JSON Schema of specs (stdout unless -o)
@@ -20,6 +22,8 @@ import os
 import sys
 import time
 import warnings
+from collections.abc import Iterator
+from contextlib import ExitStack, contextmanager
 from pathlib import Path
 
 import typer
@@ -107,13 +111,15 @@ def validate(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YA
 @app.command(epilog=EXIT_CODES)
 def build(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML (or a bundled recipe's name)"),
           out: Path = typer.Option(Path("exports"), "-o", "--out", help="output root folder"),
+          scheduler: str = typer.Option(None, "--scheduler", help="running dask scheduler (tcp://HOST:PORT or "
+                                        "tls://HOST:PORT) whose workers run the full-wave runs"),
           quiet: bool = QUIET_OPTION, verbose: bool = VERBOSE_OPTION) -> None:
     """Build STEP/STL, templates, cut list, report and manifest into OUT/<name>/. Progress on stderr:
     a bar on a terminal, else a line per stage start and end and a heartbeat every 10 s."""
     from antenna_cad.api import DesignError, OutputError, build as run_build
     mode, started = _mode(quiet, verbose), time.monotonic()
     spec, checked = _load(spec_path, out)          # a bad spec: its one line, before any progress line
-    with BuildProgress(spec.name, mode, started=started) as progress:
+    with _full_wave_cluster(scheduler), BuildProgress(spec.name, mode, started=started) as progress:
         try:
             result = run_build(checked, out, progress)
         except DesignError as exc:
@@ -131,6 +137,28 @@ def build(spec_path: Path = typer.Argument(..., metavar="SPEC", help="spec YAML 
                   f"[{STATUS_STYLE[result.status]}]{result.status}[/]")
     if result.status == "fail":
         raise typer.Exit(1)
+
+
+@contextmanager
+def _full_wave_cluster(scheduler: str | None) -> Iterator[None]:
+    """With ``--scheduler``: the build's full-wave runs go to its workers (an unusable address: one line,
+    exit 2; tls:// needs the certificates a sweep file names, so only tcp:// here)."""
+    if not scheduler:
+        yield
+        return
+    from antenna_cad.fullwave.solver import on_cluster
+    from antenna_cad.sweep import SweepError
+    from antenna_cad.sweep.execute import check_address, connect
+    with ExitStack() as stack:
+        try:
+            if check_address(scheduler) == "tls":
+                raise SweepError(f"--scheduler: {scheduler}: a build connects by tcp:// only (tls:// with make-lens "
+                                 "sweep, whose file names the certificates)")
+            client = stack.enter_context(connect(scheduler))
+        except SweepError as exc:
+            _fail([str(exc)])
+        with on_cluster(client):
+            yield
 
 
 @app.command(epilog=EXIT_CODES)

@@ -232,14 +232,32 @@ def test_auto_build_writes_verification_into_the_manifest(tmp_path):
 # ------------------------------------------------------------------ tolerances
 
 def test_tolerance_budget_names_the_dominant_tolerance(seed):
+    """The budget is the stack's own quiet-zone figure ⊕ what each tolerance adds to the smooth lens (RSS
+    of the table's rows); for the seed's lens (εr ±0.01 of 1.047 dominant) it reads 21.2° p-p (fast model's
+    stack figure: uncertain), where GO through the steps (kept as the old figure) read 28.2°. Without
+    tolerances it is the stack's own figure."""
     _, _, v = seed
     check = next(c for c in v.checks if c.name == "tolerance_budget")
-    assert check.status == "warn" and "dominant: εr" in check.message       # ±0.01 of 1.047 (1 %)
+    assert "dominant: εr" in check.message
+    f = v.figures
+    rows = {r[0]: [] for r in next(t for t in v.tables if t.name == "sensitivity").rows}
+    for r in next(t for t in v.tables if t.name == "sensitivity").rows:
+        rows[r[0]].append(r[2])
+    own = rows.pop("stack's own (quiet zone)")[0]
+    assert own == pytest.approx(f["stack_zone_fabricated_on_axis_p2p_deg"], abs=1e-3)
+    rss = np.sqrt(own ** 2 + sum(max(v) ** 2 for v in rows.values()))
+    assert f["tolerance_rss_p2p_deg"] == pytest.approx(rss, abs=0.01)
+    # Meep is hidden here: the stack's own figure is the fast model's, whose error (79.6°) cannot decide 21.2°
+    assert check.status == "warn" and check.message.startswith("uncertain — run full-wave")
+    assert f["tolerance_rss_p2p_deg"] < f["tolerance_single_plane_ruze_rss_p2p_deg"]
+    assert 0.0 < f["tolerance_gain_loss_db"] < f["tolerance_single_plane_ruze_gain_loss_db"]
     data = yaml.safe_load(yaml.safe_dump(SEED_LENS))
     data["tolerances"] = {"eps_r_tolerance": 0.0, "thickness_tolerance_mm": 0.0, "feed_position_tolerance_mm": 0.0}
     _, _, quiet = _verify(parse_spec(data))
-    assert quiet.figures["tolerance_rss_p2p_deg"] == pytest.approx(quiet.figures["model_fabricated_on_axis_p2p_deg"])
-    assert next(c for c in quiet.checks if c.name == "tolerance_budget").status == "pass"
+    assert quiet.figures["tolerance_rss_p2p_deg"] == pytest.approx(quiet.figures["stack_zone_fabricated_on_axis_p2p_deg"])
+    assert quiet.figures["tolerance_gain_loss_db"] == pytest.approx(quiet.figures["stack_own_efficiency_loss_db"])
+    status = {c.name: c.status for c in quiet.checks}
+    assert status["tolerance_budget"] == status["unsanded_step_phase_error"]     # the same figure, the same model
 
 
 # ------------------------------------------------------------------ spec errors

@@ -201,3 +201,43 @@ def test_one_build_shares_one_budget_and_its_heartbeats():
     assert heard == ["full-wave: on-axis run 1 of 2, 0 s of 30 s budget"]
     alone = budget.budget_for(settings)
     assert alone is not first and alone.beat is None
+
+
+def test_with_a_scheduler_the_runs_go_to_its_workers_and_are_cached_here(fake):
+    """``make-lens build --scheduler``: every pending run is sent to the dask workers at once (the estimate
+    counts them in parallel), run there (in the workers' folder), its result cached here by its key and
+    its throughput recorded; the rebuild reads the cache."""
+    from antenna_cad.sweep.execute import connect
+    python, log = fake
+    decks = [_deck(8.0), _deck(9.0)]
+    sizes = [solver.runner.cell_updates(d) for d in decks]
+    with connect(None, workers=1) as client, solver.on_cluster(client):
+        assert solver.estimate_s(decks, 1) == pytest.approx(budget.estimate_s(sizes, solver.cache_dir(), 2))
+        ran = run_named(["ideal", "stepped"], decks, Decision(python, "ran", 0.0, budget.Budget(120.0)), 1)
+    assert ran.cut == () and ran.cached == 0 and all(r["meep_version"] == "fake" for r in ran.results.values())
+    _, folders = _started(log)
+    assert len(folders) == 2 and all("antenna_cad-sweep-" in str(f) for f in folders)     # on the workers
+    assert all((solver.cache_dir() / f"{solver.deck_key(d)}.npz").exists() for d in decks)
+    again = run_named(["ideal", "stepped"], decks, Decision(python, "ran", 0.0, budget.Budget(120.0)), 1)
+    assert again.cached == 2 and again.figures()["fullwave_cached_solver_seconds"] == 1.0
+
+
+@pytest.mark.parametrize("address, message", [
+    ("http://localhost:8787", "--scheduler: http://localhost:8787: that is a web address"),
+    ("tls://localhost:8786", "a build connects by tcp:// only"),
+])
+def test_build_with_an_unusable_scheduler_says_so_in_one_line(address, message, tmp_path):
+    from typer.testing import CliRunner
+    from antenna_cad.cli import app
+    done = CliRunner().invoke(app, ["build", "xps-collimator-0.5m", "-o", str(tmp_path / "out"), "--scheduler", address])
+    assert done.exit_code == 2 and message in done.output and "Traceback" not in done.output
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_run_that_fails_on_the_cluster_is_one_line_naming_the_scheduler(fullwave_cache):
+    from antenna_cad.sweep.execute import connect
+    from antenna_cad.synthesis.checks import DesignError
+    with connect(None, workers=1) as client, solver.on_cluster(client):
+        with pytest.raises(DesignError, match=r"^--scheduler: a full-wave run failed on the cluster "
+                                              r"\(FullWaveError: Meep runner failed \(exit 1\)"):
+            solver.run_decks([_deck()], "/usr/bin/false", 1, budget.Budget(60.0))

@@ -8,6 +8,11 @@ JSON in and npz out. Results are cached by the SHA-256 of the deck and the runne
 ``~/.cache``, ``/antenna_cad/fullwave``), so rebuilding an unchanged geometry costs nothing.
 Every run is a process group of its own, ended whole when the budget (:mod:`.budget`) runs out or the
 build stops for any reason; the runner also dies with the build (see :func:`runner.main`).
+
+Inside :func:`on_cluster` (``make-lens build --scheduler``) the runs go to the dask workers instead,
+as many at a time as there are runs (they are independent): each worker runs the runner with its own
+Meep (:func:`run_remote`) and sends the result back, which is cached here by the same key. At the
+budget the futures still running are cancelled (a run already started on a worker finishes there).
 """
 
 from __future__ import annotations
@@ -24,6 +29,7 @@ import threading
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager, suppress
+from contextvars import ContextVar
 from functools import lru_cache
 from pathlib import Path
 
@@ -31,6 +37,7 @@ import numpy as np
 
 from antenna_cad.fullwave import budget, runner
 from antenna_cad.fullwave.deck import make_deck
+from antenna_cad.synthesis.checks import DesignError
 
 RUNNER = Path(runner.__file__)
 MISSING = "Meep not found, install python3-meep"
@@ -39,8 +46,21 @@ PROBE = make_deck([], frequency_ghz=10.0, resolution=10.0, feed_z_mm=-3000.0, fe
                   radius_mm=90.0, plane_offset_lambda=2.0, field_map=False)      # ≈ 10⁷ cell updates: ~1 s of solver
 
 
+_CLIENT: ContextVar = ContextVar("fullwave_client", default=None)
+
+
 class FullWaveError(RuntimeError):
     """The runner failed (its last stderr line is the message)."""
+
+
+@contextmanager
+def on_cluster(client) -> Iterator[None]:
+    """Within: every full-wave run goes to the workers of ``client`` (a dask Client)."""
+    token = _CLIENT.set(client)
+    try:
+        yield
+    finally:
+        _CLIENT.reset(token)
 
 
 @lru_cache(maxsize=None)
@@ -83,9 +103,10 @@ def _pending(decks: list[dict], keys: list[str], cache: bool = True) -> list[int
 
 
 def estimate_s(decks: list[dict], jobs: int = 1) -> float:
-    """Wall-time estimate of running ``decks`` (uncached ones only) ``jobs`` at a time, at the
-    throughput measured on this machine (:mod:`.budget`)."""
+    """Wall-time estimate of running ``decks`` (uncached ones only) ``jobs`` at a time (all at once on a
+    cluster), at the throughput measured on this machine (:mod:`.budget`)."""
     keys = [deck_key(d) for d in decks]
+    jobs = len(decks) if _CLIENT.get() is not None else jobs          # on a cluster every run at once
     return budget.estimate_s([runner.cell_updates(decks[i]) for i in _pending(decks, keys)], cache_dir(), jobs)
 
 
@@ -113,7 +134,10 @@ def run_decks(decks: list[dict], python: str, jobs: int = 1, within: budget.Budg
     keys = [deck_key(d) for d in decks]
     pending = _pending(decks, keys, cache)
     total, done = len(pending), {}
-    if pending:
+    if pending and _CLIENT.get() is not None:
+        within.start()
+        done = _run_on_cluster(_CLIENT.get(), decks, keys, pending, python, within, what, cache)
+    elif pending:
         within.start()
         with tempfile.TemporaryDirectory(prefix="fullwave-") as tmp, _sigterm_raises():
             running: dict[int, tuple[subprocess.Popen, float]] = {}
@@ -146,6 +170,68 @@ def run_decks(decks: list[dict], python: str, jobs: int = 1, within: budget.Budg
     return results
 
 
+def _run_on_cluster(client, decks: list[dict], keys: list[str], pending: list[int], python: str,
+                    within: budget.Budget, what: str, cache: bool) -> dict[str, dict]:
+    """The pending runs on the cluster's workers, all submitted at once, collected until ``within`` runs out."""
+    futures = {i: client.submit(run_remote, decks[i], keys[i], python, key=f"fullwave-{keys[i]}", pure=False)
+               for i in pending}
+    done: dict[str, dict] = {}
+    try:
+        while futures and within.left() > 0:
+            for i, fut in list(futures.items()):
+                if fut.done():
+                    del futures[i]
+                    try:
+                        data, wall_s = fut.result()
+                    except Exception as exc:     # noqa: BLE001 — anything from the cluster: one line
+                        why = f"{type(exc).__name__}: {' '.join(str(exc).split())[:160]}"
+                        raise DesignError("--scheduler", f"a full-wave run failed on the cluster ({why}); the "
+                                          "scheduler and its workers need this antenna_cad and Meep") from None
+                    done[keys[i]] = _kept(data, keys[i], decks[i], wall_s, cache)
+            within.heartbeat(f"{what}s on the cluster: {len(done)} of {len(pending)} finished")
+            time.sleep(POLL_S)
+    finally:
+        client.cancel(list(futures.values()))
+    return done
+
+
+def run_remote(deck: dict, key: str, python: str) -> tuple[bytes, float]:
+    """On a worker: run one deck with ``python`` when it is there, else the worker's own Meep
+    interpreter; (the result's npz bytes, wall seconds). FullWaveError when it fails."""
+    python = python if Path(python).exists() else meep_python()
+    if python is None:
+        raise FullWaveError(f"on worker: {MISSING}")
+    t0 = time.monotonic()
+    with tempfile.TemporaryDirectory(prefix="fullwave-") as tmp:
+        proc = _start(deck, key, python, Path(tmp))
+        try:
+            proc.wait()
+        finally:
+            _end(proc)
+        _raise_failed(proc, key, Path(tmp))
+        return (Path(tmp) / f"{key}.npz").read_bytes(), time.monotonic() - t0
+
+
+def _kept(data: bytes, key: str, deck: dict, wall_s: float, cache: bool) -> dict:
+    """A result that came back from a worker: its throughput recorded, kept in the cache (atomic)."""
+    part = cache_dir() / f".{key}.{os.getpid()}.part"
+    part.write_bytes(data)
+    with np.load(part) as npz:
+        out = {name: npz[name] for name in npz.files}
+    budget.record(cache_dir(), runner.cell_updates(deck), float(out["seconds"]), wall_s)
+    if cache:
+        os.replace(part, cache_dir() / f"{key}.npz")
+    else:
+        part.unlink()
+    return out | {"cached": False, "key": key, "wall_s": wall_s}
+
+
+def _raise_failed(proc: subprocess.Popen, key: str, tmp: Path) -> None:
+    if proc.returncode != 0:
+        lines = [s for s in (tmp / f"{key}.err").read_text(errors="replace").splitlines() if s.strip()]
+        raise FullWaveError(f"Meep runner failed (exit {proc.returncode}): {lines[-1] if lines else ''}")
+
+
 def _start(deck: dict, key: str, python: str, tmp: Path) -> subprocess.Popen:
     (tmp / f"{key}.json").write_text(json.dumps(deck, sort_keys=True), encoding="utf-8")
     with open(tmp / f"{key}.err", "wb") as err:                 # a file: a full pipe would stall the run
@@ -156,9 +242,7 @@ def _start(deck: dict, key: str, python: str, tmp: Path) -> subprocess.Popen:
 
 def _finish(proc: subprocess.Popen, key: str, tmp: Path, wall_s: float, deck: dict, cache: bool) -> dict:
     """The finished run's result (kept in the cache), its throughput recorded; FullWaveError if it failed."""
-    if proc.returncode != 0:
-        lines = [s for s in (tmp / f"{key}.err").read_text(errors="replace").splitlines() if s.strip()]
-        raise FullWaveError(f"Meep runner failed (exit {proc.returncode}): {lines[-1] if lines else ''}")
+    _raise_failed(proc, key, tmp)
     with np.load(tmp / f"{key}.npz") as data:
         out = {name: data[name] for name in data.files}
     budget.record(cache_dir(), runner.cell_updates(deck), float(out["seconds"]), wall_s)

@@ -1,8 +1,8 @@
 """Bifocal (two-surface) homogeneous dielectric lens collimator — synthesis and GO verification.
 
 Sources: seed-000 (Nikulina 2021) §1.3, §2.3–§2.8, §5.8–§5.9, §7.4 and seed-001 (Ngiem 2018) §3.1
-(Kinber's method of steps). Cited below as ``seed-000 §x`` / ``seed-001 §x`` (the English digests in
-``shared/reference``).
+(Kinber's method of steps). Cited below as ``seed-000 §x`` / ``seed-001 §x`` (the published sources
+are listed in the README).
 
 Frame (stated once, used everywhere in this module)
 --------------------------------------------------

@@ -1,7 +1,7 @@
 """Frequency-scanning planar multibeam waveguide-slot arrays with curved slot lines (seed 003).
 
-Pure physics (numpy/scipy only). Sources: ``shared/reference/seed-003.md`` (digest of Le Doan
-Trinh, PhD thesis, MIPT 2020), cited below as "seed-003 §N".
+Pure physics (numpy/scipy only). Source: Le Doan Trinh, PhD thesis, MIPT 2020 (the README's
+references), cited below as "seed-003 §N".
 
 Frame and units (one frame for everything this package returns)
 ----------------------------------------------------------------

@@ -84,7 +84,7 @@ def starting_spec(source: str, name: str | None = None) -> tuple[str, str]:
     body = [line for line in base.text.splitlines() if not line.startswith(SCHEMA_LINE)]
     renamed = [f"name: {name}" if line.startswith("name:") else line for line in body]
     header = [f"# {name}: a {base.kind} spec started from the bundled recipe {base.name}.",
-              "# Change the fields below, then: make-lens validate " + f"{name}.yaml  (no CAD, writes nothing)",
+              "# Change the fields below, then: make-lens validate " + f"{name}.yaml  (writes nothing)",
               f"#                                 make-lens {name}.yaml -o exports",
               "# Every field, unit, range and default: make-lens schema (JSON Schema) or the docs' spec reference.",
               "# The recipe's own notes follow.", "#"]

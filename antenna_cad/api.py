@@ -136,12 +136,13 @@ def with_changes(spec: SpecLike, changes: Mapping[str, Any]) -> Spec:
 def validate(spec: SpecLike, out: str | Path | None = None, solids: bool = False) -> Validation:
     """Everything ``build`` can refuse, writing nothing: synthesis, layup plan, resource limits,
     fabrication plan, with ``solids`` the solid model (CAD in memory) and the STL triangles it needs,
-    and with ``out`` the output folder (checked first, as ``build`` does). Raises SpecError,
+    and with ``out`` the output folder (checked first, as ``build`` does); with neither, CAD-free (a
+    printed lattice is then planned without its mesh, :mod:`antenna_cad.stages`). Raises SpecError,
     OutputError or DesignError; check failures are in the result."""
     loaded = load(spec)
     if out is not None:
         check_output(Path(out), loaded.name)
-    plan = prepare(loaded)
+    plan = prepare(loaded, cad=solids or out is not None)     # without either: CAD-free (validate --fast)
     return Validation(loaded, list(plan.checks) + (solid_checks(loaded, plan) if solids else []), plan)
 
 

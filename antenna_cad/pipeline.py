@@ -35,6 +35,7 @@ from antenna_cad.limits import counts, limit_checks, template_pages
 from antenna_cad.progress import Progress, reporting
 from antenna_cad.registry import adapter
 from antenna_cad.spec.common import SpecBase, resolve_material
+from antenna_cad.stages import planning
 from antenna_cad.synthesis.checks import Check, solving
 
 STAGES = ("synthesize", "fabricate", "model", "verify", "step", "stl", "templates", "report", "manifest")
@@ -48,12 +49,14 @@ class OutputError(ValueError):
 
 @dataclass
 class Plan:
-    """Everything a build decides before CAD: design, layup plan, box panels, fabrication plan."""
+    """Everything a build decides before CAD: design, layup plan, box panels, fabrication plan;
+    ``cad``: made for the CAD stage (False: by the CAD-free validate, :mod:`antenna_cad.stages`)."""
     design: object
     layup: object
     panels: tuple
     fab: object
     checks: list[Check]
+    cad: bool = True
 
 
 @dataclass
@@ -75,9 +78,10 @@ class BuildResult:
         return "fail" if "fail" in statuses else ("warn" if "warn" in statuses else "pass")
 
 
-def prepare(spec: SpecBase) -> Plan:
-    """Synthesis, layup plan, resource limits, fabrication plan and its checks — no CAD. Numerical
-    failures become DesignError naming the spec block (:func:`solving`), limits raise above hard."""
+def prepare(spec: SpecBase, cad: bool = True) -> Plan:
+    """Synthesis, layup plan, resource limits, fabrication plan and its checks — no CAD (``cad``
+    False: nor a fabrication plan that is a mesh, :mod:`antenna_cad.stages`). Numerical failures
+    become DesignError naming the spec block (:func:`solving`), limits raise above hard."""
     kind = adapter(spec.kind)
     with solving(_design_field(spec), "synthesis"):
         design = kind.synthesize(spec)
@@ -85,12 +89,13 @@ def prepare(spec: SpecBase) -> Plan:
     with solving("fabrication", "fabrication plan"):
         layup, panels = kind.plan(spec, design)
         checks += limit_checks(counts(design, layup))
-        fab = kind.fabricate(spec, design, layup, panels)
+        with planning(cad):
+            fab = kind.fabricate(spec, design, layup, panels)
         checks += limit_checks({k: v for k, v in counts(design, layup, fab).items() if k in ("pieces", "drawings")})
         if spec.outputs.templates and len(fab.drawings):
             checks += limit_checks({"pages": template_pages(fab.drawings)})
         checks += list(kind.fabrication_checks(spec, design, layup)) + list(fab.checks)
-    return Plan(design, layup, panels, fab, checks)
+    return Plan(design, layup, panels, fab, checks, cad)
 
 
 def solid_checks(spec: SpecBase, plan: Plan) -> list[Check]:
@@ -184,7 +189,7 @@ def build(spec: SpecBase, out_root: Path, progress: Progress | None = None, plan
     report(STAGES[0], 0.0)
     check_output(out_root, spec.name)
     kind = adapter(spec.kind)
-    p = plan or prepare(spec)
+    p = plan if plan is not None and plan.cad else prepare(spec)     # a CAD-free plan lacks its meshes
     stage("synthesize")
     stage("fabricate")
     created = not out_root.exists()

@@ -219,3 +219,21 @@ def test_a_lattice_of_too_many_cells_is_refused_before_meshing():
                               "fabrication": {"method": "printed", "cell_mm": 3.6}}, "s.yaml")
     with pytest.raises(DesignError, match="lattice cells exceed the limit"):
         fabricate_printed(spec, synthesize(spec))
+
+
+def test_cad_free_validate_plans_no_mesh_and_a_build_from_it_meshes(tmp_path):
+    """``validate --fast`` (api.validate without solids or a folder) plans a printed lens without
+    its lattice mesh — the limits and fill checks made, no files, no mesh checks — and a build from
+    that validation plans again with the mesh."""
+    from antenna_cad import api
+    small = BASE | {"name": "small", "design": {"diameter_mm": 40, "law": "classic"},
+                    "outputs": {"step": False, "stl": False, "templates": False, "report": False}}
+    light = api.validate(small)
+    names = {c.name for c in light.checks}
+    assert not light.plan.cad and light.plan.fab.lens is None and not light.plan.fab.files
+    assert {"printed_cell_size", "printed_fill_clipped"} <= names and "printed_volume" not in names
+    full = api.validate(small, solids=True)
+    assert full.plan.cad and full.plan.fab.lens is not None and "printed_volume" in {c.name for c in full.checks}
+    built = api.build(light, tmp_path)
+    assert (tmp_path / "small" / "printed" / "small.3mf").exists()
+    assert "printed_volume" in {c.name for c in built.checks}

@@ -23,6 +23,7 @@ from antenna_cad.printed.lattice import Printable
 from antenna_cad.raytrace.media import Shells
 from antenna_cad.spec.common import resolve_material
 from antenna_cad.spec.printed import C_MM_GHZ, PrintedSpec
+from antenna_cad.stages import with_cad
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.luneburg import eps_profile
 from antenna_cad.verification import Table, Verification
@@ -75,8 +76,6 @@ def printed_medium(spec, design, shells: int = PROFILE_SHELLS) -> Shells:
 
 
 def fabricate_printed(spec, design) -> PrintedFabPlan:
-    from antenna_cad.printed.export3mf import stl_bytes, three_mf_bytes
-    from antenna_cad.printed.parts import Pins, build_printed_lens, closed_and_oriented
     fab: PrintedSpec = spec.fabrication
     R = design.radius_mm
     body = 4 / 3 * math.pi * R**3 if design.shape == "sphere" else math.pi * R**2 * design.height_mm
@@ -88,6 +87,11 @@ def fabricate_printed(spec, design) -> PrintedFabPlan:
         ref = fill_integral_mm3(fmap, R - skin, shape) + 4 / 3 * math.pi * (R**3 - (R - skin) ** 3)
     else:
         ref = fill_integral_mm3(fmap, R - skin, shape, design.height_mm) + math.pi * (R**2 - (R - skin) ** 2) * design.height_mm
+    if not with_cad():          # the CAD-free validate: the limits and the fill, not the lattice's mesh
+        checks = too_many + _fill_checks(spec, fab, m, fmap)
+        return PrintedFabPlan((), {}, {}, (), (), {}, {}, 0.0, {}, {}, fill=fmap, material=m, check_list=tuple(checks))
+    from antenna_cad.printed.export3mf import stl_bytes, three_mf_bytes
+    from antenna_cad.printed.parts import Pins, build_printed_lens, closed_and_oriented
     pins = None if fab.registration is None else Pins(fab.registration.diameter_mm, fab.registration.length_mm,
                                                       fab.registration.clearance_mm, fab.wall_mm)
     lens = build_printed_lens(shape, R, design.height_mm, fmap, skin_mm=skin, wall_mm=fab.wall_mm, gap_mm=fab.gap_mm,
@@ -132,12 +136,13 @@ def fabricate_printed(spec, design) -> PrintedFabPlan:
     slice_check, slice_figures = _slicer_check(fab, files[f"printed/{spec.name}.3mf"],
                                                sum(p.volume_mm3 for p in lens.parts), area)
     figures |= slice_figures
-    checks = too_many + _checks(spec, fab, m, fmap, lens, closed_and_oriented) + [slice_check]
+    checks = too_many + _fill_checks(spec, fab, m, fmap) + _mesh_checks(fab, lens, closed_and_oriented) + [slice_check]
     return PrintedFabPlan((), {}, {}, (), tuple(rows), {m.name: mass_kg, "all": mass_kg}, {}, 0.0, {}, {},
                           files=files, lens=lens, fill=fmap, material=m, check_list=tuple(checks), figures=figures)
 
 
-def _checks(spec, fab, m, fmap: FillMap, lens, closed) -> list[Check]:
+def _fill_checks(spec, fab, m, fmap: FillMap) -> list[Check]:
+    """The lattice's cell size, the fill clipped to the printable range, the table's εr range."""
     limit = C_MM_GHZ / spec.frequency_ghz / (4 * math.sqrt(m.eps_r))
     out = [Check.upper("printed_cell_size", fab.cell_mm, limit, "mm",
                        f"lattice cell ≤ λ/(4·√εr) of {m.name} (homogeneous medium)")]
@@ -153,6 +158,12 @@ def _checks(spec, fab, m, fmap: FillMap, lens, closed) -> list[Check]:
         out.append(Check("printed_homogenization_range", "warn", m.eps_r, tabulated[-1], "εr",
                          f"filament εr {m.eps_r:g} outside the unit-cell table ({tabulated[0]:g}–{tabulated[-1]:g}): "
                          "εr_eff(fill) extrapolated by its Wiener-normalized shape"))
+    return out
+
+
+def _mesh_checks(fab, lens, closed) -> list[Check]:
+    """The printed parts' meshes: closed and oriented, their volume, registration pins, the bed."""
+    out = []
     bad = [p.label for p in lens.parts if not closed(p.faces)]
     out.append(Check("printed_parts_closed", "fail" if bad else "pass", float(len(bad)), 0.0, "parts",
                      f"every part's mesh closed and consistently oriented (each directed edge once, its reverse "

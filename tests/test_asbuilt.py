@@ -250,12 +250,12 @@ def test_tolerance_budget_names_the_dominant_tolerance(seed):
     # Meep is hidden here: the stack's own figure is the fast model's, whose error (79.6°) cannot decide 21.2°
     assert check.status == "warn" and check.message.startswith("uncertain — run full-wave")
     assert f["tolerance_rss_p2p_deg"] < f["tolerance_single_plane_ruze_rss_p2p_deg"]
-    assert 0.0 < f["tolerance_gain_loss_db"] < f["tolerance_single_plane_ruze_gain_loss_db"]
+    assert 0.0 < f["tolerance_rss_gain_loss_db"] < f["tolerance_single_plane_ruze_gain_loss_db"]
     data = yaml.safe_load(yaml.safe_dump(SEED_LENS))
     data["tolerances"] = {"eps_r_tolerance": 0.0, "thickness_tolerance_mm": 0.0, "feed_position_tolerance_mm": 0.0}
     _, _, quiet = _verify(parse_spec(data))
     assert quiet.figures["tolerance_rss_p2p_deg"] == pytest.approx(quiet.figures["stack_zone_fabricated_on_axis_p2p_deg"])
-    assert quiet.figures["tolerance_gain_loss_db"] == pytest.approx(quiet.figures["stack_own_efficiency_loss_db"])
+    assert quiet.figures["tolerance_rss_gain_loss_db"] == pytest.approx(quiet.figures["stack_own_efficiency_loss_db"])
     status = {c.name: c.status for c in quiet.checks}
     assert status["tolerance_budget"] == status["unsanded_step_phase_error"]     # the same figure, the same model
 

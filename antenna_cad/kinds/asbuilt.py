@@ -497,7 +497,7 @@ def _sensitivity(lens: Lens, section: Slabs | Taper | None, tol: TolerancesSpec,
     nominal = model or go_base
     old_p2p = float(np.sqrt(nominal.p2p_deg ** 2 + sum(a[0] for a in go_added.values())))
     old_rms = float(np.sqrt(nominal.rms_deg ** 2 + sum(a[1] for a in go_added.values())))
-    figures = {"tolerance_rss_p2p_deg": p2p, "tolerance_rss_rms_deg": rms, "tolerance_gain_loss_db": loss,
+    figures = {"tolerance_rss_p2p_deg": p2p, "tolerance_rss_rms_deg": rms, "tolerance_rss_gain_loss_db": loss,
                "stack_own_efficiency_loss_db": efficiency_loss_db(np.abs(y)[r_order], ideal, fab),
                "tolerance_dominant_added_rms_deg": added[dominant][1],
                "tolerance_single_plane_ruze_rss_p2p_deg": old_p2p, "tolerance_single_plane_ruze_rss_rms_deg": old_rms,

@@ -237,3 +237,28 @@ def test_cad_free_validate_plans_no_mesh_and_a_build_from_it_meshes(tmp_path):
     built = api.build(light, tmp_path)
     assert (tmp_path / "small" / "printed" / "small.3mf").exists()
     assert "printed_volume" in {c.name for c in built.checks}
+
+
+def test_check_reads_the_3mf_back_against_the_stls_and_the_volume(tmp_path):
+    """``make-lens check`` on printed parts: each 3MF object closed and of its STL's volume, Σ volume
+    × copies the manifest's; a dropped triangle, another part's STL or a wrong total each fail."""
+    from antenna_cad.export.check_readers import printed_findings
+    lens = _small_lens()
+    objects = [{"name": p.label, "vertices": p.vertices, "faces": p.faces, "metadata": {"copies": str(p.count)}}
+               for p in lens.parts]
+    stls = {}
+    for p in lens.parts:
+        stls[p.label] = tmp_path / f"{p.label}.stl"
+        stls[p.label].write_bytes(stl_bytes(p.vertices, p.faces, p.label))
+    total = sum(p.volume_mm3 * p.count for p in lens.parts) / 1000
+
+    def failed(objs, files, volume):
+        (tmp_path / "x.3mf").write_bytes(three_mf_bytes(objs, {}))
+        return sorted({f.check for f in printed_findings(tmp_path / "x.3mf", files, volume, "x.3mf") if not f.ok})
+    assert failed(objects, stls, total) == []
+    holed = [dict(objects[0], faces=objects[0]["faces"][1:])] + objects[1:]
+    assert "3mf closed" in failed(holed, stls, total)
+    assert len(lens.parts) == 2                                       # the hemisphere and the pin
+    swapped = {a: stls[b] for a, b in zip(stls, list(stls)[::-1])}
+    assert failed(objects, swapped, total) == ["3mf vs stl"]
+    assert failed(objects, stls, total * 1.01) == ["3mf volume"]

@@ -21,8 +21,8 @@ from pathlib import Path
 
 from antenna_cad.export.check_manifest import (CheckError, Manifest, confined, read_manifest, required_files,
                                                walk_files)
-from antenna_cad.export.check_readers import (Finding, dxf_findings, pdf_findings, step_findings, stl_findings,
-                                              svg_findings)
+from antenna_cad.export.check_readers import (Finding, dxf_findings, pdf_findings, printed_findings, step_findings,
+                                              stl_findings, svg_findings)
 
 __all__ = ["CHECKERS", "CheckError", "Finding", "check_build"]
 MASS_RTOL = 0.02        # cut-list masses (as cut, from the plan) vs the model's volumes × densities
@@ -245,5 +245,17 @@ def _cam(build: Build) -> Iterator[Finding]:
         yield from check_cam(build.folder, build.raw | {"cam": intact})
 
 
+def _printed(build: Build) -> Iterator[Finding]:
+    """A printed lens's 3MF against its per-part STLs and the manifest's printed volume."""
+    files = [e.path for e in build.m.files if e.path.startswith("printed/")]
+    stls = {Path(f).stem: build.path(f) for f in files if f.endswith(".stl") and build.path(f) is not None}
+    figures = build.raw.get("figures", {}) | build.raw.get("verification", {}).get("figures", {})
+    volume = figures.get("printed_volume_cm3")
+    for rel in (f for f in files if f.endswith(".3mf")):
+        path = build.path(rel)
+        if path is not None:
+            yield from _per_file(rel, "3mf", lambda: printed_findings(path, stls, volume, rel))
+
+
 CHECKERS: dict[str, Callable[[Build], Iterator[Finding]]] = {
-    "step": _step, "stl": _stl, "templates": _drawings, "pdf": _pdfs, "cam": _cam}
+    "step": _step, "stl": _stl, "templates": _drawings, "pdf": _pdfs, "cam": _cam, "printed": _printed}

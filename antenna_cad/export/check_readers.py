@@ -107,10 +107,15 @@ def stl_closed(tri: np.ndarray) -> bool:
     if not len(tri):
         return False
     vertices, index = np.unique(tri.reshape(-1, 3), axis=0, return_inverse=True)
-    f = index.reshape(-1, 3)
+    return faces_closed(index.reshape(-1, 3), len(vertices))
+
+
+def faces_closed(f: np.ndarray, n: int) -> bool:
+    """:func:`stl_closed` of an indexed mesh (faces ``f`` into ``n`` vertices)."""
+    if not len(f):
+        return False
     directed = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
     directed = directed[directed[:, 0] != directed[:, 1]]
-    n = len(vertices)
     codes, counts = np.unique(directed[:, 0] * n + directed[:, 1], return_counts=True)
     if (counts != 1).any():
         return False
@@ -334,3 +339,51 @@ def check_bar_mm(page) -> float:
         if len(edges):
             best = max(best, int((edges[1::2] - edges[0::2]).max()))
     return best / RENDER_PX_PER_MM - BAR_STROKE_MM
+
+
+# ------------------------------------------------------------------ printed parts (3MF + STL)
+
+THREE_MF_NS = "{http://schemas.microsoft.com/3dmanufacturing/core/2015/02}"
+PRINTED_VOLUME_RTOL = 1e-3      # 3MF object vs its STL (4-decimal 3MF coordinates, float32 STL)
+
+
+def mesh_volume_mm3(tri: np.ndarray) -> float:
+    """Enclosed volume of triangles (n, 3, 3) by the divergence theorem (outward orientation)."""
+    return float(np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])).sum() / 6.0)
+
+
+def read_3mf(path: Path) -> list[tuple[str, int, np.ndarray, np.ndarray]]:
+    """(name, copies, vertices, faces) of every object of a 3MF, parsed from its zip and XML."""
+    import zipfile
+    with zipfile.ZipFile(path) as z:
+        root = ElementTree.fromstring(z.read("3D/3dmodel.model"))
+    out = []
+    for obj in root.iter(f"{THREE_MF_NS}object"):
+        meta = {m.get("name"): m.text for m in obj.findall(f"{THREE_MF_NS}metadata")}
+        v = np.array([[float(e.get(k)) for k in "xyz"] for e in obj.iter(f"{THREE_MF_NS}vertex")])
+        f = np.array([[int(e.get(k)) for k in ("v1", "v2", "v3")] for e in obj.iter(f"{THREE_MF_NS}triangle")])
+        out.append((obj.get("name"), int(meta.get("copies", 1)), v.reshape(-1, 3), f.reshape(-1, 3)))
+    return out
+
+
+def printed_findings(three_mf: Path, stls: dict[str, Path], volume_cm3: float | None, rel: str) -> Iterator[Finding]:
+    """A printed build's 3MF read back: every object a closed oriented mesh, its volume its STL's
+    (``stls``: part name → file) and Σ volume × copies the manifest's ``printed_volume_cm3``."""
+    objects = read_3mf(three_mf)
+    yield Finding(rel, "3mf objects", bool(objects), f"{len(objects)} objects")
+    total = 0.0
+    for name, copies, v, f in objects:
+        vol = mesh_volume_mm3(v[f])
+        total += vol * copies
+        yield Finding(rel, "3mf closed", faces_closed(f, len(v)), f"{name}: {len(f)} triangles, closed and oriented")
+        stl = stls.get(name)
+        if stl is None:
+            yield Finding(rel, "3mf vs stl", False, f"{name}: no printed/{name}.stl listed")
+            continue
+        other = mesh_volume_mm3(read_stl(stl))
+        ok = abs(vol - other) <= PRINTED_VOLUME_RTOL * abs(other)
+        yield Finding(rel, "3mf vs stl", ok, f"{name}: {vol / 1000:.3f} cm³ in the 3MF, {other / 1000:.3f} cm³ in its STL")
+    if volume_cm3 is not None:
+        ok = abs(total / 1000 - volume_cm3) <= PRINTED_VOLUME_RTOL * volume_cm3
+        yield Finding(rel, "3mf volume", ok, f"Σ volume × copies {total / 1000:.3f} cm³ vs manifest "
+                      f"printed_volume_cm3 {volume_cm3:.3f}")

@@ -69,6 +69,11 @@ def finite_figures(figures: dict) -> dict[str, float]:
     return {k: float(v) for k, v in figures.items() if np.isfinite(v)}
 
 
+def cell(v: float, nd: int = 3) -> float | None:
+    """A figure rounded for a table cell: ``nd`` decimals, None when not finite, never "-0"."""
+    return round(float(v), nd) + 0.0 if np.isfinite(v) else None
+
+
 def detrended(y: np.ndarray, phase_deg: np.ndarray) -> np.ndarray:
     """Aperture phase with the least-squares linear tilt removed (seed-000 §4.1, (2.16))."""
     return phase_deg - np.polyval(np.polyfit(y, phase_deg, 1), y)

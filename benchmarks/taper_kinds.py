@@ -19,7 +19,7 @@ from taper_study import cam_figures, spec_of
 
 from antenna_cad.fabrication.ring_plan import sphere_radius
 from antenna_cad.kinds.bifocal import _lens
-from antenna_cad.kinds.taper import Taper, cone_gap_mm
+from antenna_cad.asbuilt.taper import Taper, cone_gap_mm
 from antenna_cad.pipeline import prepare
 from antenna_cad.registry import adapter
 

@@ -22,10 +22,9 @@ import yaml
 
 from antenna_cad.export.check_cam import check_cam
 from antenna_cad.fullwave.verify import fast_model
-from antenna_cad.kinds.asbuilt import modelled_stats
-from antenna_cad.kinds.asbuilt_fullwave import revolved
+from antenna_cad.asbuilt.revolved import modelled_stats, revolved
 from antenna_cad.kinds.collimator import _lens
-from antenna_cad.kinds.taper import Taper
+from antenna_cad.asbuilt.taper import Taper
 from antenna_cad.pipeline import prepare
 from antenna_cad.registry import adapter
 from antenna_cad.spec import parse_spec

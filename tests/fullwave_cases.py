@@ -56,8 +56,8 @@ def zone_case(case, wide: bool):
     """(lens, layup, revolved lens, back of the stack, zone) of a table case: the lens's default quiet
     zone, or (``wide``) Ø and depth 0.8 D at its default distance."""
     import numpy as np
-    from antenna_cad.kinds.asbuilt import lens_zone
-    from antenna_cad.kinds.asbuilt_fullwave import revolved
+    from antenna_cad.asbuilt.lens import lens_zone
+    from antenna_cad.asbuilt.revolved import revolved
     from antenna_cad.spec.common import TestZoneSpec
     spec = case_spec(*case)
     design = collimator.synthesize(spec)
@@ -75,7 +75,7 @@ def zone_case(case, wide: bool):
 
 def fast_zone_planes(lens, rl, z_ref: float, zone) -> dict:
     """variant → [(r, E) per plane]: the fast model's ideal lens and stepped stack over ``zone``."""
-    from antenna_cad.kinds.patterns import exit_field
+    from antenna_cad.asbuilt.patterns import exit_field
     from antenna_cad.quietzone.volume import fast_fields, radii_mm
     ef = exit_field(lens, lens.faces(lens.n), lens.feed, z_ref)
     half = ef.y_mm >= 0

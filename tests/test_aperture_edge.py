@@ -10,8 +10,8 @@ import pytest
 from scipy.special import j1
 from scipy.optimize import brentq
 
-from antenna_cad.kinds.asbuilt import Lens, trace_lens
-from antenna_cad.kinds.patterns import exit_field, resampled
+from antenna_cad.asbuilt.lens import Lens, trace_lens
+from antenna_cad.asbuilt.patterns import exit_field, resampled
 from antenna_cad.radiation.aperture import bor_aperture, pattern_figures
 from antenna_cad.raytrace.collimator import front_face, trace_collimator
 from antenna_cad.raytrace.trace2d import Interface, transmitted_amplitude

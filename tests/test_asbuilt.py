@@ -12,7 +12,7 @@ from typer.testing import CliRunner
 
 from antenna_cad.cli import app
 from antenna_cad.fabrication.section import stepped_section
-from antenna_cad.kinds.asbuilt import Lens, focus_shift, trace_lens, aperture_stats
+from antenna_cad.asbuilt.lens import Lens, aperture_stats, focus_shift, trace_lens
 from antenna_cad.pipeline import build
 from antenna_cad.raytrace.collimator import front_face
 from antenna_cad.raytrace.trace2d import Interface, Slabs, trace_slabs, transmitted_amplitude

@@ -140,8 +140,8 @@ def test_taper_stack_beats_the_stepped_stack_unsanded():
     """Fast sub-wavelength model, 100 mm sheets of the Ø0.5 m lens, stepped − ideal: the cones'
     RMS is a quarter of the vertical-edged stack's (measured 2.6° vs 10.8° RMS, docs/guide/cam.md)."""
     from antenna_cad.fullwave.verify import fast_model
-    from antenna_cad.kinds.asbuilt import modelled_stats
-    from antenna_cad.kinds.asbuilt_fullwave import revolved
+    from antenna_cad.asbuilt.revolved import modelled_stats
+    from antenna_cad.asbuilt.revolved import revolved
     from antenna_cad.kinds.collimator import _lens
     from antenna_cad.spec.common import VerificationSpec
     rms = {}
@@ -158,7 +158,7 @@ def test_vertex_cap_gap_is_about_a_quarter_sheet():
     """The chord of the vertex cap lies ≈ t/4 from the profile along the axis (r ∝ √z); every other
     sheet's cone lies far closer."""
     from antenna_cad.kinds.collimator import _lens
-    from antenna_cad.kinds.taper import Taper
+    from antenna_cad.asbuilt.taper import Taper
     spec = _spec("xps-collimator-0.5m-taper.yaml", sheet_thickness_mm=100, cam={"tower_span_mm": 200})
     plan = prepare(spec)
     gaps = Taper(_lens(spec, plan.design, plan.layup), plan.layup).largest_gap_mm()

@@ -116,7 +116,7 @@ def test_auto_runs_the_scan_edge_only_when_every_order_fits_the_budget(monkeypat
     assert skipped.status == "skip"
     monkeypatch.setattr(solver, "meep_python", lambda: "/usr/bin/python3")
     from antenna_cad.fullwave import verify
-    from antenna_cad.kinds import asbuilt
+    from antenna_cad.asbuilt import verify as asbuilt
     monkeypatch.setattr(asbuilt, "full_wave_study",          # the on-axis stage without running Meep
                         lambda lens, settings, go, volume_z_mm: verify.FullWave(verify.fast_model(lens, settings)))
     v = _verify(_recipe())

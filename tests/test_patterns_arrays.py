@@ -76,7 +76,7 @@ def test_mirror_lens_directivity_matches_the_integrated_pattern():
     module reports) and within 0.3 dB of 4π|F(0)|² / ∫|F|² dΩ integrated over the forward half-space,
     which uses the far field only (Parseval not assumed)."""
     from antenna_cad.kinds.mirror_lens import aperture_field
-    from antenna_cad.kinds.patterns_arrays import line_case, path_mm
+    from antenna_cad.asbuilt.patterns_arrays import line_case, path_mm
 
     spec, design, v = _verify("mirror-lens-346mm")
     lam, D = design.wavelength_mm, design.diameter_mm

@@ -80,7 +80,7 @@ def test_bifocal_taper_gap_table_follows_the_lens(bifocal):
     """The cones lie far closer to the profile than a full step, except at the rim chord and the
     two vertex caps."""
     from antenna_cad.kinds.bifocal import _lens
-    from antenna_cad.kinds.taper import Taper
+    from antenna_cad.asbuilt.taper import Taper
     spec, plan, folder, manifest = bifocal
     gaps = np.array(Taper(_lens(spec, plan.design, plan.layup), plan.layup).largest_gap_mm())
     t = plan.layup.sheet_thickness_mm
@@ -171,7 +171,7 @@ def test_mirror_lens_and_ring_tables_show_each_cone_and_its_gap(mirror_lens, lun
     zero on the body's cylinder and far below a sheet elsewhere."""
     from antenna_cad.kinds.luneburg import _ring_cone_table
     from antenna_cad.kinds.mirror_lens import cone_radius
-    from antenna_cad.kinds.taper import cone_table
+    from antenna_cad.asbuilt.taper import cone_table
     spec, plan, _, _ = mirror_lens
     rows = cone_table(plan.layup, cone_radius(spec, plan.design)).rows
     assert [r[0] for r in rows] == [s.label for s in plan.layup.sheets]

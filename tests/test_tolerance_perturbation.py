@@ -5,7 +5,7 @@ fields with closed forms."""
 import numpy as np
 import pytest
 
-from antenna_cad.kinds.asbuilt import Lens, _scaled, trace_lens
+from antenna_cad.asbuilt.lens import Lens, _scaled, trace_lens
 from antenna_cad.quietzone.tolerance import added_figures, aperture_efficiency, efficiency_loss_db, \
     eps_r_added_deg, thickness_added_deg
 from antenna_cad.raytrace.collimator import ApertureTrace, front_face

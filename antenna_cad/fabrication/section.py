@@ -6,7 +6,7 @@ that holds the pedestal foot and, with ``joining: neck``, the necks; the trace's
 A taper-cut sheet (``edge: taper``) is sliced into sub-slabs ``TAPER_SLICE_MM`` thick, each with
 its cone's radius at mid-depth: a staircase far finer than a wavelength, which the fast model and
 the full-wave stage see as the cone (the GO trace takes the cones as faces instead,
-:func:`antenna_cad.kinds.asbuilt.lens_variants`).
+:func:`antenna_cad.asbuilt.lens.lens_variants`).
 """
 
 from __future__ import annotations

@@ -20,10 +20,12 @@ import numpy as np
 
 from antenna_cad.fabrication import bifocal_plates as bp
 from antenna_cad.fabrication.layup import LayupPlan
-from antenna_cad.kinds.asbuilt import Lens, lens_variants, stock_study, verify_lens
+from antenna_cad.asbuilt.lens import Lens, lens_variants
+from antenna_cad.asbuilt.stock import stock_study
+from antenna_cad.asbuilt.verify import verify_lens
 from antenna_cad.kinds.layup import (cone_fit_check, fabricate_layup, layup_figures, neck_checks, plan_layup_and_box,
                                     plan_sheets)
-from antenna_cad.kinds.patterns import criteria_from, lens_patterns
+from antenna_cad.asbuilt.patterns import criteria_from, lens_patterns
 from antenna_cad.materials import Material
 from antenna_cad.spec.bifocal import BifocalSpec
 from antenna_cad.spec.common import resolve_material
@@ -222,7 +224,7 @@ def _sigma_view(spec: BifocalSpec, design: BifocalDesign) -> Verification:
 
 
 def verify(spec: BifocalSpec, design: BifocalDesign, layup: LayupPlan | None, fab) -> Verification:
-    """As-built verification (:mod:`antenna_cad.kinds.asbuilt`) at the design focus O1 and at
+    """As-built verification (:mod:`antenna_cad.asbuilt`) at the design focus O1 and at
     the edge of the usable scan range, plus the defocus study (seed-000 §5.9): p-p phase
     error against the feed displacement along the focal line, bifocal vs the single-surface lens of
     the same aperture and focal distance."""

@@ -8,10 +8,12 @@ from functools import partial
 import numpy as np
 
 from antenna_cad.fabrication.layup import LayupPlan
-from antenna_cad.kinds.asbuilt import Lens, lens_variants, stock_study, verify_lens, zone_depth_mm
-from antenna_cad.kinds.asbuilt_fullwave import revolved, scan_edge_go
+from antenna_cad.asbuilt.lens import Lens, lens_variants, zone_depth_mm
+from antenna_cad.asbuilt.stock import stock_study
+from antenna_cad.asbuilt.verify import verify_lens
+from antenna_cad.asbuilt.revolved import revolved, scan_edge_go
 from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks, plan_layup_and_box, plan_sheets
-from antenna_cad.kinds.patterns import collimator_feed_limits, criteria_from, lens_patterns
+from antenna_cad.asbuilt.patterns import collimator_feed_limits, criteria_from, lens_patterns
 from antenna_cad.raytrace.collimator import front_face, single_surface_p2p_deg, usable_half_range_mm
 from antenna_cad.raytrace.trace2d import Interface
 from antenna_cad.spec.collimator import CollimatorSpec
@@ -108,7 +110,7 @@ def fabrication_checks(spec: CollimatorSpec, design: CollimatorDesign, layup: La
 
 
 def verify(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | None, fab) -> Verification:
-    """As-built verification (:mod:`antenna_cad.kinds.asbuilt`) on axis and at the edge of the
+    """As-built verification (:mod:`antenna_cad.asbuilt`) on axis and at the edge of the
     scan range: the transverse feed displacement where the ideal lens reaches the phase budget
     (seed-000 §5.5); the full-wave stage solves that feed too when its budget allows
     (:mod:`antenna_cad.fullwave.scan`)."""

@@ -11,7 +11,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from antenna_cad.kinds.patterns_arrays import array_patterns, best_focus, imaged_case, path_mm
+from antenna_cad.asbuilt.patterns_arrays import array_patterns, best_focus, imaged_case, path_mm
 from antenna_cad.spec.common import resolve_material
 from antenna_cad.spec.graded import GradedLayupSpec, GradedSpec
 from antenna_cad.synthesis.checks import Check
@@ -135,7 +135,7 @@ def verify(spec: GradedSpec, design: GradedDesign, layup, fab) -> Verification:
 
 def _patterns(spec: GradedSpec, design: GradedDesign, lam: float) -> Verification:
     """Patterns of the synthesized lens (continuous n(y); the slabs are not traced), feed on axis
-    and at the field edge, referred to the best-focus image point (:mod:`antenna_cad.kinds.patterns_arrays`)."""
+    and at the field edge, referred to the best-focus image point (:mod:`antenna_cad.asbuilt.patterns_arrays`)."""
     cases, u = [], design.unit_mm
     for feed, angle in (("on_axis", 0.0), ("field_edge", spec.design.view_angle_deg / 2)):
         pos, amp, phase = aperture_field(design, lam, angle)

@@ -9,7 +9,7 @@ from dataclasses import replace
 from antenna_cad.fabrication.box import plan_box
 from antenna_cad.fabrication.layup import LayupPlan, plan_layup
 from antenna_cad.fabrication.outline import added_in_aperture_mm2
-from antenna_cad.kinds.asbuilt import choose_stock, stock_study
+from antenna_cad.asbuilt.stock import choose_stock, stock_study
 from antenna_cad.materials import Material
 from antenna_cad.spec.common import SheetLayupSpec, VerificationSpec, resolve_material
 from antenna_cad.synthesis.checks import Check, DesignError

@@ -19,7 +19,7 @@ from antenna_cad.verification import Table, Verification
 from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.ring_plan import sphere_radius
 from antenna_cad.fabrication.rings import FabPlanRings, RingLayupPlan, fabricate_rings, plan_rings
-from antenna_cad.kinds.taper import cone_gap_mm
+from antenna_cad.asbuilt.taper import cone_gap_mm
 from antenna_cad.materials import Material
 from antenna_cad.spec.common import resolve_material
 from antenna_cad.spec.luneburg import LuneburgLayupSpec, LuneburgShellsSpec, LuneburgSpec

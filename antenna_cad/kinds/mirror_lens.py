@@ -23,12 +23,12 @@ import numpy as np
 from scipy.interpolate import CubicHermiteSpline
 
 from antenna_cad.fabrication.layup import LayupPlan
-from antenna_cad.kinds.asbuilt import ruze_loss_db
+from antenna_cad.asbuilt.lens import ruze_loss_db
 from antenna_cad.kinds.layup import (cone_fit_check, fabricate_layup, layup_figures, neck_checks, plan_layup_and_box,
                                     plan_sheets)
 from antenna_cad.kinds.mirror_lens_fullwave import body_parts, full_wave_verification
-from antenna_cad.kinds.patterns_arrays import array_patterns, line_case, path_mm
-from antenna_cad.kinds.taper import cone_table
+from antenna_cad.asbuilt.patterns_arrays import array_patterns, line_case, path_mm
+from antenna_cad.asbuilt.taper import cone_table
 from antenna_cad.materials import Material
 from antenna_cad.raytrace.mirror_lens import Body, Surface, aperture_field as trace_aperture_field, sigma_at
 from antenna_cad.spec.common import SheetLayupSpec, resolve_material
@@ -290,7 +290,7 @@ def _astigmatism_table(design: MirrorLensDesign) -> Table:
 
 def _aperture_plot(spec, design: MirrorLensDesign, name: str, feed, bodies):
     """Aperture phase of the ideal and the fabricated body and the amplitude, for one feed (mm);
-    the plot, its figures and the pattern cases of :mod:`antenna_cad.kinds.patterns_arrays`."""
+    the plot, its figures and the pattern cases of :mod:`antenna_cad.asbuilt.patterns_arrays`."""
     series, figures, cases = [], {}, []
     for variant, body in bodies:
         rms, pp = _phase_stats(design, body, np.asarray(feed) / design.diameter_mm)

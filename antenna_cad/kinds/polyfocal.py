@@ -16,7 +16,7 @@ import numpy as np
 from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.polyfocal import channel_clearance_check, fabricate_polyfocal
 from antenna_cad.fabrication.polyfocal_sections import gauges_drawing, section_gauges
-from antenna_cad.kinds.patterns_arrays import (array_patterns, chief_note, imaged_case, path_mm, ports_case,
+from antenna_cad.asbuilt.patterns_arrays import (array_patterns, chief_note, imaged_case, path_mm, ports_case,
                                               referred)
 from antenna_cad.materials import Material
 from antenna_cad.spec.common import resolve_material
@@ -207,7 +207,7 @@ def _focal_caption(design: PolyfocalDesign) -> str:
 
 def _patterns(spec: PolyfocalSpec, design: PolyfocalDesign, built: ConstrainedLens) -> Verification:
     """Patterns of the synthesized elements and the lines as built, feed on axis and at the field
-    edge (:mod:`antenna_cad.kinds.patterns_arrays`): 2-D a strip of the plate spacing, 3-D the port grid."""
+    edge (:mod:`antenna_cad.asbuilt.patterns_arrays`): 2-D a strip of the plate spacing, 3-D the port grid."""
     lam, ln = design.wavelength_mm, spec.design.lines
     cases = []
     for feed, angle in (("on_axis", 0.0), ("field_edge", spec.design.view_angle_deg / 2)):

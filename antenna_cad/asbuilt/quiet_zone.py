@@ -11,7 +11,7 @@ import numpy as np
 
 from antenna_cad.fullwave.lens import C_MM_GHZ, RevolvedLens
 from antenna_cad.fullwave.verify import FullWave
-from antenna_cad.kinds.asbuilt import Lens, lens_zone, trace_lens
+from antenna_cad.asbuilt.lens import Lens, lens_zone, trace_lens
 from antenna_cad.quietzone.verdict import FAST_ERROR_DEG, ModelPlanes, quiet_zone_study
 from antenna_cad.quietzone.volume import Rays, fast_fields, radii_mm
 from antenna_cad.raytrace.trace2d import Slabs, transmitted_amplitude

@@ -1,4 +1,4 @@
-"""Glue between the as-built GO check (:mod:`antenna_cad.kinds.asbuilt`) and the full-wave stage
+"""Glue between the as-built GO check (:mod:`antenna_cad.asbuilt.lens`) and the full-wave stage
 (:mod:`antenna_cad.fullwave`): the lens of revolution handed to Meep, and aperture statistics of
 the stack as GO of the ideal lens plus the phase the stack adds (full-wave when it ran, else the fast
 sub-wavelength model). GO is exact for the smooth lens; on a staircase of sub-wavelength zones it is not
@@ -10,6 +10,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from antenna_cad.asbuilt.lens import aperture_stats, lens_variants, ruze_loss_db, trace_lens
 from antenna_cad.fabrication.section import fabricated_section, stepped_section
 from antenna_cad.fullwave.lens import C_MM_GHZ, RevolvedLens
 from antenna_cad.fullwave.verify import PhaseModel
@@ -17,7 +18,7 @@ from antenna_cad.raytrace.collimator import ApertureTrace
 
 
 def revolved(lens, layup=None, fab=None, feed_z_mm: float | None = None) -> RevolvedLens:
-    """The as-built lens (kinds.asbuilt.Lens) as a body of revolution with its feed on the axis."""
+    """The as-built lens (:class:`antenna_cad.asbuilt.lens.Lens`) as a body of revolution with its feed on the axis."""
     sections = {}
     if layup is not None:
         sections["stepped"] = stepped_section(layup, lens.n)
@@ -30,7 +31,6 @@ def revolved(lens, layup=None, fab=None, feed_z_mm: float | None = None) -> Revo
 def modelled_stats(lens, model: PhaseModel, variant: str, feed):
     """Stats of ``variant`` at ``feed``: the GO trace of the ideal lens with the model's added phase
     (taper and riser fraction from GO)."""
-    from antenna_cad.kinds.asbuilt import aperture_stats, ruze_loss_db, trace_lens
     tr, keep = trace_lens(lens, lens.faces(lens.n), feed)
     base = aperture_stats(lens, tr, keep)
     ap = ApertureTrace.from_trace(tr, lens.wavelength_mm, keep)
@@ -43,7 +43,6 @@ def scan_edge_go(lens, layup, fab, feed) -> dict[str, tuple[np.ndarray, np.ndarr
     """GO of each variant at the scan-edge ``feed`` (z, y), beside the full-wave scan edge: (y, phase with
     the least-squares tilt removed (deg), beam angle from that tilt (deg), phase efficiency
     |mean e^{iψ}|² over the meridional cut (dB))."""
-    from antenna_cad.kinds.asbuilt import lens_variants, trace_lens
     out = {}
     for variant, medium in lens_variants(lens, layup, fab):
         tr, keep = trace_lens(lens, medium, feed)

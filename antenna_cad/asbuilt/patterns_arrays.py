@@ -1,7 +1,7 @@
 """Patterns of the kinds whose aperture field comes as plain arrays: the aplanatic
 mirror-lens (seed-004), the polyfocal constrained lens (seed-001 §1–§2) and the graded-index lens
 (seed-001 §3.2), per lens variant at the nominal and the field-edge feed. The radiation model is
-:mod:`antenna_cad.radiation.aperture` through :func:`antenna_cad.kinds.patterns.cut_aperture`.
+:mod:`antenna_cad.radiation.aperture` through :func:`antenna_cad.asbuilt.patterns.cut_aperture`.
 
 Each kind gives the GO field on its exit face with phase −k·(optical path) (isotropic feed: no
 spillover). The mirror-lens field is the scan-plane cut with the beam tilt removed: a body of
@@ -24,9 +24,9 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import minimize
 
-from antenna_cad.kinds.patterns import PLOT_BEAMWIDTHS, cut_aperture, resampled
+from antenna_cad.asbuilt.patterns import PLOT_BEAMWIDTHS, cut_aperture, resampled
 from antenna_cad.radiation.aperture import ApertureField, PatternFigures, pattern_figures, points_aperture
-from antenna_cad.verification import Plot, Series, Table, Verification, finite_figures
+from antenna_cad.verification import Plot, Series, Table, Verification, cell, finite_figures
 
 
 @dataclass(frozen=True)
@@ -93,9 +93,6 @@ def transverse(points: np.ndarray, d: np.ndarray) -> np.ndarray:
     return p[:, 1] * d[0] - p[:, 0] * d[1]
 
 
-def _r(v: float, nd: int = 3):
-    return round(float(v), nd) + 0.0 if np.isfinite(v) else None
-
 
 def array_patterns(cases: list[Case], caption: str) -> Verification:
     """Figures ``pattern_<lens>_<feed>_*``, one plot per feed (lenses overlaid, the first drawn
@@ -113,12 +110,12 @@ def array_patterns(cases: list[Case], caption: str) -> Verification:
                     figures |= {f"{key}_directivity_dbi": pf.directivity_dbi, f"{key}_hpbw_deg": pf.beam.hpbw_deg,
                                 f"{key}_sll_db": pf.beam.sll_db, f"{key}_efficiency": eff.total,
                                 f"{key}_efficiency_taper": eff.taper, f"{key}_efficiency_phase": eff.phase}
-                    rows.append((case.lens, feed, _r(pf.directivity_dbi), _r(pf.beam.hpbw_deg, 4),
-                                 _r(pf.beam.sll_db, 2), _r(eff.taper, 4), _r(eff.phase, 4), _r(eff.total, 4),
+                    rows.append((case.lens, feed, cell(pf.directivity_dbi), cell(pf.beam.hpbw_deg, 4),
+                                 cell(pf.beam.sll_db, 2), cell(eff.taper, 4), cell(eff.phase, 4), cell(eff.total, 4),
                                  case.note))
                 else:
                     figures |= {f"{key}_hpbw_x_deg": pf.beam.hpbw_deg, f"{key}_sll_x_db": pf.beam.sll_db}
-                    rows.append((case.lens, f"{feed} (x cut)", None, _r(pf.beam.hpbw_deg, 4), _r(pf.beam.sll_db, 2),
+                    rows.append((case.lens, f"{feed} (x cut)", None, cell(pf.beam.hpbw_deg, 4), cell(pf.beam.sll_db, 2),
                                  None, None, None, case.note))
                 cut = ap.cut(along)
                 span = np.degrees(PLOT_BEAMWIDTHS * ap.wavelength_mm / cut.extent_mm)

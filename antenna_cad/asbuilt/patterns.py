@@ -1,7 +1,7 @@
 """Patterns, test zone and AUT pattern distortion of the lenses of revolution, shared
 by the collimator and bifocal kinds; the radiation models are in :mod:`antenna_cad.radiation`.
 
-Aperture field: the exact meridional GO trace of :mod:`antenna_cad.kinds.asbuilt` (ideal lens,
+Aperture field: the exact meridional GO trace of :mod:`antenna_cad.asbuilt.lens` (ideal lens,
 stepped stack as cut, stack as fabricated), taken back along the exit rays to the plane just
 behind the lens (``z_ref``: the last point of its back face) — amplitude from Fresnel transmission
 and dielectric loss as in seed-000 §4.4 (no ray-tube factor, an isotropic feed: the seed's model,
@@ -32,8 +32,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from antenna_cad.fullwave.verify import FullWave
-from antenna_cad.kinds.asbuilt import Lens, Medium, trace_lens
-from antenna_cad.kinds.quiet_zone import lens_quiet_zone
+from antenna_cad.asbuilt.lens import Lens, Medium, trace_lens
+from antenna_cad.asbuilt.quiet_zone import lens_quiet_zone
 from antenna_cad.radiation.aperture import PatternFigures, bor_aperture, grid_aperture, pattern_figures
 from antenna_cad.radiation.distortion import Aut, AutMeter, IntegralErrors
 from antenna_cad.radiation.testzone import TestZone, largest_test_zone, propagate_bor, propagate_line
@@ -42,7 +42,7 @@ from antenna_cad.raytrace.trace2d import transmitted_amplitude
 from antenna_cad.spec.common import TestZoneSpec
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.collimator import edge_margin_mm, path_difference_approx_mm, path_difference_mm
-from antenna_cad.verification import Plot, Series, Table, Verification, finite_figures
+from antenna_cad.verification import Plot, Series, Table, Verification, cell, finite_figures
 
 SAMPLES_PER_WAVELENGTH = 20      # aperture and AUT-plane cuts
 GRID_PER_WAVELENGTH = 4          # 2-D aperture grid (patterns of off-axis feeds)
@@ -165,9 +165,6 @@ def aut_errors(meter: AutMeter, field_on_grid) -> tuple[IntegralErrors, Integral
     return meter.errors(_detilted(x, y, field_on_grid(*np.meshgrid(x, y)), meter.excitation))
 
 
-def _r(v: float, nd: int = 3):
-    return round(float(v), nd) + 0.0 if np.isfinite(v) else None        # + 0.0: no "-0" in the tables
-
 
 def lens_patterns(lens: Lens, variants: list[tuple[str, Medium]], feeds, criteria: Criteria,
                   height_mm: float | None = None, full_wave: FullWave | None = None) -> Verification:
@@ -201,10 +198,10 @@ def lens_patterns(lens: Lens, variants: list[tuple[str, Medium]], feeds, criteri
                         f"{key}_beam_deg": pf.beam.theta_deg, f"{key}_squint_deg": pf.beam.theta_deg - chief,
                         f"{key}_efficiency_taper": eff.taper,
                         f"{key}_efficiency_phase": eff.phase, f"{key}_efficiency_dissipative": eff.dissipative}
-            rows.append((feed, variant, _r(pf.beam.theta_deg, 4), _r(pf.beam.theta_deg - chief, 4),
-                         _r(pf.directivity_dbi), _r(pf.beam.hpbw_deg, 4),
-                         _r(pf.beam.sll_db, 2), _r(eff.taper, 4), _r(eff.phase, 4), _r(eff.dissipative, 4),
-                         _r(eff.total, 4)))
+            rows.append((feed, variant, cell(pf.beam.theta_deg, 4), cell(pf.beam.theta_deg - chief, 4),
+                         cell(pf.directivity_dbi), cell(pf.beam.hpbw_deg, 4),
+                         cell(pf.beam.sll_db, 2), cell(eff.taper, 4), cell(eff.phase, 4), cell(eff.dissipative, 4),
+                         cell(eff.total, 4)))
             theta0 = pf.beam.theta_deg if theta0 is None else theta0
             span = np.degrees(PLOT_BEAMWIDTHS * lam / (2 * R))
             th = np.linspace(theta0 - span, theta0 + span, 801)
@@ -277,7 +274,7 @@ def _test_zone(lens: Lens, variants, fields, nominal: str, distance: float, crit
                hlines=((f"+{criteria.phase_deg:g}°", criteria.phase_deg), (f"−{criteria.phase_deg:g}°", -criteria.phase_deg)))
     table = Table("test-zone", "Test zone on the AUT plane alone (nominal feed; single-plane figures, kept beside "
                   "the quiet zone for comparison)", ("lens", "diameter mm", "distance mm"),
-                  tuple((v, _r(z.diameter_mm, 1), _r(distance, 1)) for v, z in zones.items()),
+                  tuple((v, cell(z.diameter_mm, 1), cell(distance, 1)) for v, z in zones.items()),
                   caption=f"largest centred zone within ±{criteria.amplitude_db:g} dB and ±{criteria.phase_deg:g}° "
                           "(linear tilt removed); angular spectrum of plane waves (not Fresnel)")
     return (amp, pha), figures, zones[built].diameter_mm, table

@@ -63,7 +63,7 @@ def _polyline(r: np.ndarray, z: np.ndarray, n_after: float) -> Interface:
 
 @dataclass(frozen=True)
 class Taper:
-    """The cones of ``layup`` (every sheet taper-cut) of ``lens`` (kinds.asbuilt.Lens)."""
+    """The cones of ``layup`` (every sheet taper-cut) of ``lens`` (:class:`antenna_cad.asbuilt.lens.Lens`)."""
     lens: object
     layup: LayupPlan
 

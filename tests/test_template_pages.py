@@ -211,3 +211,33 @@ def test_recipe_templates_nest_name_and_read_at_2_5_mm(recipe, tmp_path):
     findings = {f.check: f for f in check_readers.pdf_findings(tmp_path / entries[-1]["pdf"], entries[-1]["pdf"],
                                                                templates=True)}
     assert all(f.ok for f in findings.values()), findings
+
+
+def test_layup_assembly_views_name_each_ring_in_its_own_band_and_no_texts_overlap():
+    """The sheet assembly views of a Luneburg layup (``contain`` rings overlap their neighbours until
+    turned): each ring's name lies in the band of radii that is its alone, no two texts overlap, and the
+    title block lists every ring's grade."""
+    from antenna_cad.fabrication.rings import fabricate_rings
+    from antenna_cad.kinds import luneburg as kind
+    from antenna_cad.spec import load_spec
+    spec = load_spec(RECIPES / "luneburg-layup-200.yaml")
+    layup, _ = kind.plan(spec, kind.synthesize(spec))
+    drawings = fabricate_rings(layup, spec.name, drawings=True).drawings
+    views = [drawings[i] for i, label in enumerate(drawings.labels) if label.count("-") == 1]
+    assert len(views) == layup.count
+    for sheet, d in zip(layup.sheets, views):
+        boxes = [(t, box(x, y, x + text_box(t, h)[0], y + h)) for t, x, y, h in d.texts]
+        tree = shapely.STRtree([b for _, b in boxes])
+        pairs = tree.query([b for _, b in boxes], predicate="intersects")
+        overlapping = [(boxes[i][0], boxes[j][0]) for i, j in zip(*pairs) if i < j]
+        assert not overlapping, (d.label, overlapping)
+        title = " ".join(t for t, *_ in d.texts)
+        for ring in sheet.rings:
+            name = ring.label[-7:]
+            assert f"{name} {ring.material.name}" in title
+            lo = max([ring.r_inner_mm] + [r.r_outer_mm for r in sheet.rings if r.shell_index < ring.shell_index])
+            hi = min([ring.r_outer_mm] + [r.r_inner_mm for r in sheet.rings
+                                          if r.shell_index > ring.shell_index and r.r_inner_mm > lo])
+            label = next(b for t, b in boxes if t in (name, name[-2:]))
+            corners = np.hypot(*np.array(label.exterior.coords).T)
+            assert corners.max() <= hi + 1e-6 and (lo == 0 or shapely.distance(label, shapely.Point(0, 0)) >= lo - 1e-6)

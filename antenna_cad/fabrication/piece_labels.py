@@ -55,15 +55,16 @@ def name_pieces(drawing: Drawing) -> list[Polygon]:
     return [piece for piece, ok in zip(bare, placed) if not ok]
 
 
-Label = tuple[tuple[str, ...], Polygon, tuple[float, float] | None]
+Label = tuple[tuple[str, ...], Polygon, np.ndarray | tuple[float, float] | None]   # texts, piece, spot(s)
 
 
 def place_labels(drawing: Drawing, labels: list[Label]) -> list[bool]:
     """Per (texts, piece, spot) of ``labels`` add the first of ``texts`` that fits inside ``piece``
     (clear of its holes) with its box, grown by :data:`CLEARANCE_MM`, crossing no mark or text of
     the drawing (where none fits so, no text: across a mark): at the largest of :data:`HEIGHTS`
-    that fits, centred at ``spot`` if it fits there, else at the spot of a grid over the piece
-    nearest its centroid. Per label: was one added. The pieces are disjoint, so their labels, each
+    that fits, centred at the first of ``spot`` (a point or (k, 2) points in order of preference)
+    where it fits, else at the spot of a grid over the piece nearest its centroid. Per label: was
+    one added. The pieces are disjoint, so their labels, each
     inside its own, are too."""
     bar = drawing.bar[0] if drawing.bar else slice(0, 0)
     marks = [shapely.linestrings(np.asarray(m, dtype=float)[:, :2]) for k, m in enumerate(drawing.marks)
@@ -76,8 +77,10 @@ def place_labels(drawing: Drawing, labels: list[Label]) -> list[bool]:
 
 def _place(drawing: Drawing, tree, texts: tuple[str, ...], piece: Polygon, spot) -> bool:
     """:func:`place_labels` for one piece: the spot first, the grid (built only then) after."""
-    if spot and any(_fit(drawing, tree, text, piece, np.array([spot[0]]), np.array([spot[1]])) for text in texts):
-        return True
+    if spot is not None:
+        spots = np.atleast_2d(np.asarray(spot, dtype=float))
+        if any(_fit(drawing, tree, text, piece, spots[:, 0], spots[:, 1]) for text in texts):
+            return True
     shapely.prepare(piece)
     x0, y0, x1, y1 = piece.bounds
     gx, gy = np.meshgrid(np.linspace(x0, x1, GRID + 2)[1:-1], np.linspace(y0, y1, GRID + 2)[1:-1])

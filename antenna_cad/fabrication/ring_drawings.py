@@ -10,11 +10,18 @@ import bisect
 import math
 from collections.abc import Callable, Iterator, Sequence
 
+import numpy as np
+from shapely.geometry import LineString, Point
+from shapely.ops import unary_union
+
 from antenna_cad.fabrication.outline import CHORD_TOL_MM, Circle, arc_paths
 from antenna_cad.fabrication.ring_pieces import FootPiece, RingPiece, _arc, _suffix
 from antenna_cad.fabrication.ring_plan import RingLayupPlan, RingSheet
-from antenna_cad.fabrication.piece_labels import place_labels
+from antenna_cad.fabrication.piece_labels import Label, place_labels
 from antenna_cad.fabrication.templates import Drawing
+
+
+LABEL_ANGLES = 36          # spots tried for a ring's name in the assembly view, around its band
 
 
 # ---------------------------------------------------------------- templates
@@ -69,21 +76,43 @@ def _sheet_drawing(plan: RingLayupPlan, sheet: RingSheet, parts: list[Drawing], 
                 d.arcs[len(d.cut)] = part.arcs[k]
             d.cut.append(path)
     for ring in sheet.rings:
-        a = math.radians(20 + 25 * (ring.shell_index % 7))
         rm = 0.5 * (ring.r_inner_mm + ring.r_outer_mm)
-        d.texts.append((f"{ring.label[-7:]} {ring.material.name}", rm * math.cos(a) - 10, rm * math.sin(a), 3.0))
         for a0 in ring.joint_angles_rad:                     # sector ids next to their first joint
             d.texts.append((_suffix(int(round((a0 - ring.sector_start_rad) / (2 * math.pi) * ring.sectors))),
                             rm * math.cos(a0 + 0.02), rm * math.sin(a0 + 0.02), 3.0))
         _mark_holes(d, ring.holes)
     _mark_holes(d, sheet.foot_holes)
     _frame_marks(d, max(sheet.radius_mm, 20.0))
+    place_labels(d, [_ring_label(ring, sheet) for ring in sheet.rings])
     _title(d, [f"{title}  {sheet.label} of {plan.count}: z {sheet.z_min_mm:g} to {sheet.z_max_mm:g} mm, "
                f"thickness {sheet.thickness_mm:g} mm, {len(sheet.rings)} rings ({plan.sizing} sizing)",
+               "grades, inside out: " + ", ".join(f"{r.label[-7:]} {r.material.name}" for r in sheet.rings),
                "assembly view, seen from +Z: each ring is cut from its own grade (see the ring templates); "
                "dowel holes (T: drilled into the top face, B: the bottom face; positions as seen from +Z) "
                "take dowels of the ring's grade"])
     return d
+
+
+def _ring_label(ring, sheet: RingSheet) -> Label:
+    """The ring's name (else its number) inside the band of radii that is its alone (``contain`` rings
+    overlap their neighbours until turned), clear of the joints, holes and other texts: on the band's
+    middle circle, from an angle that differs from ring to ring (the grades are in the title block)."""
+    lo = max([ring.r_inner_mm] + [r.r_outer_mm for r in sheet.rings if r.shell_index < ring.shell_index])
+    hi = min([ring.r_outer_mm] + [r.r_inner_mm for r in sheet.rings
+                                  if r.shell_index > ring.shell_index and r.r_inner_mm > lo])
+    if hi - lo < 1e-3:
+        lo, hi = ring.r_inner_mm, ring.r_outer_mm
+    centre = Point(0.0, 0.0)
+    band = centre.buffer(hi, 256).difference(centre.buffer(lo, 256)) if lo > 0 else centre.buffer(hi, 256)
+    joints = [LineString([(0.0, 0.0), (2 * hi * math.cos(j), 2 * hi * math.sin(j))]) for j in ring.joint_angles_rad]
+    piece = band.difference(unary_union(joints).buffer(0.5)) if joints else band
+    a, rm = math.radians(20 + 25 * (ring.shell_index % 7)) + 2 * np.pi * np.arange(LABEL_ANGLES) / LABEL_ANGLES, \
+        0.5 * (lo + hi)
+    spots = np.stack([rm * np.cos(a), rm * np.sin(a)], -1)
+    parts = list(getattr(piece, "geoms", [piece]))
+    piece = next((p for p in parts if p.contains(Point(spots[0]))), max(parts, key=lambda p: p.area))
+    name = ring.label[-7:]
+    return (name, name[-2:]), piece, spots
 
 
 def _foot_drawing(plan: RingLayupPlan, sheet: RingSheet, piece: FootPiece, title: str) -> Drawing:
@@ -148,15 +177,17 @@ def _holes_text(holes) -> str:
 
 
 def _mark_holes(drawing: Drawing, holes) -> None:
-    """Blind holes on MARK: a circle, a cross, and "T"/"B" for the face they are drilled from
-    (through holes are CUT paths already)."""
+    """Blind holes on MARK: a circle, a cross, and "T"/"B" for the face they are drilled from ("TB":
+    drilled from both faces at one spot); through holes are CUT paths already."""
+    faces: dict[tuple[float, float, float], str] = {}
     for h in holes:
-        if h.face == "through":
-            continue
-        x, y = h.x_mm, h.y_mm
-        drawing.marks.append(_arc(h.diameter_mm / 2, 0.0, 2 * math.pi, 48, False) + (x, y))
-        drawing.add_cross(x, y, h.diameter_mm * 0.4)
-        drawing.texts.append(("T" if h.face == "top" else "B", x + h.diameter_mm * 0.7, y, 3.0))
+        if h.face != "through":
+            key = (round(h.x_mm, 6), round(h.y_mm, 6), h.diameter_mm)
+            faces[key] = faces.get(key, "") + ("T" if h.face == "top" else "B")
+    for (x, y, diameter), face in faces.items():
+        drawing.marks.append(_arc(diameter / 2, 0.0, 2 * math.pi, 48, False) + (x, y))
+        drawing.add_cross(x, y, diameter * 0.4)
+        drawing.texts.append(("".join(sorted(face, reverse=True)), x + diameter * 0.7, y, 3.0))
 
 
 def _frame_marks(drawing: Drawing, r: float) -> None:

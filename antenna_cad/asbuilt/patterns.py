@@ -33,7 +33,7 @@ import numpy as np
 
 from antenna_cad.fullwave.verify import FullWave
 from antenna_cad.asbuilt.lens import Lens, Medium, trace_lens
-from antenna_cad.asbuilt.quiet_zone import lens_quiet_zone
+from antenna_cad.asbuilt.quiet_zone import lens_quiet_zone, lens_quiet_zone_off_axis
 from antenna_cad.radiation.aperture import PatternFigures, bor_aperture, grid_aperture, pattern_figures
 from antenna_cad.radiation.distortion import Aut, AutMeter, IntegralErrors
 from antenna_cad.radiation.testzone import TestZone, largest_test_zone, propagate_bor, propagate_line
@@ -232,12 +232,18 @@ def lens_patterns(lens: Lens, variants: list[tuple[str, Medium]], feeds, criteri
         checks = []                 # no AUT in the spec: the default one is reported, not judged
     figures |= a_fig
     v = Verification(finite_figures(figures), tuple(checks), tuple(tables + [a_tab]), tuple(plots + [a_plot]))
-    ef, on_axis = fields[(variants[0][0], nominal)]
-    if not on_axis:
+    if height_mm is not None:
         return v
-    half = ef.y_mm >= 0
-    return v.merged(lens_quiet_zone(lens, variants, feeds[0], z_ref, criteria, (ef.y_mm[half], ef.field[half]),
-                                    full_wave))
+    for feed in feeds:                      # the zone for every feed: on the axis over the disc, else on the cut
+        ef, on_axis = fields[(variants[0][0], feed[0])]
+        if on_axis:
+            half = ef.y_mm >= 0
+            v = v.merged(lens_quiet_zone(lens, variants, feed, z_ref, criteria, (ef.y_mm[half], ef.field[half]),
+                                         full_wave))
+        else:
+            v = v.merged(lens_quiet_zone_off_axis(lens, variants, feed, z_ref, criteria, (ef.y_mm, ef.field),
+                                                  feed is feeds[0]))
+    return v
 
 
 def _test_zone(lens: Lens, variants, fields, nominal: str, distance: float, criteria: Criteria):

@@ -38,7 +38,8 @@ def _unwrapped_deg(field: np.ndarray) -> np.ndarray:
     return np.degrees(np.unwrap(np.angle(field / field[0])))
 
 
-def _levels_db(field: np.ndarray) -> np.ndarray:
+def levels_db(field: np.ndarray) -> np.ndarray:
+    """Amplitude in dB to the peak, floored at :data:`DARK`."""
     amp = np.abs(field)
     return 20 * np.log10(np.maximum(amp / amp.max(), DARK))
 
@@ -47,7 +48,7 @@ def largest_diameter_mm(r_mm, field, amplitude_db: float, phase_deg: float) -> f
     """Twice the largest radius ρ such that over r ≤ ρ the amplitude (dB) and the phase each span at
     most twice their limit (± about mid-range)."""
     r, e = np.asarray(r_mm, float), np.asarray(field, complex)
-    a, p = _levels_db(e), _unwrapped_deg(e)
+    a, p = levels_db(e), _unwrapped_deg(e)
     span_a = np.maximum.accumulate(a) - np.minimum.accumulate(a)
     span_p = np.maximum.accumulate(p) - np.minimum.accumulate(p)
     ok = (span_a <= 2 * amplitude_db) & (span_p <= 2 * phase_deg)
@@ -65,7 +66,7 @@ def plane_figures(r_mm, field, disc_mm: float, z_mm: float, amplitude_db: float,
     w = ri * trapezoid_weights(ri)
     ph = _unwrapped_deg(ei)
     ph -= np.sum(w * ph) / np.sum(w)
-    lv = _levels_db(ei)
+    lv = levels_db(ei)
     basis = np.stack([np.ones_like(ri), (ri / ri[-1]) ** 2], 1)
     sw = np.sqrt(w)
     coef = np.linalg.lstsq(basis * sw[:, None], lv * sw, rcond=None)[0]

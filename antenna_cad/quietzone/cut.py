@@ -11,7 +11,8 @@ weighted RMS; the amplitude (dB) fitted by a + b·y + c·y² (the beam's own slo
 part of the taper), its taper the symmetric part c·ρ² (edge minus centre, the mean of both edges), its
 ripple the largest deviation from the fit; the largest centred diameter within the limits after the
 tilt over the disc is removed. A beam far enough off the axis leaves part of the disc in its shadow
-(GO: no ray there): those samples carry no phase, and the amplitude figures show the shadow.
+(GO: no ray there; diffraction: a field ``SHADOW_DB`` or more below the disc's peak): those samples
+carry no phase, and the amplitude figures show the shadow.
 
 Fields on a plane z behind the stack (the cut, signed y):
 * GO: each ray straight on from its exit point (:func:`go_cut`);
@@ -30,11 +31,12 @@ from typing import Callable
 import numpy as np
 
 from antenna_cad.fullwave.fastmodel import thin_screen_deg
-from antenna_cad.quietzone.stats import DARK, PlaneFigures, levels_db
+from antenna_cad.quietzone.stats import PlaneFigures, levels_db
 from antenna_cad.radiation.aperture import trapezoid_weights
 from antenna_cad.radiation.testzone import propagate_line
 
 SAMPLES_PER_WAVELENGTH = 20      # samples of the cut and of the screen
+SHADOW_DB = -20.0                # a sample this far below the disc's peak is in the shadow: no phase
 
 
 def cut_y_mm(radius_mm: float, wavelength_mm: float) -> np.ndarray:
@@ -49,11 +51,11 @@ def _weights(y: np.ndarray, disc_mm: float) -> np.ndarray:
 
 def residual_phase_deg(y_mm, field, disc_mm: float) -> tuple[np.ndarray, np.ndarray]:
     """(y inside the disc and lit, phase in deg with the chord-weighted piston and tilt removed), unwrapped
-    outward from the sample nearest the centre; samples in a shadow (below ``DARK`` of the peak) carry no
-    phase and are left out."""
+    outward from the sample nearest the centre; samples in the shadow (``SHADOW_DB`` below the disc's peak)
+    carry no phase and are left out."""
     y, e = np.asarray(y_mm, float), np.asarray(field, complex)
     inside = np.abs(y) <= disc_mm / 2 * (1 + 1e-12)
-    inside &= np.abs(e) > DARK * np.abs(e[inside]).max()
+    inside &= np.abs(e) > 10 ** (SHADOW_DB / 20) * np.abs(e[inside]).max()
     yi, ei = y[inside], e[inside]
     c = int(np.argmin(np.abs(yi)))
     ph = np.degrees(np.angle(ei / ei[c]))

@@ -94,10 +94,11 @@ class TwoStorey:
         """z of each bend's outer wall (inner radius septum/2 + h)."""
         return self.zm + self.p.septum / 2 + self.p.height
 
-    def footprint(self, i: int, layer: int, mouth: float = 0.0) -> Polygon:
-        """Plan (y, z) of guide i's air in ``layer`` (1 or 2) up to its bend's outer wall; ``mouth``
-        extends it that far back past its entry (exit) point, into the feed (output) region."""
-        a, y2, top = self.p.guide_width / 2, self.y2[i], self.bend_outer[i]
+    def footprint(self, i: int, layer: int, mouth: float = 0.0, to_bend: bool = False) -> Polygon:
+        """Plan (y, z) of guide i's air in ``layer`` (1 or 2) up to its bend's outer wall (``to_bend``:
+        up to the bend plane z_m); ``mouth`` extends it that far back past its entry (exit) point."""
+        a, y2 = self.p.guide_width / 2, self.y2[i]
+        top = self.zm[i] if to_bend else self.bend_outer[i]
         if layer == 2:
             z0 = self.ze[i] - mouth
             return Polygon([(y2 - a, z0), (y2 + a, z0), (y2 + a, top), (y2 - a, top)])
@@ -116,12 +117,13 @@ class TwoStorey:
         s = (y_edge - q[0]) / v[0]
         return y_edge, float(q[1] + s * v[1])
 
-    def horn(self, k: int) -> Polygon:
-        """Plan of feed k's H-plane sectoral horn and its guide stub (aperture on the focus)."""
+    def horn(self, k: int, extra: float = 0.0) -> Polygon:
+        """Plan of feed k's H-plane sectoral horn and its guide stub (aperture on the focus), the stub
+        lengthened by ``extra`` (to pierce the block's face)."""
         c, v = self.feeds[k]
         n = np.array([v[1], -v[0]])
         a, w = self.p.guide_width / 2, self.p.horn_aperture / 2
-        throat, back = c - v * self.p.horn_length, c - v * (self.p.horn_length + self.p.horn_stub)
+        throat, back = c - v * self.p.horn_length, c - v * (self.p.horn_length + self.p.horn_stub + extra)
         return Polygon([tuple(c + n * w), tuple(throat + n * a), tuple(back + n * a), tuple(back - n * a),
                         tuple(throat - n * a), tuple(c - n * w)])
 
@@ -235,9 +237,17 @@ def checks(ts: TwoStorey) -> tuple[list[Check], dict[str, float]]:
     if not region.is_valid or near < p.wall - 1e-9:
         raise DesignError(f"{FIELD}.horn_aperture_mm", "the feed horns stand in front of the guides or across "
                           f"the feed region (least wall {near:.3g} mm to a guide): narrow or shorten the horns")
+    mapping = float(min(np.min(np.diff(ts.y1)), np.min(np.diff(ts.y2))))
+    checks_ = [Check("mapping_monotonic", "pass" if mapping > 0 else "fail", mapping, 0.0, "mm",
+                     f"least step of y1 and y2 between neighbouring guides: {mapping:.4g} mm (> 0: y2(y1) monotonic)")]
+    for key, what in (("layer1_wall_min_mm", "thinnest layer-1 wall (slanted guides, kinks, bends)"),
+                      ("layer2_wall_min_mm", "thinnest layer-2 wall"),
+                      ("bend_gap_min_mm", "least metal between neighbouring U-bends")):
+        checks_.append(Check(key.removesuffix("_mm"), "pass", gaps[key], p.wall, "mm",
+                             f"{what}: {gaps[key]:.4g} mm (minimum {p.wall:g} mm; no two guides cross)"))
     lo, hi = p.band_ghz
     cutoff = C_MM_GHZ / (2 * p.guide_width)
-    checks_ = [Check.upper("te10_cutoff_below_band", cutoff / lo, 1.0, "", "TE10 cutoff c/2a / lowest frequency"),
+    checks_ += [Check.upper("te10_cutoff_below_band", cutoff / lo, 1.0, "", "TE10 cutoff c/2a / lowest frequency"),
                Check.upper("te20_above_band", hi / (2 * cutoff), 1.0, "", "highest frequency / TE20 cutoff c/a"),
                Check.upper("plates_single_mode", 2 * p.height * hi / C_MM_GHZ, 1.0, "",
                            "plate spacing / (λ_min / 2): the parallel-plate TE1 and guide TE01 cut off"),
@@ -275,3 +285,24 @@ def focus_spreads(ts: TwoStorey, lengths: np.ndarray, foci: list[tuple[np.ndarra
         path = np.linalg.norm(p1 - point, axis=1) + lengths - e @ k
         out.append(float(np.ptp(path)))
     return np.array(out)
+
+
+def layer_air(ts: TwoStorey, layer: int, mouth: float) -> list[Polygon]:
+    """Plan polygons of a layer's air: the guides (opened ``mouth`` past their ends), and the feed
+    region with its horns (layer 1) or the output region (layer 2)."""
+    guides = [ts.footprint(i, layer, mouth) for i in range(len(ts.y1))]
+    if layer == 1:
+        return guides + [ts.feed_region()] + [ts.horn(k) for k in range(len(ts.feeds))]
+    return guides + [ts.output_region(mouth)]
+
+
+def outlines(ts: TwoStorey, mouth: float, margin: float) -> tuple[Polygon, Polygon]:
+    """(lower, upper) plan outlines of the block: the hull of both layers' air grown by ``margin``,
+    the upper one cut at the radiating mouth, the lower one at the mouth or the feeds' backs."""
+    air = shapely.unary_union(layer_air(ts, 1, mouth) + layer_air(ts, 2, mouth))
+    hull = air.convex_hull.buffer(margin, join_style=2)
+    x0, _, x1, z1 = hull.bounds
+    back = min(ts.z_mouth, min(ts.horn(k).bounds[1] for k in range(len(ts.feeds))))
+    lower = hull.intersection(shapely.box(x0 - 1, back, x1 + 1, z1 + 1))
+    upper = hull.intersection(shapely.box(x0 - 1, ts.z_mouth, x1 + 1, z1 + 1))
+    return lower, upper

@@ -133,7 +133,8 @@ def summary(spec: PolyfocalSpec, design: PolyfocalDesign, layup) -> dict[str, fl
             "channel_width_min_mm": float(design.width_mm.min()), "channel_width_max_mm": float(design.width_mm.max())}
     figures |= {"design_focus_eikonal_spread_over_D": float(design.dense.residuals().max() / design.dense.aperture),
                 "design_foci_sigma_over_D_max": float(design.foci_sigma.max()),
-                "focal_centre_z_mm": design.focal[0] * design.unit_mm, "focal_radius_mm": design.focal[1] * design.unit_mm}
+                "focal_centre_z_mm": design.focal[0] * design.unit_mm,
+                "focal_radius_mm": design.focal[1] * design.unit_mm}
     if design.focal_axis_z is not None:
         figures["focal_axis_z_mm"] = design.focal_axis_z * design.unit_mm
     for scan in design.scans:

@@ -25,7 +25,7 @@ from antenna_cad.geometry import kernel
 from antenna_cad.geometry.model import Model, ModelPart
 from antenna_cad.materials import Material
 from antenna_cad.synthesis.checks import Check
-from antenna_cad.synthesis.two_storey import TwoStorey, focus_spreads, layer_air, outlines
+from antenna_cad.synthesis.two_storey import TwoStorey, focus_spreads, layer_air, outlines, pierce
 
 READBACK_LIMIT = 1e-9       # relative spread of the guides' lengths read back from their solids
 FOCUS_LIMIT = 1e-9          # eikonal spread / D at the design foci through the read-back lengths
@@ -77,8 +77,7 @@ def build_model(ts: TwoStorey, air: Material, metal: Material, plate_mm: float, 
     mouth = ts.p.guide_width * 2
     lower, upper = outlines(ts, mouth, margin_mm)
     tools = [s for i in range(len(ts.y1)) for s in _guide(ts, i, mouth)]
-    tools += [_plan_prism(q, -h / 2, h) for q in layer_air(ts, 1, mouth)[len(ts.y1):]]
-    tools += [_plan_prism(ts.horn(k, margin_mm + 1.0), -h / 2, h) for k in range(len(ts.feeds))]
+    tools += [_plan_prism(q, -h / 2, h) for q in layer_air(ts, 1, mouth, pierce(margin_mm))[len(ts.y1):]]
     tools += [_plan_prism(layer_air(ts, 2, mouth)[-1], h / 2 + t, h)]
     half = float(np.max(np.abs(ts.exit_curve[:, 0]))) + ts.p.guide_width / 2
     tools.append(_flare(ts, half))
@@ -87,7 +86,7 @@ def build_model(ts: TwoStorey, air: Material, metal: Material, plate_mm: float, 
              ("cover", upper, 1.5 * h + t, cover))
     parts = [ModelPart(label, metal, "fabricated", kernel.cut(_plan_prism(poly, x0, dx), tools))
              for label, poly, x0, dx in slabs]
-    guides = [kernel.compound(_guide(ts, i)) for i in range(len(ts.y1))]
+    guides = [kernel.fuse(_guide(ts, i)) for i in range(len(ts.y1))]
     parts += [ModelPart(f"guide-{i + 1:03d}", air, "reference", g) for i, g in enumerate(guides)]
     lengths = np.array([kernel.volume(g) for g in guides]) / (ts.p.guide_width * h)
     spread = float(np.ptp(lengths) / lengths.max())

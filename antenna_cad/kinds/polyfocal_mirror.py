@@ -21,8 +21,8 @@ from antenna_cad.fabrication.templates import Drawing
 from antenna_cad.materials import Material
 from antenna_cad.synthesis.checks import solving
 from antenna_cad.synthesis.polyfocal_design import PolyfocalDesign
-from antenna_cad.synthesis.two_storey import C_MM_GHZ, FIELD, TwoStorey, TwoStoreyParams, checks, layer_air, layout
-from antenna_cad.synthesis.two_storey import outlines
+from antenna_cad.synthesis.two_storey import (C_MM_GHZ, FIELD, TwoStorey, TwoStoreyParams, checks, layer_air, layout,
+                                              outlines, pierce)
 
 COLUMNS = ("element", "x1_mm", "y1_mm", "z1_mm", "x2_mm", "y2_mm", "z2_mm", "z_exit_folded_mm", "z_kink_mm",
            "z_bend_mm", "l_layer1_mm", "l_bend_mm", "l_layer2_mm", "l_total_mm", "l_electrical_mm")
@@ -73,9 +73,7 @@ def lines_csv(design: PolyfocalDesign) -> str:
 def _drawing(ts: TwoStorey, layer: int, outline, mouth: float, margin: float, title: str) -> Drawing:
     d = Drawing(f"layer-{layer}")
     d.add_polygon(outline)
-    air = layer_air(ts, layer, mouth)
-    if layer == 1:
-        air += [ts.horn(k, margin + 1.0) for k in range(len(ts.feeds))]
+    air = layer_air(ts, layer, mouth, pierce(margin))
     pocket = shapely.unary_union(air).intersection(outline)
     for poly in getattr(pocket, "geoms", [pocket]):
         d.add_polygon(poly)

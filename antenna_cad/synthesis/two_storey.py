@@ -287,12 +287,17 @@ def focus_spreads(ts: TwoStorey, lengths: np.ndarray, foci: list[tuple[np.ndarra
     return np.array(out)
 
 
-def layer_air(ts: TwoStorey, layer: int, mouth: float) -> list[Polygon]:
+def pierce(margin: float) -> float:
+    """How much longer the feed stubs are cut than drawn, to pierce the block's grown outline."""
+    return 3 * margin + 1.0
+
+
+def layer_air(ts: TwoStorey, layer: int, mouth: float, stub: float = 0.0) -> list[Polygon]:
     """Plan polygons of a layer's air: the guides (opened ``mouth`` past their ends), and the feed
-    region with its horns (layer 1) or the output region (layer 2)."""
+    region with its horns, stubs lengthened by ``stub`` (layer 1), or the output region (layer 2)."""
     guides = [ts.footprint(i, layer, mouth) for i in range(len(ts.y1))]
     if layer == 1:
-        return guides + [ts.feed_region()] + [ts.horn(k) for k in range(len(ts.feeds))]
+        return guides + [ts.feed_region()] + [ts.horn(k, stub) for k in range(len(ts.feeds))]
     return guides + [ts.output_region(mouth)]
 
 

@@ -148,3 +148,22 @@ def test_a_shifted_bend_fails_the_readback(tmp_path):
     model = build_model(bad, air, metal, 2.0, 5.0, design.wavelength_mm, foci_mm(design), design.aperture_mm)
     status = {c.name: c.status for c in model.checks}
     assert status["guide_length_readback_spread"] == "fail" and status["two_storey_focus_spread"] == "fail"
+
+
+def test_horns_in_front_of_the_entry_surface_are_refused(tmp_path):
+    spec = load_spec(_spec(tmp_path, design__lens_mirror__horn_aperture_mm=25.0))
+    with pytest.raises(DesignError) as err:
+        adapter("polyfocal").synthesize(spec)
+    assert err.value.field == "design.lens_mirror.horn_aperture_mm" and "in front of the entry surface" in err.value.message
+
+
+def test_setback_moves_the_bends_out_or_is_refused(tmp_path):
+    """A short setback keeps every layer-2 run ≥ a guide width by moving the bends out, lengths equal;
+    with the exit vertex over the entry vertex the edge guides must run so far that they cross."""
+    ts = adapter("polyfocal").synthesize(load_spec(_spec(tmp_path, design__lens_mirror__setback_mm=10.0))).mirror
+    assert ts.l2.min() == pytest.approx(ts.p.guide_width) and np.ptp(ts.total) < 1e-12 * ts.total.max()
+    assert (ts.zk - ts.z1).min() > 10.0 + 1.0                # the layer-2 run binds, not the clearance
+    assert ts.total.max() == pytest.approx(49.064, abs=2e-3)                 # the code's value
+    with pytest.raises(DesignError) as err:
+        adapter("polyfocal").synthesize(load_spec(_spec(tmp_path, design__lens_mirror__setback_mm=0.0)))
+    assert err.value.field == "design.lens_mirror.guide_width_mm"

@@ -22,10 +22,11 @@ import numpy as np
 from shapely.geometry import Polygon
 
 from antenna_cad.geometry import kernel
-from antenna_cad.geometry.model import Model, ModelPart
+from antenna_cad.geometry.model import Model, ModelPart, relative_volume_check
 from antenna_cad.materials import Material
 from antenna_cad.synthesis.checks import Check
-from antenna_cad.synthesis.two_storey import TwoStorey, focus_spreads, layer_air, outlines, pierce
+from antenna_cad.synthesis.two_storey import (TwoStorey, focus_spreads, layer_air, outlines, pierce,
+                                              slab_volumes)
 
 READBACK_LIMIT = 1e-9       # relative spread of the guides' lengths read back from their solids
 FOCUS_LIMIT = 1e-9          # eikonal spread / D at the design foci through the read-back lengths
@@ -102,4 +103,8 @@ def build_model(ts: TwoStorey, air: Material, metal: Material, plate_mm: float, 
                           "folded exit point; seed-001 (1.15)–(1.17)): " + ", ".join(f"{s:.1e}" for s in sigma))]
     checks += [Check(f"{p.label}_valid", "pass" if kernel.is_valid(p.shape) else "fail", 1.0, 1.0, "",
                      f"{p.label}: BRepCheck of the machined plate") for p in parts[:3]]
+    plan = slab_volumes(ts, mouth, margin_mm, plate_mm)
+    checks += [relative_volume_check(f"{p.label}_volume_vs_plan", kernel.volume(p.shape), plan[p.label],
+                                     f"{p.label} solid vs its plan (outline less pockets, bends, flare)")
+               for p in parts[:3]]
     return Model(tuple(parts), tuple(checks), cutaway=("cover", "block-upper"))

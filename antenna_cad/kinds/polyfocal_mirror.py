@@ -22,7 +22,7 @@ from antenna_cad.materials import Material
 from antenna_cad.synthesis.checks import solving
 from antenna_cad.synthesis.polyfocal_design import PolyfocalDesign
 from antenna_cad.synthesis.two_storey import (C_MM_GHZ, FIELD, TwoStorey, TwoStoreyParams, checks, layer_air, layout,
-                                              outlines, pierce)
+                                              outlines, pierce, slab_volumes)
 
 COLUMNS = ("element", "x1_mm", "y1_mm", "z1_mm", "x2_mm", "y2_mm", "z2_mm", "z_exit_folded_mm", "z_kink_mm",
            "z_bend_mm", "l_layer1_mm", "l_bend_mm", "l_layer2_mm", "l_total_mm", "l_electrical_mm")
@@ -92,18 +92,18 @@ def fabricate(design: PolyfocalDesign, metal: Material, plate_mm: float, margin_
     mouth = 2 * ts.p.guide_width
     lower, upper = outlines(ts, mouth, margin_mm)
     cover = plate_mm + ts.p.mouth_height - h
+    volumes = slab_volumes(ts, mouth, margin_mm, plate_mm)
     rows, total = [], 0.0
-    for order, (label, poly, thick, layer) in enumerate((("block-lower", lower, plate_mm + h, 1),
-                                                          ("block-upper", upper, t + h, 2),
-                                                          ("cover", upper, cover, 0)), 1):
-        pocket = shapely.unary_union(layer_air(ts, layer, mouth)).intersection(poly).area if layer else 0.0
-        kg = (poly.area * thick - pocket * h) / 1e9 * metal.density_kg_m3
+    notes = {"block-lower": "bottom plate, layer-1 pockets (template layer-1), U-bends' lower halves (STEP)",
+             "block-upper": "septum, layer-2 pockets (template layer-2), U-bends' upper halves (STEP)",
+             "cover": "top plate, E-plane flare milled in (STEP)"}
+    for order, (label, poly, thick) in enumerate((("block-lower", lower, plate_mm + h), ("block-upper", upper, t + h),
+                                                  ("cover", upper, cover)), 1):
+        kg = volumes[label] / 1e9 * metal.density_kg_m3
         total += kg
         minx, miny, maxx, maxy = poly.bounds
-        note = {1: "layer-1 pockets (template layer-1)", 2: "septum + layer-2 pockets (template layer-2)",
-                0: "top plate, E-plane flare milled in (STEP)"}[layer]
         rows.append(CutRow(label, "metal-plate", metal.name, "stock", 0, 0, False, maxx - minx, maxy - miny, thick,
-                           poly.area / 1e6, kg, order, note + "; mass without the U-bend pockets"))
+                           poly.area / 1e6, kg, order, notes[label]))
     drawings = tuple(_drawing(ts, k, poly, mouth, margin_mm, title) for k, poly in ((1, lower), (2, upper)))
     return FabPlan((), {}, {}, drawings, tuple(rows), {metal.name: total, "all": total}, {}, 0.0,
                    {"lines.csv": lines_csv(design)})

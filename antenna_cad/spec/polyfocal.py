@@ -141,11 +141,12 @@ class LensMirrorSpec(StrictModel):
                              "about its rounded edge (centre-line radius (plate spacing + septum)/2)")
     bend_run_mm: float | None = Field(None, ge=0, le=1000, description="axial run of each layer-1 guide before "
                                       "its bend (None: the guide width)")
-    mirror_clearance_mm: float = Field(10.0, ge=0, le=10000, description="least axial distance from an entry "
+    mirror_clearance_mm: float = Field(10.0, ge=0.1, le=10000, description="least axial distance from an entry "
                                        "point to its guide's kink (fixes the common line length)")
     setback_mm: float | None = Field(None, ge=-1000, le=10000, description="layer-2 exit-surface vertex behind "
                                      "the entry vertex (toward the feeds); None: the flare's mouth flush with the "
-                                     "back of the feed horns")
+                                     "back of the feed horns. The bends move out until every layer-2 run "
+                                     "is at least a guide width")
     horn_aperture_mm: float = Field(10.0, gt=0.1, le=1000, description="H-plane sectoral feed horn aperture "
                                     "(centred on each focus F, F1, F2, aimed at the entry-surface centre)")
     horn_length_mm: float = Field(15.0, gt=0.1, le=1000, description="feed horn length, throat to aperture")

@@ -183,10 +183,11 @@ def layout(r1: np.ndarray, r2: np.ndarray, dense_r1: np.ndarray, dense_r2: np.nd
     exit_curve = np.column_stack([dense_y2, vertex - (dense_z2 - half_d)])
     z_flare = float(np.min(exit_curve[:, 1]))
     z_mouth = z_flare - p.flare_length
-    # equal total length T = sqrt(Δy² + u²) + u + 2·run + πR + z1 − z_e, u = z_k − z1 (closed form in u)
+    # equal total length T = sqrt(Δy² + u²) + u + 2·run + πR + z1 − z_e, u = z_k − z1 (closed form in u);
+    # each u at least the clearance, and the layer-2 run z_m − z_e at least one guide width
     dy = y2 - y1
-    c = p.clearance
-    need = c + np.sqrt(c**2 + dy**2)                      # Q that gives u = clearance
+    c = np.maximum(p.clearance, ze - z1 - p.run + p.guide_width)
+    need = c + np.sqrt(c**2 + dy**2)                      # Q that gives u = c
     rest = 2 * p.run + np.pi * p.bend_radius + z1 - ze
     total = float(np.max(need + rest))
     q = total - rest
@@ -195,8 +196,6 @@ def layout(r1: np.ndarray, r2: np.ndarray, dense_r1: np.ndarray, dense_r2: np.nd
     zm = zk + p.run
     l1 = np.hypot(dy, u) + p.run
     l2 = zm - ze
-    if np.any(l2 <= 0):
-        raise DesignError(f"{FIELD}.setback_mm", "the exit surface lies beyond the bends: reduce the setback")
     dense_y1, dense_z1 = _lens_xy(dense_r1, unit_mm)
     return TwoStorey(p, y1, z1, y2, z2, ze, zk, zm, l1, l2, np.column_stack([dense_y1, dense_z1]), exit_curve,
                      feeds, z_flare, z_mouth)
@@ -234,9 +233,11 @@ def checks(ts: TwoStorey) -> tuple[list[Check], dict[str, float]]:
     region = ts.feed_region()
     horns = [ts.horn(k) for k in range(len(ts.feeds))]
     near = min(h.distance(ts.footprint(i, 1)) for h in horns for i in range(len(ts.y1)))
-    if not region.is_valid or near < p.wall - 1e-9:
-        raise DesignError(f"{FIELD}.horn_aperture_mm", "the feed horns stand in front of the guides or across "
-                          f"the feed region (least wall {near:.3g} mm to a guide): narrow or shorten the horns")
+    bite = _feed_bite(ts, region) if region.is_valid else float("inf")
+    if near < p.wall - 1e-9 or bite > 1e-9 * p.guide_width**2:
+        raise DesignError(f"{FIELD}.horn_aperture_mm", f"the feed horns come {near:.3g} mm from a guide (least wall "
+                          f"{p.wall:g} mm) or open the feed region {bite:.3g} mm² in front of the entry surface: "
+                          "narrow or shorten the horns")
     mapping = float(min(np.min(np.diff(ts.y1)), np.min(np.diff(ts.y2))))
     checks_ = [Check("mapping_monotonic", "pass" if mapping > 0 else "fail", mapping, 0.0, "mm",
                      f"least step of y1 and y2 between neighbouring guides: {mapping:.4g} mm (> 0: y2(y1) monotonic)")]
@@ -265,6 +266,17 @@ def checks(ts: TwoStorey) -> tuple[list[Check], dict[str, float]]:
                       "grating_lobe_free_scan_deg_at_band_top": _grating_free(pitch, C_MM_GHZ / hi),
                       "te10_cutoff_ghz": cutoff, "mouth_z_mm": ts.z_mouth}
     return checks_, figures
+
+
+def _feed_bite(ts: TwoStorey, region: Polygon) -> float:
+    """Area of the feed region in front of the entry surface (the curve continued level past its
+    ends), outside the guides' own mouths: metal the feed region would take from the walls."""
+    curve = ts.entry_curve
+    far = 1e3 * (1.0 + float(np.max(np.abs(curve))))
+    top = float(np.max(ts.bend_outer)) + far
+    front = Polygon([(-far, curve[0, 1]), *map(tuple, curve), (far, curve[-1, 1]), (far, top), (-far, top)])
+    mouths = shapely.unary_union([ts.footprint(i, 1, 2 * ts.p.guide_width) for i in range(len(ts.y1))])
+    return float(region.difference(mouths).intersection(front).area)
 
 
 def _grating_free(pitch: float, lam: float) -> float:
@@ -311,3 +323,33 @@ def outlines(ts: TwoStorey, mouth: float, margin: float) -> tuple[Polygon, Polyg
     lower = hull.intersection(shapely.box(x0 - 1, back, x1 + 1, z1 + 1))
     upper = hull.intersection(shapely.box(x0 - 1, ts.z_mouth, x1 + 1, z1 + 1))
     return lower, upper
+
+
+def _lower_bend_section(ts: TwoStorey) -> float:
+    """Area (xz) of a U-bend's half annulus below the septum (x − x_c ≤ −r_i): the rest is in the
+    septum and layer 2."""
+    ri, ro = ts.p.septum / 2, ts.p.septum / 2 + ts.p.height
+    prim = lambda x: (x * np.sqrt(ro**2 - x**2) + ro**2 * np.arcsin(x / ro)) / 2     # noqa: E731
+    return float(prim(-ri) - prim(-ro))
+
+
+def slab_volumes(ts: TwoStorey, mouth: float, margin: float, plate: float) -> dict[str, float]:
+    """Volumes (mm³) of the three machined plates from the plan alone: outline × thickness less the
+    pockets (plan areas × h), the U-bends' parts (xz sections × a) and the flare (its triangle × width)."""
+    p, n = ts.p, len(ts.y1)
+    lower, upper = outlines(ts, mouth, margin)
+    half_annulus = np.pi / 2 * ((p.septum / 2 + p.height) ** 2 - (p.septum / 2) ** 2)
+    bend_low = _lower_bend_section(ts) * p.guide_width * n
+    bend_up = half_annulus * p.guide_width * n - bend_low
+
+    def pockets(layer: int, outline: Polygon) -> float:
+        air = [ts.footprint(i, layer, mouth, to_bend=True) for i in range(n)]
+        air += layer_air(ts, layer, mouth, pierce(margin))[n:]
+        return shapely.unary_union(air).intersection(outline).area * p.height
+
+    half = float(np.max(np.abs(ts.exit_curve[:, 0]))) + p.guide_width / 2
+    flare = (p.mouth_height - p.height) * p.flare_length / 2 * 2 * half
+    cover = plate + p.mouth_height - p.height
+    return {"block-lower": lower.area * (plate + p.height) - pockets(1, lower) - bend_low,
+            "block-upper": upper.area * (p.septum + p.height) - pockets(2, upper) - bend_up,
+            "cover": upper.area * cover - flare}

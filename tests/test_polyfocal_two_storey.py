@@ -95,6 +95,7 @@ def test_refusal_is_one_line_exit_2_and_writes_nothing(tmp_path):
     (dict(design__lens_mirror__mouth_height_mm=1.5), "mouth_height_mm"),
     (dict(design__lens_mirror__band_ghz=[75.0, 45.0]), "band_ghz"),
     (dict(design__lens_mirror__guide_width_mm=4.8), "guide_width_mm"),
+    (dict(design__lens_mirror__horn_aperture_mm=3.0), "horn_aperture_mm"),
     (dict(design__output="foci", design__symmetry="two_planes",
           design__foci=[{"f": 1.0, "angle_deg": 20.0}]), "design.lens_mirror"),
 ])
@@ -105,8 +106,10 @@ def test_spec_rules(tmp_path, changes, field):
 
 
 def test_build_reads_back_equal_lengths_and_perfect_foci(tmp_path):
-    """A small variant (D = 40 mm, 7 guides) built end to end; lengths and foci from its files."""
-    path = _spec(tmp_path, design__unit_mm=40.0, design__lines__pitch_mm=6.0, name="two-storey-small")
+    """A small variant (D = 40 mm, 7 guides, 4.5 mm horns: wider ones stand in front of the entry surface)
+    built end to end; lengths and foci from its files."""
+    path = _spec(tmp_path, design__unit_mm=40.0, design__lines__pitch_mm=6.0,
+                 design__lens_mirror__horn_aperture_mm=4.5, name="two-storey-small")
     spec = load_spec(path)
     res = pipeline.build(spec, tmp_path / "out")
     manifest = json.loads((res.out_dir / "manifest.json").read_text())
@@ -138,14 +141,15 @@ def test_a_shifted_bend_fails_the_readback(tmp_path):
     from antenna_cad.geometry.two_storey import build_model
     from antenna_cad.kinds.polyfocal_mirror import foci_mm
     from antenna_cad.materials import Material
-    spec = load_spec(_spec(tmp_path, design__unit_mm=40.0, design__lines__pitch_mm=6.0))
+    spec = load_spec(_spec(tmp_path, design__unit_mm=40.0, design__lines__pitch_mm=6.0,
+                           design__lens_mirror__horn_aperture_mm=4.5))
     design = adapter("polyfocal").synthesize(spec)
     ts = design.mirror
     zm = ts.zm.copy()
     zm[1] += 0.1
     bad = replace(ts, zm=zm)
     air, metal = Material("air", 1, 0, 1.2, ""), Material("al", 1, 0, 2700, "")
-    model = build_model(bad, air, metal, 2.0, 5.0, design.wavelength_mm, foci_mm(design), design.aperture_mm)
+    model = build_model(bad, air, metal, 2.0, 5.0, foci_mm(design), design.aperture_mm)
     status = {c.name: c.status for c in model.checks}
     assert status["guide_length_readback_spread"] == "fail" and status["two_storey_focus_spread"] == "fail"
 

@@ -73,7 +73,7 @@ def _flare(ts: TwoStorey, half_width: float) -> kernel.Shape:
 
 
 def build_model(ts: TwoStorey, air: Material, metal: Material, plate_mm: float, margin_mm: float,
-                lam_mm: float, foci: list[tuple[np.ndarray, np.ndarray]], aperture_mm: float) -> Model:
+                foci: list[tuple[np.ndarray, np.ndarray]], aperture_mm: float) -> Model:
     h, t = ts.p.height, ts.p.septum
     mouth = ts.p.guide_width * 2
     lower, upper = outlines(ts, mouth, margin_mm)

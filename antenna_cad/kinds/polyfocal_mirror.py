@@ -51,8 +51,7 @@ def foci_mm(design: PolyfocalDesign) -> list[tuple[np.ndarray, np.ndarray]]:
 
 def model(design: PolyfocalDesign, air: Material, metal: Material, plate_mm: float, margin_mm: float):
     from antenna_cad.geometry.two_storey import build_model
-    return build_model(design.mirror, air, metal, plate_mm, margin_mm, design.wavelength_mm, foci_mm(design),
-                       design.aperture_mm)
+    return build_model(design.mirror, air, metal, plate_mm, margin_mm, foci_mm(design), design.aperture_mm)
 
 
 def te10_index(ts: TwoStorey, lam_mm: float) -> float:

@@ -150,7 +150,7 @@ class LensMirrorSpec(StrictModel):
     horn_aperture_mm: float = Field(10.0, gt=0.1, le=1000, description="H-plane sectoral feed horn aperture "
                                     "(centred on each focus F, F1, F2, aimed at the entry-surface centre)")
     horn_length_mm: float = Field(15.0, gt=0.1, le=1000, description="feed horn length, throat to aperture")
-    horn_stub_mm: float | None = Field(None, gt=0, le=1000, description="feed guide behind each horn throat "
+    horn_stub_mm: float | None = Field(None, ge=MIN_MM, le=1000, description="feed guide behind each horn throat "
                                        "(None: twice the guide width)")
     flare_length_mm: float = Field(30.0, gt=0.1, le=10000, description="E-plane flare of the output plates")
     mouth_height_mm: float = Field(gt=0.05, le=1000, description="plate spacing at the radiating mouth")
@@ -267,6 +267,9 @@ class PolyfocalDesignSpec(StrictModel):
         if m.guide_width_mm + self.lines.wall_mm > self.lines.pitch_mm:
             raise ValueError("design.lens_mirror.guide_width_mm: guide width + lines.wall_mm must not exceed "
                              "lines.pitch_mm")
+        if m.horn_aperture_mm < m.guide_width_mm:
+            raise ValueError("design.lens_mirror.horn_aperture_mm: the H-plane horn flares from the guide: give at "
+                             "least guide_width_mm")
         if m.mouth_height_mm <= self.lines.plate_spacing_mm:
             raise ValueError("design.lens_mirror.mouth_height_mm: the E-plane flare opens: give more than "
                              "lines.plate_spacing_mm")

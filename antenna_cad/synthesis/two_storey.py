@@ -153,6 +153,13 @@ def _lens_xy(r: np.ndarray, unit: float) -> tuple[np.ndarray, np.ndarray]:
     return r[:, 1] * unit, r[:, 2] * unit
 
 
+def _trimmed(y: np.ndarray, z: np.ndarray, ys: np.ndarray, zs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """A dense surface curve cut to the guides' span: its points strictly between the edge guides'
+    ordinates, the edge guides' own points at both ends."""
+    inside = (y > ys[0]) & (y < ys[-1])
+    return np.r_[ys[0], y[inside], ys[-1]], np.r_[zs[0], z[inside], zs[-1]]
+
+
 def _feeds(foci_mm: list[np.ndarray], target: np.ndarray) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
     out = []
     for f in foci_mm:
@@ -174,7 +181,7 @@ def layout(r1: np.ndarray, r2: np.ndarray, dense_r1: np.ndarray, dense_r2: np.nd
     depth = p.horn_length + p.horn_stub
     z_back = min(float(c[1] - v[1] * depth) for c, v in feeds)
     z_back = min(z_back, float(np.min(z1)) - 2 * p.guide_width)
-    dense_y2, dense_z2 = _lens_xy(dense_r2, unit_mm)
+    dense_y2, dense_z2 = _trimmed(*_lens_xy(dense_r2, unit_mm), y2, z2)
     if p.setback is None:
         vertex = z_back + p.flare_length + float(np.max(dense_z2 - half_d))
     else:
@@ -196,7 +203,7 @@ def layout(r1: np.ndarray, r2: np.ndarray, dense_r1: np.ndarray, dense_r2: np.nd
     zm = zk + p.run
     l1 = np.hypot(dy, u) + p.run
     l2 = zm - ze
-    dense_y1, dense_z1 = _lens_xy(dense_r1, unit_mm)
+    dense_y1, dense_z1 = _trimmed(*_lens_xy(dense_r1, unit_mm), y1, z1)
     return TwoStorey(p, y1, z1, y2, z2, ze, zk, zm, l1, l2, np.column_stack([dense_y1, dense_z1]), exit_curve,
                      feeds, z_flare, z_mouth)
 

@@ -13,11 +13,12 @@ from dataclasses import replace
 
 import numpy as np
 
+from antenna_cad.asbuilt.patterns_arrays import (array_patterns, chief_note, imaged_case, path_mm, ports_case,
+                                                 referred)
 from antenna_cad.fabrication.cutlist import CutRow
 from antenna_cad.fabrication.polyfocal import channel_clearance_check, fabricate_polyfocal
 from antenna_cad.fabrication.polyfocal_sections import gauges_drawing, section_gauges
-from antenna_cad.asbuilt.patterns_arrays import (array_patterns, chief_note, imaged_case, path_mm, ports_case,
-                                              referred)
+from antenna_cad.kinds import polyfocal_mirror
 from antenna_cad.materials import Material
 from antenna_cad.spec.common import resolve_material
 from antenna_cad.spec.polyfocal import PolyfocalSpec
@@ -35,12 +36,13 @@ AS_BUILT_LIMIT = 1e-9        # as-built σ/D may exceed the element σ/D by this
 
 def synthesize(spec: PolyfocalSpec) -> PolyfocalDesign:
     g, ln = spec.design, spec.design.lines
-    return synthesize_polyfocal(
+    design = synthesize_polyfocal(
         case=g.case, foci=g.resolved_foci(), unit_mm=g.unit_mm, aperture=g.aperture,
         thickness=g.thickness, law=g.line_law, straight_index=g.straight_index, view_angle_deg=g.view_angle_deg,
         line_type=ln.type, pitch_mm=ln.pitch_mm, phase_index=ln.phase_index, wall_mm=ln.wall_mm,
         height_mm=ln.plate_spacing_mm, fill_eps_r=resolve_material(spec.material).eps_r,
         wavelength_mm=wavelength_mm(spec.frequency_ghz), focal_axis_z=g.focal_axis_z)
+    return design if g.lens_mirror is None else polyfocal_mirror.with_mirror(spec, design)
 
 
 def _metal(spec: PolyfocalSpec) -> Material:
@@ -56,11 +58,16 @@ def plan(spec: PolyfocalSpec, design: PolyfocalDesign):
 def model(spec: PolyfocalSpec, design: PolyfocalDesign, layup, panels):
     from antenna_cad.geometry.polyfocal import build_model
     ln = spec.design.lines
+    if design.mirror is not None:
+        return polyfocal_mirror.model(design, resolve_material(spec.material), _metal(spec), ln.plate_thickness_mm,
+                                      ln.margin_mm)
     return build_model(design, resolve_material(spec.material), _metal(spec), ln.plate_thickness_mm, ln.margin_mm)
 
 
 def fabricate(spec: PolyfocalSpec, design: PolyfocalDesign, layup, panels):
     ln = spec.design.lines
+    if design.mirror is not None:
+        return polyfocal_mirror.fabricate(design, _metal(spec), ln.plate_thickness_mm, ln.margin_mm, spec.name)
     fab = fabricate_polyfocal(design, resolve_material(spec.material), _metal(spec), ln.plate_thickness_mm,
                               ln.margin_mm, spec.name)
     if design.case.startswith("2d"):
@@ -100,6 +107,8 @@ def _gauge_grid(spec: PolyfocalSpec) -> ConstrainedLens:
 def fabrication_checks(spec: PolyfocalSpec, design: PolyfocalDesign, layup) -> list[Check]:
     """2-D: the septa between neighbouring channels are at least the spec's wall thick; 3-D: the
     section gauges read back against exact surface points."""
+    if design.mirror is not None:
+        return []          # the layout's walls, bends and mapping are checked with the design
     if design.case.startswith("3d"):
         return [_gauges(spec, design)[1]]
     return [channel_clearance_check(design, spec.design.lines.wall_mm)]
@@ -113,14 +122,19 @@ def _scan_figures(scan, prefix: str) -> dict[str, float]:
 def summary(spec: PolyfocalSpec, design: PolyfocalDesign, layup) -> dict[str, float]:
     """Key figures: foci count, geometry, line lengths, and σ/D against the field angle."""
     figures = {"foci_count": spec.design.foci_count, "element_count": len(design.length_mm),
-               "aperture_mm": design.aperture_mm, "wavelength_mm": design.wavelength_mm,
-               "line_length_min_mm": float(design.length_mm.min()), "line_length_max_mm": float(design.length_mm.max()),
-               "electrical_length_spread_mm": float(np.ptp(design.electrical_mm)),
-               "phase_index_min": float(design.index.min()), "phase_index_max": float(design.index.max()),
-               "channel_width_min_mm": float(design.width_mm.min()), "channel_width_max_mm": float(design.width_mm.max()),
-               "design_focus_eikonal_spread_over_D": float(design.dense.residuals().max() / design.dense.aperture),
-               "design_foci_sigma_over_D_max": float(design.foci_sigma.max()),
-               "focal_centre_z_mm": design.focal[0] * design.unit_mm, "focal_radius_mm": design.focal[1] * design.unit_mm}
+               "aperture_mm": design.aperture_mm, "wavelength_mm": design.wavelength_mm}
+    if design.mirror is not None:
+        figures |= polyfocal_mirror.summary(design)
+    else:
+        figures |= {
+            "line_length_min_mm": float(design.length_mm.min()), "line_length_max_mm": float(design.length_mm.max()),
+            "electrical_length_spread_mm": float(np.ptp(design.electrical_mm)),
+            "phase_index_min": float(design.index.min()), "phase_index_max": float(design.index.max()),
+            "channel_width_min_mm": float(design.width_mm.min()), "channel_width_max_mm": float(design.width_mm.max())}
+    figures |= {"design_focus_eikonal_spread_over_D": float(design.dense.residuals().max() / design.dense.aperture),
+                "design_foci_sigma_over_D_max": float(design.foci_sigma.max()),
+                "focal_centre_z_mm": design.focal[0] * design.unit_mm,
+                "focal_radius_mm": design.focal[1] * design.unit_mm}
     if design.focal_axis_z is not None:
         figures["focal_axis_z_mm"] = design.focal_axis_z * design.unit_mm
     for scan in design.scans:

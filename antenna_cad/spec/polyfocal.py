@@ -132,6 +132,38 @@ class LinesSpec(StrictModel):
     margin_mm: float = Field(5.0, ge=0, le=1000, description="plates beyond the lens outline (2-D)")
 
 
+class LensMirrorSpec(StrictModel):
+    """§1.5 realised as the two-storey lens–mirror antenna (seed-001 §1.5 Realisation, §8.1 item 2):
+    TE10 guides of one width (``lines.plate_spacing_mm`` high, ``lines.pitch_mm`` apart on the exit
+    surface, walls ≥ ``lines.wall_mm``) folded by 180° E-plane U-bends placed for equal lengths."""
+    guide_width_mm: float = Field(gt=0.1, le=500, description="broad wall a of every guide (in the plate plane)")
+    septum_mm: float = Field(1.0, ge=MIN_MM, le=50, description="metal between the layers; the U-bend turns "
+                             "about its rounded edge (centre-line radius (plate spacing + septum)/2)")
+    bend_run_mm: float | None = Field(None, ge=0, le=1000, description="axial run of each layer-1 guide before "
+                                      "its bend (None: the guide width)")
+    mirror_clearance_mm: float = Field(10.0, ge=0.1, le=10000, description="least axial distance from an entry "
+                                       "point to its guide's kink (fixes the common line length)")
+    setback_mm: float | None = Field(None, ge=-1000, le=10000, description="layer-2 exit-surface vertex behind "
+                                     "the entry vertex (toward the feeds); None: the flare's mouth flush with the "
+                                     "back of the feed horns. The bends move out until every layer-2 run "
+                                     "is at least a guide width")
+    horn_aperture_mm: float = Field(10.0, gt=0.1, le=1000, description="H-plane sectoral feed horn aperture "
+                                    "(centred on each focus F, F1, F2, aimed at the entry-surface centre)")
+    horn_length_mm: float = Field(15.0, gt=0.1, le=1000, description="feed horn length, throat to aperture")
+    horn_stub_mm: float | None = Field(None, ge=MIN_MM, le=1000, description="feed guide behind each horn throat "
+                                       "(None: twice the guide width)")
+    flare_length_mm: float = Field(30.0, gt=0.1, le=10000, description="E-plane flare of the output plates")
+    mouth_height_mm: float = Field(gt=0.05, le=1000, description="plate spacing at the radiating mouth")
+    band_ghz: tuple[Annotated[float, Field(gt=0.1, le=1e4)], Annotated[float, Field(gt=0.1, le=1e4)]] = Field(
+        description="operating band (lowest, highest): single-mode guides and plates are checked over it")
+
+    @model_validator(mode="after")
+    def _band(self):
+        if not self.band_ghz[0] < self.band_ghz[1]:
+            raise ValueError("design.lens_mirror.band_ghz: give (lowest, highest) with lowest < highest")
+        return self
+
+
 class PolyfocalDesignSpec(StrictModel):
     dimensions: Literal["2d", "3d"]
     symmetry: Literal["three_planes", "two_planes", "one_plane"]
@@ -151,6 +183,8 @@ class PolyfocalDesignSpec(StrictModel):
                                        "focal circle through F1, F2 crosses the axis (normalised, from the lens "
                                        "centre); None: optimised for the least peak σ over the view")
     lines: LinesSpec
+    lens_mirror: LensMirrorSpec | None = Field(None, description="§1.5 only: build the two-storey lens–mirror "
+                                               "antenna (U-bend mirror, E-plane flare) instead of straight channels")
 
     @property
     def case(self) -> str:
@@ -217,11 +251,28 @@ class PolyfocalDesignSpec(StrictModel):
                 raise ValueError("design.foci: §2.4 needs f1 ≠ f3 ((2.47) divides by f1² − f3²)")
             if self.foci[2].azimuth_deg:
                 raise ValueError("design.foci: the fifth focus lies in the xz plane (leave azimuth_deg out)")
+        if self.lens_mirror is not None:
+            self._check_lens_mirror()
         if self.lines.wall_mm >= self.lines.pitch_mm:
             raise ValueError("design.lines.wall_mm: must be < lines.pitch_mm")
         if self.aperture * self.unit_mm < 2 * self.lines.pitch_mm:
             raise ValueError("design.lines.pitch_mm: fewer than 3 elements across the aperture")
         return self
+
+    def _check_lens_mirror(self) -> None:
+        m = self.lens_mirror
+        if self.case != "2d/one_plane/plane_waves":
+            raise ValueError("design.lens_mirror: the two-storey lens–mirror antenna realises the §1.5 lens "
+                             "(2d / one_plane / plane_waves) only")
+        if m.guide_width_mm + self.lines.wall_mm > self.lines.pitch_mm:
+            raise ValueError("design.lens_mirror.guide_width_mm: guide width + lines.wall_mm must not exceed "
+                             "lines.pitch_mm")
+        if m.horn_aperture_mm < m.guide_width_mm:
+            raise ValueError("design.lens_mirror.horn_aperture_mm: the H-plane horn flares from the guide: give at "
+                             "least guide_width_mm")
+        if m.mouth_height_mm <= self.lines.plate_spacing_mm:
+            raise ValueError("design.lens_mirror.mouth_height_mm: the E-plane flare opens: give more than "
+                             "lines.plate_spacing_mm")
 
 
 class MetalFabSpec(StrictModel):

@@ -20,6 +20,7 @@ from antenna_cad.synthesis.polyfocal_analysis import (SigmaScan, axis_point_circ
                                                       focal_sphere, optimal_axis_point, seed_comparison, sigma_scan)
 from antenna_cad.synthesis.polyfocal_oneplane import FinitePair, one_plane_2d
 from antenna_cad.synthesis.polyfocal_three_planes import three_planes_3d
+from antenna_cad.synthesis.two_storey import TwoStorey
 
 EXACT_LIMIT = 1e-9          # eikonal spread / D at the design foci (closed-form or Newton solutions)
 DENSE_POINTS = 201          # half-aperture samples of the 2-D surfaces (the CAD curves)
@@ -46,6 +47,7 @@ class PolyfocalDesign:
     foci_sigma: np.ndarray          # σ/D at each design focus (1.4), dense lines
     comparison: tuple[SigmaScan, ...]
     checks: tuple[Check, ...]
+    mirror: TwoStorey | None = None   # §1.5 realised as the two-storey lens–mirror antenna
 
     @property
     def r1_mm(self) -> np.ndarray:

@@ -1,5 +1,5 @@
-"""Printable parts of a lattice lens: the graded cubic lattice (:mod:`lattice_mesh`) trimmed to the
-lens body by manifold3d, its solid skin, registration pins, and the split to the printer bed.
+"""Printable parts of a lattice lens: the graded cubic lattice (:mod:`lattice_mesh`) or sheet gyroid
+(:mod:`gyroid_mesh`) trimmed to the lens body by manifold3d, its solid skin, registration pins, and the split to the printer bed.
 
 Frame: the printer's; z up from the bed. A sphere is printed as two identical hemispheres on their
 flat faces (the lattice grid is offset by half a cell so the equator is a cell-face plane and the
@@ -17,6 +17,8 @@ import numpy as np
 from manifold3d import Manifold, Mesh, OpType
 
 from antenna_cad.printed.fill import FillMap, rod_width_mm
+from antenna_cad.printed.gyroid_mesh import gyroid_lattice
+from antenna_cad.printed.lattice import gyroid_edge_mm
 from antenna_cad.printed.lattice_mesh import lattice_triangles, weld
 
 MAX_SEGMENTS = 256
@@ -203,11 +205,18 @@ def build_printed_lens(shape: str, radius_mm: float, height_mm: float | None, fm
     r_in = radius_mm - skin_mm
     height = radius_mm if shape == "sphere" else height_mm
     copies = 2 if shape == "sphere" else 1
-    idx, rad = _cells(shape, r_in, height_mm, a)
-    w = _widths(fmap, rad, width_step_mm, wall_mm, gap_mm)
-    v, f = weld(lattice_triangles(idx, w, a))
-    v = v + np.array([0.0, 0.0, a / 2])
-    body = _to_manifold(v, f)
+    if fmap.lattice == "gyroid":
+        body = gyroid_lattice(shape, r_in + skin_mm / 2, 0.0, height, fmap, gyroid_edge_mm(a, fmap.fill_range))
+        body = body.trim_by_plane([0.0, 0.0, 1.0], 0.0)
+        cells = round((2 / 3 * math.pi * r_in**3 if shape == "sphere" else math.pi * r_in**2 * height) / a**3)
+        triangles = body.num_tri()
+    else:
+        idx, rad = _cells(shape, r_in, height_mm, a)
+        w = _widths(fmap, rad, width_step_mm, wall_mm, gap_mm)
+        v, f = weld(lattice_triangles(idx, w, a))
+        body = _to_manifold(v + np.array([0.0, 0.0, a / 2]), f)
+        cells, triangles = len(idx), len(f)
+        del v, f
     n = segments(radius_mm, tolerance_mm)
     keep = Manifold.sphere(r_in + skin_mm / 2, n) if shape == "sphere" else \
         _cylinder_along(2, r_in + skin_mm / 2, 0.0, height, n)
@@ -244,6 +253,6 @@ def build_printed_lens(shape: str, radius_mm: float, height_mm: float | None, fm
         pv, pf = _arrays(_cylinder_along(2, pins.diameter_mm / 2, 0.0, pins.length_mm,
                                          segments(pins.diameter_mm / 2, tolerance_mm)))
         parts.append(PrintedPart("pin", "pin", pin_count, pv - pv.min(axis=0), pf))
-    return PrintedLens(tuple(parts), len(idx) * copies, len(f) * copies, body_volume, reference_volume_mm3,
+    return PrintedLens(tuple(parts), cells * copies, triangles * copies, body_volume, reference_volume_mm3,
                        pin_count, len(planes[0]) + len(planes[1]), unpinned)
 

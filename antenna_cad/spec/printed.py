@@ -14,6 +14,7 @@ from typing import Literal
 from pydantic import Field, model_validator
 
 from antenna_cad.materials import FILAMENTS
+from antenna_cad.printed.lattice import Printable
 from antenna_cad.spec.common import InlineMaterial, StrictModel
 
 C_MM_GHZ = 299.792458
@@ -35,7 +36,8 @@ class PinsSpec(StrictModel):
 
 
 class PrintedSpec(StrictModel):
-    """FDM-printed lattice lens (cubic: orthogonal rods, the rectilinear infill of a slicer)."""
+    """FDM-printed lattice lens (cubic: orthogonal rods, the rectilinear infill of a slicer; gyroid: the sheet
+    gyroid, a slicer's gyroid infill)."""
     method: Literal["printed"]
     lattice: Literal["cubic", "gyroid"] = "cubic"
     cell_mm: float = Field(ge=0.5, le=100, description="lattice period; ≤ λ/(4·√εr of the filament)")
@@ -75,8 +77,10 @@ class PrintedSpec(StrictModel):
                              f"{self.wall_mm + self.gap_mm:g}): no fill is printable")
         if 0 < self.skin_mm < self.wall_mm:
             raise ValueError(f"fabrication.skin_mm: must be 0 or ≥ the min wall ({self.skin_mm:g} < {self.wall_mm:g})")
-        if self.lattice == "gyroid":
-            raise ValueError("fabrication.lattice: gyroid is tabulated but not meshed yet; use cubic")
+        if self.lattice == "gyroid" and Printable("gyroid", self.cell_mm, self.wall_mm, self.gap_mm).fill_range[1] == 0:
+            raise ValueError(f"fabrication.cell_mm: no gyroid sheet of a {self.cell_mm:g} mm cell has walls ≥ "
+                             f"{self.wall_mm:g} mm and channels ≥ {self.gap_mm:g} mm (its thinnest sheet and narrowest "
+                             "channel are 0.2 cells at half fill): use a larger cell, thinner walls or cubic")
         return self
 
     def check_lens(self, material, frequency_ghz: float) -> None:

@@ -42,8 +42,8 @@ class PrintedSpec(StrictModel):
     lattice: Literal["cubic", "gyroid"] = "cubic"
     cell_mm: float = Field(ge=0.5, le=100, description="lattice period; ≤ λ/(4·√εr of the filament)")
     nozzle_mm: float = Field(0.4, ge=0.1, le=2)
-    min_wall_mm: float | None = Field(None, ge=0.1, le=20, description="thinnest rod (default: 2 nozzle widths)")
-    min_gap_mm: float | None = Field(None, ge=0.1, le=20, description="narrowest opening (default: 2 nozzle widths)")
+    min_wall_mm: float | None = Field(None, ge=0.1, le=20, description="thinnest rod or sheet (default: 2 nozzle widths)")
+    min_gap_mm: float | None = Field(None, ge=0.1, le=20, description="narrowest opening or channel (default: 2 nozzle widths)")
     layer_height_mm: float = Field(0.2, ge=0.04, le=1.5)
     bed: BedSpec = BedSpec()
     orientation: Literal["axis_up", "axis_flat"] = Field(
@@ -80,7 +80,7 @@ class PrintedSpec(StrictModel):
         if self.lattice == "gyroid" and Printable("gyroid", self.cell_mm, self.wall_mm, self.gap_mm).fill_range[1] == 0:
             raise ValueError(f"fabrication.cell_mm: no gyroid sheet of a {self.cell_mm:g} mm cell has walls ≥ "
                              f"{self.wall_mm:g} mm and channels ≥ {self.gap_mm:g} mm (its thinnest sheet and narrowest "
-                             "channel are 0.2 cells at half fill): use a larger cell, thinner walls or cubic")
+                             "channel are 0.15 and 0.27 cells at half fill): use a larger cell, thinner walls or cubic")
         return self
 
     def check_lens(self, material, frequency_ghz: float) -> None:

@@ -165,7 +165,7 @@ def focus_shift(fan: Fan, wavelength_mm: float, radius_mm: float) -> float:
     return float(-np.sum(w * phase * basis) / np.sum(w * basis * basis))
 
 
-OPL_BATCH = 50_000       # straight segments traced at a time by first_order_opl
+OPL_BATCH = 10_000       # straight segments traced at a time by first_order_opl
 
 
 def first_order_opl(medium, trace: MediaTrace, extend_mm: float = 0.0) -> np.ndarray:

@@ -19,7 +19,7 @@ from antenna_cad.limits import LIMITS
 from antenna_cad.materials import Material
 from antenna_cad.printed.fill import FillMap, fill_integral_mm3, fill_map
 from antenna_cad.printed.homogenization import table_rows
-from antenna_cad.printed.lattice import Printable
+from antenna_cad.printed.lattice import Printable, gyroid_edge_mm, gyroid_grid_points
 from antenna_cad.raytrace.media import Shells
 from antenna_cad.spec.common import resolve_material
 from antenna_cad.spec.printed import C_MM_GHZ, PrintedSpec
@@ -81,6 +81,10 @@ def fabricate_printed(spec, design) -> PrintedFabPlan:
     body = 4 / 3 * math.pi * R**3 if design.shape == "sphere" else math.pi * R**2 * design.height_mm
     too_many = LIMITS["cells"].check(round(body / fab.cell_mm**3))     # before any meshing
     m, fmap = _fill(spec, design)
+    if fab.lattice == "gyroid":
+        edge = gyroid_edge_mm(fab.cell_mm, fmap.fill_range)
+        height = R if design.shape == "sphere" else design.height_mm
+        too_many += LIMITS["gyroid_points"].check(gyroid_grid_points(design.shape, R, height, edge))
     skin = fab.skin_mm
     shape = design.shape
     if shape == "sphere":

@@ -48,7 +48,7 @@ def model_xml(objects: list[dict], metadata: dict[str, str]):
     x = 0.0
     for oid, obj in enumerate(objects, start=1):
         v = np.asarray(obj["vertices"], float)
-        f = np.asarray(obj["faces"], np.int64)
+        f = np.asarray(obj["faces"])
         name = quoteattr(obj["name"])
         out.append(f'<object id="{oid}" type="model" name={name}>\n')
         for key, value in sorted(obj.get("metadata", {}).items()):

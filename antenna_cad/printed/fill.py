@@ -83,8 +83,10 @@ def fill_integral_mm3(fmap: FillMap, r_in_mm: float, shape: str, height_mm: floa
     """Solid volume of the lattice ∫ fill dV over the inner body of radius ``r_in_mm`` (sphere: 4π∫f r² dr;
     cylinder of ``height_mm``: 2πh∫f r dr), the analytic reference for the meshed lattice."""
     r = np.linspace(0.0, r_in_mm, 2001)
-    w = rod_width_mm(fmap, r) / fmap.cell_mm
-    f = fill_fraction("cubic", w)
+    if fmap.lattice == "cubic":
+        f = fill_fraction("cubic", rod_width_mm(fmap, r) / fmap.cell_mm)
+    else:
+        f = np.interp(r, fmap.r_mm, fmap.fill)
     if shape == "sphere":
         return float(4 * np.pi * np.trapezoid(f * r * r, r))
     return float(2 * np.pi * height_mm * np.trapezoid(f * r, r))

@@ -5,10 +5,9 @@ Lengths are in units of the cell size a (multiply by ``cell_mm``). Two lattices:
 - ``cubic``: three orthogonal square rods of width w (the rectilinear grid of FDM infill stacked in
   z). Fill f = 3w² − 2w³ (three rods less the twice-counted centre cube); wall = w, gap = 1 − w.
 - ``gyroid``: the sheet |g(x, y, z)| ≤ t of the gyroid g = sin X cos Y + sin Y cos Z + sin Z cos X
-  (X = 2πx …), the infill slicers print. Its fill is tabulated by sampling. Wall and gap are those of
-  the equivalent stack of plates with the gyroid's area per volume A = 3.0924/a (its mid-surface area
-  per cell): spacing 1/A, wall f/A, gap (1 − f)/A — the mean thickness of the sheet and of the space
-  between sheets.
+  (X = 2πx …), the infill slicers print. Its fill is tabulated by sampling. Its wall is the thinnest
+  sheet, its gap the narrowest channel between sheets, both measured along the surface normal over the
+  whole surface (:data:`GYROID_WIDTHS`; the global minimum of a width is met along a common normal).
 """
 
 from __future__ import annotations
@@ -19,8 +18,12 @@ from functools import lru_cache
 import numpy as np
 
 LATTICES = ("cubic", "gyroid")
-GYROID_AREA = 3.0924         # mid-surface area of the gyroid per unit cell (Schoen; checked by sampling in tests)
-GYROID_T_MAX = 1.45          # |g| ≤ 1.5 everywhere; above ~1.41 the sheet closes the channels
+# (t, thinnest sheet, narrowest channel), in cells: from 30 000 points of g = 0 marched along the normal in
+# steps of 2.5e-4 (tests re-measure them); the channels close at t ≈ 1.41
+GYROID_WIDTHS = np.array([
+    (0.0, 0.0, 0.4318), (0.1, 0.0185, 0.4125), (0.2, 0.037, 0.3932), (0.3, 0.056, 0.3738), (0.4, 0.0745, 0.3538),
+    (0.5, 0.094, 0.333), (0.6, 0.1135, 0.3117), (0.7, 0.134, 0.2898), (0.8, 0.1555, 0.2662), (0.9, 0.1775, 0.2412),
+    (1.0, 0.2015, 0.214), (1.1, 0.227, 0.1832), (1.2, 0.256, 0.1465), (1.3, 0.2895, 0.097), (1.4, 0.332, 0.0003)])
 
 
 def gyroid(x, y, z):
@@ -58,6 +61,32 @@ def parameter_for(lattice: str, fill) -> np.ndarray:
     return np.interp(f, ft[keep], t[keep])
 
 
+def gyroid_wall(t) -> np.ndarray:
+    """Thinnest sheet of the gyroid |g| ≤ t, in cells."""
+    return np.interp(t, GYROID_WIDTHS[:, 0], GYROID_WIDTHS[:, 1])
+
+
+def gyroid_gap(t) -> np.ndarray:
+    """Narrowest channel between the sheets of the gyroid |g| ≤ t, in cells."""
+    return np.interp(t, GYROID_WIDTHS[:, 0], GYROID_WIDTHS[:, 2])
+
+
+EDGE_PER_WALL = 0.7     # level-set grid edge / thinnest sheet or channel: the sheet's fill within 1 % (tests)
+
+
+def gyroid_edge_mm(cell_mm: float, fill_range: tuple[float, float]) -> float:
+    """The level-set grid edge (mm) that resolves the thinnest sheet and the narrowest channel of the
+    printable fill range (:mod:`antenna_cad.printed.gyroid_mesh`)."""
+    t_lo, t_hi = parameter_for("gyroid", np.array(fill_range))
+    return EDGE_PER_WALL * min(float(gyroid_wall(t_lo)), float(gyroid_gap(t_hi))) * cell_mm
+
+
+def gyroid_grid_points(shape: str, radius_mm: float, height_mm: float, edge_mm: float) -> int:
+    """Level-set evaluations of one part (a hemisphere, or a cylinder of ``height_mm``): the body-centred
+    grid's two points per edge³ of the bounding box. Sets the gyroid's meshing time (linear in it)."""
+    return round(2 * (2 * radius_mm) ** 2 * height_mm / edge_mm**3)
+
+
 @dataclass(frozen=True)
 class Printable:
     """What a printer can make of a lattice of cell ``cell_mm``: the fill range between the thinnest wall
@@ -71,13 +100,13 @@ class Printable:
         f = np.asarray(fill, float)
         if self.lattice == "cubic":
             return parameter_for("cubic", f) * self.cell_mm
-        return f / GYROID_AREA * self.cell_mm
+        return gyroid_wall(parameter_for("gyroid", f)) * self.cell_mm
 
     def gap_mm(self, fill) -> np.ndarray:
         f = np.asarray(fill, float)
         if self.lattice == "cubic":
             return (1 - parameter_for("cubic", f)) * self.cell_mm
-        return (1 - f) / GYROID_AREA * self.cell_mm
+        return gyroid_gap(parameter_for("gyroid", f)) * self.cell_mm
 
     @property
     def fill_range(self) -> tuple[float, float]:

@@ -1,5 +1,5 @@
-"""Printable parts of a lattice lens: the graded cubic lattice (:mod:`lattice_mesh`) trimmed to the
-lens body by manifold3d, its solid skin, registration pins, and the split to the printer bed.
+"""Printable parts of a lattice lens: the graded cubic lattice (:mod:`lattice_mesh`) or sheet gyroid
+(:mod:`gyroid_mesh`) trimmed to the lens body by manifold3d, its solid skin, registration pins, and the split to the printer bed.
 
 Frame: the printer's; z up from the bed. A sphere is printed as two identical hemispheres on their
 flat faces (the lattice grid is offset by half a cell so the equator is a cell-face plane and the
@@ -10,6 +10,8 @@ Parts larger than the bed are cut by vertical planes, pins across every cut.
 
 from __future__ import annotations
 
+import ctypes
+import ctypes.util
 import math
 from dataclasses import dataclass
 
@@ -17,6 +19,8 @@ import numpy as np
 from manifold3d import Manifold, Mesh, OpType
 
 from antenna_cad.printed.fill import FillMap, rod_width_mm
+from antenna_cad.printed.gyroid_mesh import gyroid_lattice
+from antenna_cad.printed.lattice import gyroid_edge_mm
 from antenna_cad.printed.lattice_mesh import lattice_triangles, weld
 
 MAX_SEGMENTS = 256
@@ -80,14 +84,13 @@ def mesh_volume(vertices: np.ndarray, faces: np.ndarray) -> float:
 
 def closed_and_oriented(faces: np.ndarray) -> bool:
     """Every directed edge once and its reverse once: watertight, consistently oriented, 2-manifold edges."""
-    e = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]).astype(np.int64)
-    n = int(e.max()) + 1
-    fwd = e[:, 0] * n + e[:, 1]
-    rev = e[:, 1] * n + e[:, 0]
-    fwd_sorted = np.sort(fwd)
-    if np.any(fwd_sorted[1:] == fwd_sorted[:-1]):
+    f = np.asarray(faces, np.int64)
+    n = int(f.max()) + 1
+    nxt = np.roll(f, -1, axis=1)
+    fwd = np.sort((f * n + nxt).ravel())
+    if np.any(fwd[1:] == fwd[:-1]):
         return False
-    return bool(np.isin(rev, fwd_sorted, assume_unique=False).all())
+    return bool(np.array_equal(fwd, np.sort((nxt * n + f).ravel())))    # the reverses: the same set
 
 
 def segments(radius_mm: float, tolerance_mm: float) -> int:
@@ -127,7 +130,22 @@ def _to_manifold(vertices: np.ndarray, faces: np.ndarray) -> Manifold:
 
 def _arrays(m: Manifold) -> tuple[np.ndarray, np.ndarray]:
     mesh = m.to_mesh()
-    return np.asarray(mesh.vert_properties[:, :3], float), np.asarray(mesh.tri_verts, np.int64)
+    return np.asarray(mesh.vert_properties[:, :3], float), np.asarray(mesh.tri_verts, np.int32)
+
+
+M_MMAP_THRESHOLD = -3       # glibc mallopt parameter
+MMAP_THRESHOLD = 1 << 20    # bytes: blocks from 1 MiB up are mapped apart and unmapped when freed
+
+
+def bound_heap() -> None:
+    """Keep large blocks out of the C heap (glibc; nothing elsewhere). glibc raises its mmap threshold
+    to the largest block freed (up to 32 MB), after which the lattice's and the parts' temporaries
+    (numpy arrays of 1–100 MB) are carved from the heap and, freed, stay resident behind what is kept
+    (a build of the Ø120 mm sphere then peaks 100–200 MB higher). A fixed threshold stops that."""
+    libc = ctypes.util.find_library("c")
+    mallopt = getattr(ctypes.CDLL(libc), "mallopt", None) if libc else None
+    if mallopt is not None:
+        mallopt(M_MMAP_THRESHOLD, MMAP_THRESHOLD)
 
 
 def _cylinder_along(axis: int, radius: float, z0: float, z1: float, n: int) -> Manifold:
@@ -199,15 +217,23 @@ def build_printed_lens(shape: str, radius_mm: float, height_mm: float | None, fm
                        wall_mm: float, gap_mm: float, width_step_mm: float, bed_mm: tuple[float, float, float],
                        pins: Pins | None, tolerance_mm: float, reference_volume_mm3: float) -> PrintedLens:
     """The printable parts of a sphere (two hemispheres) or a parallel-plate cylinder of ``radius_mm``."""
+    bound_heap()
     a = fmap.cell_mm
     r_in = radius_mm - skin_mm
     height = radius_mm if shape == "sphere" else height_mm
     copies = 2 if shape == "sphere" else 1
-    idx, rad = _cells(shape, r_in, height_mm, a)
-    w = _widths(fmap, rad, width_step_mm, wall_mm, gap_mm)
-    v, f = weld(lattice_triangles(idx, w, a))
-    v = v + np.array([0.0, 0.0, a / 2])
-    body = _to_manifold(v, f)
+    if fmap.lattice == "gyroid":
+        body = gyroid_lattice(shape, r_in + skin_mm / 2, 0.0, height, fmap, gyroid_edge_mm(a, fmap.fill_range))
+        body = body.trim_by_plane([0.0, 0.0, 1.0], 0.0)
+        cells = round((2 / 3 * math.pi * r_in**3 if shape == "sphere" else math.pi * r_in**2 * height) / a**3)
+        triangles = body.num_tri()
+    else:
+        idx, rad = _cells(shape, r_in, height_mm, a)
+        w = _widths(fmap, rad, width_step_mm, wall_mm, gap_mm)
+        v, f = weld(lattice_triangles(idx, w, a))
+        body = _to_manifold(v + np.array([0.0, 0.0, a / 2]), f)
+        cells, triangles = len(idx), len(f)
+        del v, f
     n = segments(radius_mm, tolerance_mm)
     keep = Manifold.sphere(r_in + skin_mm / 2, n) if shape == "sphere" else \
         _cylinder_along(2, r_in + skin_mm / 2, 0.0, height, n)
@@ -230,20 +256,23 @@ def build_printed_lens(shape: str, radius_mm: float, height_mm: float | None, fm
             inner = Manifold.sphere(radius_mm, n) if shape == "sphere" else _cylinder_along(2, radius_mm, 0, height, n)
             body = (body + (Manifold.batch_boolean(bosses, OpType.Add) ^ inner)) - Manifold.batch_boolean(holes, OpType.Add)
     pieces = [body]
+    del body
     for axis in (0, 1):
         normal = [0.0, 0.0, 0.0]
         normal[axis] = 1.0
         for c in planes[axis]:
             pieces = [p for piece in pieces for p in piece.split_by_plane(normal, c) if not p.is_empty()]
     parts = []
-    for q, piece in enumerate(sorted(pieces, key=lambda m: tuple(np.round(m.bounding_box(), 6)))):
-        pv, pf = _arrays(piece)
+    pieces.sort(key=lambda m: tuple(np.round(m.bounding_box(), 6)))
+    for q in range(len(pieces)):
+        pv, pf = _arrays(pieces[q])
+        pieces[q] = None                                          # one copy of each part at a time
         label = f"lens-{q + 1:02d}" if len(pieces) > 1 or shape == "sphere" else "lens"
         parts.append(PrintedPart(label, "lens", copies, pv - pv.min(axis=0), pf))
     if pin_count:
         pv, pf = _arrays(_cylinder_along(2, pins.diameter_mm / 2, 0.0, pins.length_mm,
                                          segments(pins.diameter_mm / 2, tolerance_mm)))
         parts.append(PrintedPart("pin", "pin", pin_count, pv - pv.min(axis=0), pf))
-    return PrintedLens(tuple(parts), len(idx) * copies, len(f) * copies, body_volume, reference_volume_mm3,
+    return PrintedLens(tuple(parts), cells * copies, triangles * copies, body_volume, reference_volume_mm3,
                        pin_count, len(planes[0]) + len(planes[1]), unpinned)
 

@@ -165,18 +165,22 @@ def focus_shift(fan: Fan, wavelength_mm: float, radius_mm: float) -> float:
     return float(-np.sum(w * phase * basis) / np.sum(w * basis * basis))
 
 
+OPL_BATCH = 10_000       # straight segments traced at a time by first_order_opl
+
+
 def first_order_opl(medium, trace: MediaTrace, extend_mm: float = 0.0) -> np.ndarray:
     """Optical path change when ``medium`` replaces the medium ``trace`` went through: ∫n ds in
     ``medium`` along the traced (unperturbed) polylines minus their own optical path — exact to
     first order in the index change (Fermat). The polylines are continued ``extend_mm`` in air
     along their last direction (where ``medium`` may still hold material). All segments of all
-    rays go through ``medium`` in one straight-line batch. Used for sheet staircases finer than
+    rays go through ``medium`` as straight lines, in batches of ``OPL_BATCH``. Used for sheet staircases finer than
     the Fresnel zone, whose risers do not act as GO facets, and for tolerance perturbations."""
     points = np.concatenate([trace.points, (trace.end + extend_mm * trace.direction)[None]])
     start, seg = points[:-1].reshape(-1, 2), np.diff(points, axis=0).reshape(-1, 2)
     length = np.linalg.norm(seg, axis=1)
     move = np.flatnonzero(length > 0)
     opl = np.zeros(len(length))
-    opl[move] = trace_media(medium, start[move], seg[move] / length[move, None], stop_mm=length[move],
-                            straight=True).opl
+    for i in range(0, len(move), OPL_BATCH):        # batches bound the tracer's per-segment arrays
+        m = move[i:i + OPL_BATCH]
+        opl[m] = trace_media(medium, start[m], seg[m] / length[m, None], stop_mm=length[m], straight=True).opl
     return opl.reshape(len(points) - 1, -1).sum(axis=0) - extend_mm - trace.opl

@@ -14,6 +14,7 @@ from typing import Literal
 from pydantic import Field, model_validator
 
 from antenna_cad.materials import FILAMENTS
+from antenna_cad.printed.lattice import Printable
 from antenna_cad.spec.common import InlineMaterial, StrictModel
 
 C_MM_GHZ = 299.792458
@@ -35,13 +36,14 @@ class PinsSpec(StrictModel):
 
 
 class PrintedSpec(StrictModel):
-    """FDM-printed lattice lens (cubic: orthogonal rods, the rectilinear infill of a slicer)."""
+    """FDM-printed lattice lens (cubic: orthogonal rods, the rectilinear infill of a slicer; gyroid: the sheet
+    gyroid, a slicer's gyroid infill)."""
     method: Literal["printed"]
     lattice: Literal["cubic", "gyroid"] = "cubic"
     cell_mm: float = Field(ge=0.5, le=100, description="lattice period; ≤ λ/(4·√εr of the filament)")
     nozzle_mm: float = Field(0.4, ge=0.1, le=2)
-    min_wall_mm: float | None = Field(None, ge=0.1, le=20, description="thinnest rod (default: 2 nozzle widths)")
-    min_gap_mm: float | None = Field(None, ge=0.1, le=20, description="narrowest opening (default: 2 nozzle widths)")
+    min_wall_mm: float | None = Field(None, ge=0.1, le=20, description="thinnest rod or sheet (default: 2 nozzle widths)")
+    min_gap_mm: float | None = Field(None, ge=0.1, le=20, description="narrowest opening or channel (default: 2 nozzle widths)")
     layer_height_mm: float = Field(0.2, ge=0.04, le=1.5)
     bed: BedSpec = BedSpec()
     orientation: Literal["axis_up", "axis_flat"] = Field(
@@ -75,8 +77,10 @@ class PrintedSpec(StrictModel):
                              f"{self.wall_mm + self.gap_mm:g}): no fill is printable")
         if 0 < self.skin_mm < self.wall_mm:
             raise ValueError(f"fabrication.skin_mm: must be 0 or ≥ the min wall ({self.skin_mm:g} < {self.wall_mm:g})")
-        if self.lattice == "gyroid":
-            raise ValueError("fabrication.lattice: gyroid is tabulated but not meshed yet; use cubic")
+        if self.lattice == "gyroid" and Printable("gyroid", self.cell_mm, self.wall_mm, self.gap_mm).fill_range[1] == 0:
+            raise ValueError(f"fabrication.cell_mm: no gyroid sheet of a {self.cell_mm:g} mm cell has walls ≥ "
+                             f"{self.wall_mm:g} mm and channels ≥ {self.gap_mm:g} mm (its thinnest sheet and narrowest "
+                             "channel are 0.15 and 0.27 cells at half fill): use a larger cell, thinner walls or cubic")
         return self
 
     def check_lens(self, material, frequency_ghz: float) -> None:

@@ -38,7 +38,8 @@ def test_lattice_mesh_is_closed_and_its_volume_is_the_fill():
 
 def test_equal_neighbours_share_their_face_without_internal_triangles():
     v, f = _mesh([(0, 0, 0), (1, 0, 0)], [1.0, 1.0], 3.0)
-    assert len(f) == 2 * 48 + 10 * 2          # 24 arm sides each, 10 end caps; nothing on the shared face
+    assert len(f) == 2 * 40 + 8 + 10 * 2      # 20 arm sides each, one rod core to core, 10 end caps
+    assert closed_and_oriented(f) and mesh_volume(v, f) == pytest.approx(2 * fill_fraction("cubic", 1 / 3) * 27)
     v2, f2 = _mesh([(0, 0, 0), (1, 0, 0)], [1.0, 1.5], 3.0)
     assert len(f2) == 2 * 48 + 10 * 2 + 8     # a square ring out of the wider rod
     assert closed_and_oriented(f2)

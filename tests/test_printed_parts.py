@@ -136,7 +136,7 @@ def test_cli_refuses_a_bad_printed_spec_with_exit_2(tmp_path):
 def test_printed_cylinder_holds_whole_cells_and_flags_a_cut_without_room_for_pins():
     with pytest.raises(SpecError) as exc:
         parse_spec(BASE | {"design": {"diameter_mm": 100, "shape": "cylinder", "height_mm": 6.0}}, "s.yaml")
-    assert "fabrication.cell_mm: a cylinder's height must be a whole number of cells" in exc.value.lines[0]
+    assert "fabrication.cell_mm: the height between the plates must be a whole number of cells" in exc.value.lines[0]
     R, a, h = 20.0, 3.0, 6.0
     fm = fill_map(lambda r: 2 - (r / R) ** 2, R, "cubic", 2.7, Printable("cubic", a, 0.8, 0.8))
     ref = fill_integral_mm3(fm, R - 0.8, "cylinder", h) + math.pi * (R**2 - (R - 0.8) ** 2) * h
@@ -200,7 +200,7 @@ def test_kinds_without_a_printed_method_refuse_it_by_name():
             "fabrication": {"method": "printed", "cell_mm": 3}}
     with pytest.raises(SpecError) as exc:
         parse_spec(data, "s.yaml")
-    assert any("fabrication.method: must be one of" in line and "kind luneburg so far" in line
+    assert any("fabrication.method: must be one of" in line and "kinds luneburg, graded and mirror_lens so far" in line
                for line in exc.value.lines)
 
 

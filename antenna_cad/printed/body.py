@@ -22,7 +22,7 @@ import shapely
 from manifold3d import CrossSection, Manifold, Mesh64
 from shapely.geometry import Polygon, box
 
-from antenna_cad.printed.lattice_mesh import _square, lattice_triangles, weld
+from antenna_cad.printed.lattice_mesh import WELD_BITS, WELD_MM, _square, lattice_triangles, weld
 from antenna_cad.printed.parts import PrintedLens, PrintedPart
 
 _DIRS = np.array([(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)], np.int64)
@@ -51,9 +51,14 @@ class Envelope:
             return np.hypot(p[:, 0], p[:, 1]), p[:, 2]
         return p[:, 0], p[:, 1]
 
-    def solid(self, offset_mm: float, segments: int) -> Manifold:
-        """The body grown by ``offset_mm`` (negative: shrunk) as a closed solid."""
+    def polygon(self, offset_mm: float, tolerance_mm: float) -> Polygon:
+        """The full section grown by ``offset_mm`` (negative: shrunk), simplified to ``tolerance_mm``."""
         poly = self.full.buffer(offset_mm, join_style="mitre") if offset_mm else self.full
+        return poly.simplify(tolerance_mm)
+
+    def solid(self, offset_mm: float, segments: int, tolerance_mm: float) -> Manifold:
+        """The body grown by ``offset_mm`` as a closed solid (section as :meth:`polygon`)."""
+        poly = self.polygon(offset_mm, tolerance_mm)
         if self.kind == "revolved":
             poly = poly.intersection(box(0.0, -1e6, 1e6, 1e6))
         polys = [shapely.geometry.polygon.orient(g, 1.0) for g in getattr(poly, "geoms", [poly])]
@@ -97,9 +102,22 @@ def lattice_origin(env: Envelope, cell_mm: float) -> np.ndarray:
     return np.array([0.0, 0.0, cell_mm / 2 if env.kind == "extruded" else 0.0])
 
 
-def body_cells(env: Envelope, cell_mm: float, skin_mm: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(index (n, 3), centres (n, 3) mm, inner (n,) bool) of the cells that reach into the lattice's
-    trim (mid-skin); ``inner``: the whole cube inside the skin's inner surface."""
+def _cube_boxes(env: Envelope, centre: np.ndarray, a: float):
+    """Rectangles of the section plane that hold each cell's cube: (r, z) of a revolved body (its
+    radial span from the nearest to the farthest point of the cube's square), (x, y) of an extruded one."""
+    h = a / 2
+    if env.kind == "extruded":
+        return shapely.box(centre[:, 0] - h, centre[:, 1] - h, centre[:, 0] + h, centre[:, 1] + h)
+    near = np.maximum(np.abs(centre[:, :2]) - h, 0.0)
+    far = np.abs(centre[:, :2]) + h
+    return shapely.box(np.hypot(*near.T), centre[:, 2] - h, np.hypot(*far.T), centre[:, 2] + h)
+
+
+def body_cells(env: Envelope, cell_mm: float, skin_mm: float,
+               tolerance_mm: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(index (n, 3), centres (n, 3) mm, inner (n,) bool) of the cells whose cube reaches into the
+    lattice's trim (mid-skin); ``inner``: the whole cube inside the skin's inner surface (these are
+    never trimmed). Sections as :meth:`Envelope.polygon`."""
     a = cell_mm
     full = env.full
     margin = a * (math.sqrt(3) if env.kind == "revolved" else math.sqrt(2)) / 2 + 1e-6
@@ -115,11 +133,20 @@ def body_cells(env: Envelope, cell_mm: float, skin_mm: float) -> tuple[np.ndarra
     i, j, k = np.meshgrid(gx, gy, gz, indexing="ij")
     idx = np.stack([i, j, k], -1).reshape(-1, 3)
     centre = idx * a + lattice_origin(env, a)
+    trim, hole = env.polygon(-skin_mm / 2, tolerance_mm), env.polygon(-skin_mm, tolerance_mm)
     u, w = env.coords(centre)
-    near = shapely.contains_xy(full.buffer(-skin_mm / 2 + margin), u, w)
+    near = shapely.contains_xy(trim.buffer(margin), u, w)          # the cube may reach the trim
     idx, centre, u, w = idx[near], centre[near], u[near], w[near]
-    inner = shapely.contains_xy(full.buffer(-skin_mm - margin), u, w)
-    return idx, centre, inner
+    sure = shapely.contains_xy(hole.buffer(-margin), u, w)          # the cube is surely inside the hole
+    band = np.nonzero(~sure)[0]
+    boxes = _cube_boxes(env, centre[band], a)
+    shapely.prepare(trim)
+    shapely.prepare(hole)
+    keep = np.ones(len(idx), bool)
+    keep[band] = shapely.intersects(trim, boxes)
+    inner = sure.copy()
+    inner[band] = shapely.contains_properly(hole, boxes)
+    return idx[keep], centre[keep], inner[keep]
 
 
 def _face_keys(index: np.ndarray, step: np.ndarray) -> np.ndarray:
@@ -148,7 +175,7 @@ def _seam_pairs(index: np.ndarray, inner: np.ndarray, boundary: np.ndarray) -> t
 def _on_faces(tris: np.ndarray, keys: np.ndarray, origin: np.ndarray, a: float) -> np.ndarray:
     """Triangles lying on one of the cell faces ``keys`` (axis-aligned, on the face plane, inside the
     face square)."""
-    flat = np.ptp(tris, axis=1) < 1e-9 * a                    # (m, 3): the axis the triangle is flat in
+    flat = (tris[:, 0] == tris[:, 1]) & (tris[:, 0] == tris[:, 2])   # (m, 3): the axis it is flat in (caps: exact)
     hit = np.zeros(len(tris), bool)
     centroid = (tris.mean(axis=1) - origin) / a
     for ax in range(3):
@@ -199,26 +226,34 @@ def _manifold(v: np.ndarray, f: np.ndarray) -> Manifold:
     return m
 
 
-def _soup(m: Manifold) -> np.ndarray:
+def _indexed(m: Manifold) -> tuple[np.ndarray, np.ndarray]:
     mesh = m.to_mesh64()
-    return np.asarray(mesh.vert_properties[:, :3], float)[np.asarray(mesh.tri_verts, np.int64)]
+    return np.asarray(mesh.vert_properties[:, :3], float), np.asarray(mesh.tri_verts, np.int64)
 
 
-def _join(inner_tris: np.ndarray, outer_tris: np.ndarray, rings: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """One indexed mesh of the inner lattice, the trimmed boundary with its skin and the seam rings:
-    the inner lattice and the rings are on the cell grid and welded on it; the boolean's vertices keep
-    their own identity except where they coincide bit for bit with a grid vertex."""
-    grid = np.concatenate([inner_tris, rings])
-    if not len(grid):
-        return weld(outer_tris) if len(outer_tris) else (np.zeros((0, 3)), np.zeros((0, 3), np.int64))
-    gv, gf = weld(grid)
-    ov = outer_tris.reshape(-1, 3)
-    allv = np.concatenate([gv, ov])
-    _, first, inverse = np.unique(allv, axis=0, return_index=True, return_inverse=True)
-    canon = first[inverse.ravel()]
-    faces = canon[np.concatenate([gf, len(gv) + np.arange(len(ov)).reshape(-1, 3)])]
-    used, faces = np.unique(faces, return_inverse=True)
-    return allv[used], faces.reshape(-1, 3)
+def _grid_keys(v: np.ndarray, lo: np.ndarray) -> np.ndarray:
+    q = np.round((v - lo) / WELD_MM).astype(np.int64)
+    return (q[:, 0] << 2 * WELD_BITS) | (q[:, 1] << WELD_BITS) | q[:, 2]
+
+
+def _join(grid_tris: np.ndarray, ov: np.ndarray, of: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """One indexed mesh of the grid triangles (inner lattice and seam rings, welded on the cell grid)
+    and the boolean's mesh (ov, of): a boolean vertex is the grid vertex it equals bit for bit, or
+    its own."""
+    if not len(grid_tris):
+        return ov, of
+    gv, gf = weld(grid_tris)
+    if not len(ov):
+        return gv, gf
+    lo = np.minimum(gv.min(axis=0), ov.min(axis=0))
+    gk = _grid_keys(gv, lo)
+    order = np.argsort(gk)
+    at = order[np.searchsorted(gk[order], _grid_keys(ov, lo)).clip(0, len(gk) - 1)]
+    same = np.all(gv[at] == ov, axis=1)
+    remap = np.where(same, at, np.cumsum(~same) - 1 + len(gv))
+    v = np.concatenate([gv, ov[~same]])
+    used, f = np.unique(np.concatenate([gf, remap[of]]), return_inverse=True)
+    return v[used], f.reshape(-1, 3)
 
 
 def _region_of(centre: np.ndarray, planes: dict[int, list[float]]) -> np.ndarray:
@@ -250,8 +285,8 @@ def build_lattice_body(env: Envelope, index: np.ndarray, centre: np.ndarray, inn
     if z_hi - z_lo > bed_mm[2] + 1e-6:
         raise ValueError(f"fabrication.bed.z_mm: the body is {z_hi - z_lo:.1f} mm tall, the bed {bed_mm[2]:g} mm "
                          "(horizontal cuts are not made)")
-    trim = env.solid(-skin_mm / 2, segments)
-    shell = env.solid(0.0, segments) - env.solid(-skin_mm, segments) if skin_mm > 0 else None
+    trim = env.solid(-skin_mm / 2, segments, tolerance_mm)
+    shell = env.solid(0.0, segments, tolerance_mm) - env.solid(-skin_mm, segments, tolerance_mm) if skin_mm > 0 else None
     region = _region_of(centre, planes)
     s = width_mm / 2
     xs, ys = [-1e6] + planes[0] + [1e6], [-1e6] + planes[1] + [1e6]
@@ -274,12 +309,12 @@ def build_lattice_body(env: Envelope, index: np.ndarray, centre: np.ndarray, inn
             # the seam: faces between an inner cell p and a boundary cell q of this part
             pp, qq = _seam_pairs(index, np.nonzero(inn)[0], np.nonzero(bnd)[0])
             seam = _face_keys(index[pp], index[qq] - index[pp])
-            outer_tris = _soup(piece) if not piece.is_empty() else np.zeros((0, 3, 3))
+            ov, of = _indexed(piece) if not piece.is_empty() else (np.zeros((0, 3)), np.zeros((0, 3), np.int64))
             if len(seam):
                 tris_in = tris_in[~_on_faces(tris_in, seam, origin, a)]
-                outer_tris = outer_tris[~_on_faces(outer_tris, seam, origin, a)]
+                of = of[~_on_faces(ov[of], seam, origin, a)]
             rings = _rings(index[pp], index[qq], s[pp], s[qq], origin, a) if len(seam) else np.zeros((0, 3, 3))
-            v, f = _join(tris_in, outer_tris, rings)
+            v, f = _join(np.concatenate([tris_in, rings]), ov, of)
             if not len(f):
                 continue
             parts.append((v, f))

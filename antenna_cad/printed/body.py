@@ -325,4 +325,4 @@ def build_lattice_body(env: Envelope, index: np.ndarray, centre: np.ndarray, inn
         body_volume += mesh_volume(v, f)
         out.append(PrintedPart(f"lens-{n + 1:02d}" if len(parts) > 1 else "lens", "lens", 1, v - v.min(axis=0), f))
     cuts = len(planes[0]) + len(planes[1])
-    return PrintedLens(tuple(out), len(index), tri_count, body_volume, reference_volume_mm3, 0, cuts, cuts)
+    return PrintedLens(tuple(out), len(index), tri_count, body_volume, reference_volume_mm3, 0, cuts, 0)

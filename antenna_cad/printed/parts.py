@@ -110,7 +110,7 @@ def _cells(shape: str, r_in: float, height: float | None, cell: float) -> tuple[
     return idx[keep], rad[keep]
 
 
-def _widths(fmap: FillMap, rad: np.ndarray, step: float, wall: float, gap: float) -> np.ndarray:
+def rounded_widths(fmap: FillMap, rad: np.ndarray, step: float, wall: float, gap: float) -> np.ndarray:
     """Rod widths at the cell centres, rounded to ``step`` and kept printable."""
     w = rod_width_mm(fmap, rad)
     lo, hi = math.ceil(wall / step) * step, math.floor((fmap.cell_mm - gap) / step) * step
@@ -204,7 +204,7 @@ def build_printed_lens(shape: str, radius_mm: float, height_mm: float | None, fm
     height = radius_mm if shape == "sphere" else height_mm
     copies = 2 if shape == "sphere" else 1
     idx, rad = _cells(shape, r_in, height_mm, a)
-    w = _widths(fmap, rad, width_step_mm, wall_mm, gap_mm)
+    w = rounded_widths(fmap, rad, width_step_mm, wall_mm, gap_mm)
     v, f = weld(lattice_triangles(idx, w, a))
     v = v + np.array([0.0, 0.0, a / 2])
     body = _to_manifold(v, f)

@@ -1,0 +1,120 @@
+"""``fabrication.method: printed`` for the aplanatic mirror-lens (seed-004): the body at the index
+``design.refractive_index`` printed from one filament (``material``) as a uniform cubic lattice whose
+εr_eff = n² (antenna_cad.printed), inside a solid skin that gives the mirror face its smooth surface.
+
+The fill comes from the shipped unit-cell table; the rod width is rounded to what a slicer places, so
+the body as printed has the εr of that width — the GO and full-wave checks trace it at that εr
+(the "fabricated" body) beside the design's n. Loss and density of the lattice: the filament's
+scaled by the fill (parallel mixture: ε'' = f·ε''_f, so tanδ = f·εf·tanδf/εeff).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from antenna_cad.kinds.printed_package import WIDTH_STEP_NOZZLES, PrintedFabPlan, fill_checks, package
+from antenna_cad.limits import LIMITS
+from antenna_cad.materials import Material
+from antenna_cad.printed.fill import FillMap, fill_map
+from antenna_cad.printed.homogenization import homogenized
+from antenna_cad.printed.lattice import Printable, fill_fraction
+from antenna_cad.spec.common import resolve_material
+from antenna_cad.stages import with_cad
+from antenna_cad.synthesis.checks import Check
+
+REFERENCE_STEP_CELLS = 1 / 8    # midpoint grid of the analytic ∫fill dV, in cells
+
+
+@dataclass(frozen=True)
+class LatticeBody:
+    """The uniform lattice of the printed body: the filament, its fill map (law εr = n²), the rod
+    width as printed and what it gives."""
+    filament: Material
+    fmap: FillMap
+    width_mm: float
+    fill: float
+    eps_target: float
+    eps_printed: float
+
+    def material(self, eps_r: float) -> Material:
+        """The lattice as a homogeneous dielectric of ``eps_r`` (fill-scaled loss and density)."""
+        f, m = self.fill, self.filament
+        return Material(f"{m.name}-lattice-{eps_r:.3f}", eps_r, f * m.eps_r * m.tan_delta / eps_r,
+                        f * m.density_kg_m3, f"{m.name} printed as a cubic lattice at fill {f:.3f}")
+
+
+def lattice_body(spec) -> LatticeBody:
+    """The fill for εr_eff = n², clipped to the printable range, and the rod width rounded to an
+    eighth of the nozzle (what the printer makes)."""
+    fab = spec.fabrication
+    m = resolve_material(spec.material)
+    eps = spec.design.refractive_index ** 2
+    printable = Printable(fab.lattice, fab.cell_mm, fab.wall_mm, fab.gap_mm)
+    fmap = fill_map(lambda r: np.full(np.shape(r), eps), 1.0, fab.lattice, m.eps_r, printable, samples=3)
+    from antenna_cad.printed.parts import rounded_widths
+    w = float(rounded_widths(fmap, np.zeros(1), fab.nozzle_mm * WIDTH_STEP_NOZZLES, fab.wall_mm, fab.gap_mm)[0])
+    f = float(fill_fraction("cubic", w / fab.cell_mm))
+    return LatticeBody(m, fmap, w, f, eps, float(homogenized(fab.lattice, m.eps_r).eps_at(f)))
+
+
+def envelope(design):
+    """The body's meridian section in the printer's frame: the axis up, z from the body's lowest point."""
+    from shapely.geometry import Polygon
+
+    from antenna_cad.printed.body import Envelope
+    sec = design.section_mm()
+    z_lo, _ = design.z_range_mm
+    return Envelope("revolved", Polygon(np.column_stack([sec[:, 0], sec[:, 1] - z_lo])).buffer(0))
+
+
+def printed_eps_check(body: LatticeBody, tolerance: float) -> Check:
+    """The body as printed against n², within the spec's εr tolerance (tolerances.eps_r_tolerance)."""
+    err = body.eps_printed - body.eps_target
+    return Check("printed_eps_error", "pass" if abs(err) <= tolerance else "warn", abs(err), tolerance, "εr",
+                 f"body as printed: rod {body.width_mm:g} mm (fill {body.fill:.3f}) gives εr_eff {body.eps_printed:.4f} "
+                 f"vs n² = {body.eps_target:.4f} ({err:+.4f}; rods rounded to an eighth of the nozzle)")
+
+
+def fabricate_printed(spec, design) -> PrintedFabPlan:
+    """The body as printed parts (3MF, STL per part), cut list and checks; the mirror coating is the
+    kind's next step (added by the caller)."""
+    fab = spec.fabrication
+    body = lattice_body(spec)
+    too_many = LIMITS["cells"].check(round(design.volume_mm3() / fab.cell_mm**3))
+    checks = (printed_eps_check(body, spec.tolerances.eps_r_tolerance),)
+    if not with_cad():
+        return PrintedFabPlan((), {}, {}, (), (), {}, {}, 0.0, {}, {}, fill=body.fmap, material=body.filament,
+                              check_list=tuple(too_many + fill_checks(spec, fab, body.filament, body.fmap)) + checks)
+    from antenna_cad.printed.body import body_cells, build_lattice_body, reference_volume_mm3
+    from antenna_cad.printed.parts import segments
+    tol = spec.outputs.mesh_tolerance_mm
+    env = envelope(design)
+    idx, centre, inner = body_cells(env, fab.cell_mm, fab.skin_mm, tol)
+    ref = reference_volume_mm3(env, lambda u, w: np.full(np.shape(u), body.fill), fab.skin_mm,
+                               fab.cell_mm * REFERENCE_STEP_CELLS)
+    lens = build_lattice_body(env, idx, centre, inner, np.full(len(idx), body.width_mm), fab.cell_mm,
+                              skin_mm=fab.skin_mm, bed_mm=(fab.bed.x_mm, fab.bed.y_mm, fab.bed.z_mm), tolerance_mm=tol,
+                              segments=segments(design.body_radius_mm, tol), reference_volume_mm3=ref)
+    plan = package(spec, body.filament, body.fmap, lens, too_many, checks + (registration_check(fab, lens),),
+                   step="print with the axis up, the front face on the bed")
+    return plan
+
+
+def registration_check(fab, lens) -> Check:
+    """Pins are made for the Luneburg lens's cuts; a body split to the bed here is aligned by hand."""
+    if not lens.cuts:
+        return Check("printed_registration", "pass", 0.0, 0.0, "cuts", "one part: nothing to align")
+    return Check("printed_registration", "warn", float(lens.cuts), 0.0, "cuts",
+                 f"{lens.cuts} bed cuts (on cell faces): registration pins are made for the Luneburg lens only; "
+                 "align and bond these parts on a flat plate (a jig)" +
+                 ("" if fab.registration is None else "; fabrication.registration is not used here"))
+
+
+def summary_figures(spec) -> dict[str, float]:
+    body = lattice_body(spec)
+    return {"printed_eps_target": body.eps_target, "printed_eps": body.eps_printed,
+            "printed_eps_error": body.eps_printed - body.eps_target, "printed_fill": body.fill,
+            "printed_rod_mm": body.width_mm, "printed_n": math.sqrt(body.eps_printed)}

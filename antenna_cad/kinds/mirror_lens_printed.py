@@ -15,7 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from antenna_cad.kinds.printed_package import WIDTH_STEP_NOZZLES, PrintedFabPlan, fill_checks, package
+from antenna_cad.kinds.printed_package import (WIDTH_STEP_NOZZLES, PrintedFabPlan, fill_checks, package,
+                                              registration_check)
 from antenna_cad.limits import LIMITS
 from antenna_cad.materials import Material
 from antenna_cad.printed.fill import FillMap, fill_map
@@ -101,16 +102,6 @@ def fabricate_printed(spec, design) -> PrintedFabPlan:
     plan = package(spec, body.filament, body.fmap, lens, too_many, checks + (registration_check(fab, lens),),
                    step="print with the axis up, the front face on the bed")
     return plan
-
-
-def registration_check(fab, lens) -> Check:
-    """Pins are made for the Luneburg lens's cuts; a body split to the bed here is aligned by hand."""
-    if not lens.cuts:
-        return Check("printed_registration", "pass", 0.0, 0.0, "cuts", "one part: nothing to align")
-    return Check("printed_registration", "warn", float(lens.cuts), 0.0, "cuts",
-                 f"{lens.cuts} bed cuts (on cell faces): registration pins are made for the Luneburg lens only; "
-                 "align and bond these parts on a flat plate (a jig)" +
-                 ("" if fab.registration is None else "; fabrication.registration is not used here"))
 
 
 def summary_figures(spec) -> dict[str, float]:

@@ -134,6 +134,16 @@ def _mesh_checks(fab, lens, closed) -> list[Check]:
     return out
 
 
+def registration_check(fab, lens) -> Check:
+    """Pins are made for the Luneburg lens's cuts; a body split to the bed here is aligned by hand."""
+    if not lens.cuts:
+        return Check("printed_registration", "pass", 0.0, 0.0, "cuts", "one part: nothing to align")
+    return Check("printed_registration", "warn", float(lens.cuts), 0.0, "cuts",
+                 f"{lens.cuts} bed cuts (on cell faces): registration pins are made for the Luneburg lens only; "
+                 "align and bond these parts on a flat plate (a jig)" +
+                 ("" if fab.registration is None else "; fabrication.registration is not used here"))
+
+
 def _slicer_check(fab: PrintedSpec, three_mf: bytes, plate_mm3: float, area_mm2: float) -> tuple[Check, dict]:
     """The 3MF sliced by PrusaSlicer (each part once, one plate), its filament and time beside ours for
     the same plate; skip when not asked for or no slicer is on the PATH."""

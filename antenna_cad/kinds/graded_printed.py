@@ -4,26 +4,25 @@ the plates printed from one filament (``material``) as a cubic lattice whose fil
 two refracting faces (the plates' faces are the cells' own).
 
 The lattice is graded row by row across the aperture: each row of cells (centre y = j·a) has the rod
-width of the law at its centre, rounded to what a slicer places, so the lens as printed is a staircase
-εr_j of step a. The verification traces that staircase (:func:`printed_medium`) through the
-synthesized surfaces and reports σ (3.10) against the field angle beside the continuous law's.
+width of the law at its centre, dithered along the lens axis between the two nearest widths a slicer
+places (:func:`antenna_cad.printed.fill.dithered_widths`), so the lens as printed is a staircase
+εr_j of step a — far below the wavelength, so the wave sees the rows' average and a ray trace of the
+steps (refracting at each row) would not describe it. The verification reports the rows' εr error and
+the first-order aperture path error it adds to the law's σ (:func:`path_error_mm`).
 """
 
 from __future__ import annotations
-
-import types
 
 import numpy as np
 
 from antenna_cad.kinds.printed_package import (WIDTH_STEP_NOZZLES, PrintedFabPlan, fill_checks, package,
                                               registration_check)
 from antenna_cad.limits import LIMITS
-from antenna_cad.printed.fill import FillMap, fill_map, rod_width_mm
-from antenna_cad.printed.homogenization import homogenized
+from antenna_cad.printed.fill import FillMap, dithered_fill, dithered_widths, fill_map, rod_width_mm
 from antenna_cad.printed.lattice import Printable, fill_fraction
 from antenna_cad.spec.common import resolve_material
 from antenna_cad.stages import with_cad
-from antenna_cad.synthesis.graded import Layer, Medium
+from antenna_cad.spec.printed import C_MM_GHZ
 from antenna_cad.verification import Plot, Series, Verification
 
 REFERENCE_STEP_CELLS = 1 / 4    # midpoint grid of the analytic ∫fill dV, in cells
@@ -42,84 +41,68 @@ def _fill(spec, design) -> FillMap:
     return fill_map(law(design), design.half_aperture * design.unit_mm, fab.lattice, m.eps_r, printable)
 
 
-def row_widths(spec, fmap: FillMap, y_mm) -> np.ndarray:
-    """Rod widths of the cells centred at ``y_mm``, rounded to an eighth of the nozzle, printable."""
-    from antenna_cad.printed.parts import rounded_widths
+def _limits(spec) -> tuple[float, float, float]:
     fab = spec.fabrication
-    return rounded_widths(fmap, np.abs(np.asarray(y_mm, float)), fab.nozzle_mm * WIDTH_STEP_NOZZLES, fab.wall_mm,
-                          fab.gap_mm)
+    return fab.nozzle_mm * WIDTH_STEP_NOZZLES, fab.wall_mm, fab.cell_mm - fab.gap_mm
+
+
+def row_widths(spec, fmap: FillMap, y_mm, x_index) -> np.ndarray:
+    """Rod widths of the cells centred at ``y_mm``: the law's width dithered along the lens axis
+    (``x_index``) between the two nearest widths a slicer places, so each row's mean follows the law."""
+    w, _ = dithered_widths(rod_width_mm(fmap, np.abs(np.asarray(y_mm, float))), x_index, *_limits(spec))
+    return w
 
 
 def printed_steps(spec, design) -> tuple[np.ndarray, np.ndarray]:
-    """(row edges |y| mm (K + 1), εr_eff of each row as printed (K)): rows j = 0 … of the lattice,
+    """(row edges |y| mm (K + 1), mean εr_eff of each row as printed (K)): rows j = 0 … of the lattice,
     centred at y = j·a, the last one reaching past the aperture."""
     fab = spec.fabrication
     fmap = _fill(spec, design)
     a, top = fab.cell_mm, design.half_aperture * design.unit_mm
     rows = np.arange(int(np.ceil(top / a - 0.5)) + 1)
-    w = row_widths(spec, fmap, rows * a)
-    eps = homogenized(fab.lattice, resolve_material(spec.material).eps_r).eps_at(fill_fraction("cubic", w / a))
-    edges = np.r_[0.0, (rows + 0.5) * a]
-    return edges, eps
+    _, eps = dithered_fill(rod_width_mm(fmap, rows * a), *_limits(spec), a, fab.lattice,
+                           resolve_material(spec.material).eps_r)
+    return np.r_[0.0, (rows + 0.5) * a], eps
 
 
-def printed_medium(spec, design) -> Medium:
-    """The staircase εr_j as the ray tracer's layered medium (normalised y; constant n² per row)."""
+def path_error_mm(spec, design, y_mm: np.ndarray) -> np.ndarray:
+    """First-order optical path error of the printed lens at aperture height ``y_mm``: the index the
+    lattice gives (row values, linear between row centres: the homogenized medium a wave averages over
+    sub-wavelength rows) less the law's, times the lens thickness there (near-axial rays)."""
     edges, eps = printed_steps(spec, design)
-    e = edges / design.unit_mm
-    layers = [Layer(float(lo), float(hi), float(n2), 0.0, 0.0) for lo, hi, n2 in zip(e[:-1], e[1:], eps)]
-    layers[-1].hi = np.inf
-    return Medium(float(np.sqrt(eps[0])), 0.0, layers)
-
-
-def fabricate_printed(spec, design) -> PrintedFabPlan:
-    from antenna_cad.fabrication.graded import section_polygon
-    fab = spec.fabrication
-    m = resolve_material(spec.material)
-    fmap = _fill(spec, design)
-    sec = section_polygon(design)
-    too_many = LIMITS["cells"].check(round(sec.area * spec.design.height_mm / fab.cell_mm**3))
-    if not with_cad():
-        return PrintedFabPlan((), {}, {}, (), (), {}, {}, 0.0, {}, {}, fill=fmap, material=m,
-                              check_list=tuple(too_many + fill_checks(spec, fab, m, fmap)))
-    from antenna_cad.printed.body import Envelope, body_cells, build_lattice_body, reference_volume_mm3
-    tol = spec.outputs.mesh_tolerance_mm
-    env = Envelope("extruded", sec, spec.design.height_mm)
-    idx, centre, inner = body_cells(env, fab.cell_mm, fab.skin_mm, tol)
-    a = fab.cell_mm
-    ref = reference_volume_mm3(env, lambda u, w: fill_fraction("cubic", rod_width_mm(fmap, np.abs(w)) / a),
-                               fab.skin_mm, a * REFERENCE_STEP_CELLS)
-    lens = build_lattice_body(env, idx, centre, inner, row_widths(spec, fmap, centre[:, 1]), a, skin_mm=fab.skin_mm,
-                              bed_mm=(fab.bed.x_mm, fab.bed.y_mm, fab.bed.z_mm), tolerance_mm=tol, segments=0,
-                              reference_volume_mm3=ref)
-    return package(spec, m, fmap, lens, too_many, (registration_check(fab, lens),),
-                   step="print on a plate face (the lens axis on the bed)")
+    centres = np.arange(len(eps)) * spec.fabrication.cell_mm
+    n_printed = np.sqrt(np.interp(np.abs(y_mm), centres, eps))
+    yn = np.asarray(y_mm) / design.unit_mm
+    thickness = (design.x2(yn) - design.x1(yn)) * design.unit_mm
+    return (n_printed - np.sqrt(law(design)(y_mm))) * thickness
 
 
 def printed_verification(spec, design) -> Verification:
-    """σ (3.10) of the printed staircase against the field angle, beside the continuous law's; the
-    staircase's εr against the law (max |error|)."""
-    from antenna_cad.synthesis.graded_design import sigma_scan
-    f = design.foci
-    construction = types.SimpleNamespace(F=f["F"], F1=f["F1"], Fp=f["F'"], F1p=f["F1'"])
-    medium = printed_medium(spec, design)
-    half_view = spec.design.view_angle_deg / 2
-    angles, sigma = sigma_scan(construction, medium, design.x1, design.x2, design.half_aperture, half_view,
-                               len(design.angle_deg))
+    """The printed rows' εr against the law and the aperture path error they add (first order, feed on
+    axis), RSS with the law's σ; plots of both."""
+    lam = C_MM_GHZ / spec.frequency_ghz
+    half = design.half_aperture * design.unit_mm
+    y = np.linspace(-half, half, 401)
+    err = path_error_mm(spec, design, y)
+    err = err - err.mean()
+    rms = float(np.sqrt(np.mean(err**2)))
     edges, eps = printed_steps(spec, design)
-    mid = (edges[:-1] + edges[1:]) / 2
-    inside = mid <= design.half_aperture * design.unit_mm
-    step_err = float(np.max(np.abs(eps[inside] - law(design)(mid[inside]))))
-    figures = {"printed_sigma_max": float(np.max(sigma)), "printed_sigma_max_mm": float(np.max(sigma) * design.unit_mm),
-               "printed_rows": float(len(eps)), "printed_row_max_eps_error": step_err}
-    y = np.linspace(0, design.half_aperture, 200) * design.unit_mm
-    plots = (Plot("printed-sigma", "RMS aberration (3.10): continuous law and the printed lattice's rows", "field angle (deg)",
-                  "σ / D", (Series("continuous law", design.angle_deg, design.sigma),
-                            Series("printed rows (homogenized εr per row of cells)", angles, sigma, "dashed")),
-                  caption="GO through the synthesized surfaces; the printed lens is a staircase of one εr per "
-                          "row of cells (unit-cell table, rods rounded to an eighth of the nozzle); the skin is "
-                          "not traced"),
-             Plot("printed-eps", "εr across the aperture: law and printed rows", "y (mm)", "εr",
-                  (Series("n(y)² synthesized", y, law(design)(y)),
-                   Series("printed rows", edges, np.r_[eps, eps[-1]], "steps"))))
+    centres = np.arange(len(eps)) * spec.fabrication.cell_mm
+    inside = centres <= half
+    step_err = float(np.max(np.abs(eps[inside] - law(design)(centres[inside]))))
+    sigma_law = float(design.sigma[len(design.sigma) // 2]) * design.unit_mm
+    figures = {"printed_rows": float(len(eps)), "printed_row_max_eps_error": step_err,
+               "printed_path_error_rms_mm": rms, "printed_path_error_rms_deg": rms / lam * 360,
+               "printed_path_error_pp_mm": float(np.ptp(err)),
+               "printed_sigma_on_axis_mm": float(np.hypot(sigma_law, rms))}
+    yy = np.linspace(0, half, 200)
+    plots = (Plot("printed-eps", "εr across the aperture: law and printed rows", "y (mm)", "εr",
+                  (Series("n(y)² synthesized", yy, law(design)(yy)),
+                   Series("printed rows (unit-cell table, mean of the dithered rods)", edges, np.r_[eps, eps[-1]], "steps")),
+                  caption="one mean εr per row of cells (centre y = j·a): rods of the two nearest printable widths alternated along the axis"),
+             Plot("printed-path-error", "Aperture path error of the printed rows (feed on axis)", "y (mm)",
+                  "path error (mm)", (Series("(n_printed − n)·thickness, piston removed", y, err),),
+                  caption=f"first order, near-axial rays; RMS {rms:.3f} mm = {rms / lam * 360:.1f}° at "
+                          f"{spec.frequency_ghz:g} GHz; with the law's σ on axis {np.hypot(sigma_law, rms):.3f} mm "
+                          "(RSS); the skin is not included"))
     return Verification(figures, (), (), plots)

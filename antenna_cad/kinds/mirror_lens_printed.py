@@ -2,8 +2,8 @@
 ``design.refractive_index`` printed from one filament (``material``) as a uniform cubic lattice whose
 εr_eff = n² (antenna_cad.printed), inside a solid skin that gives the mirror face its smooth surface.
 
-The fill comes from the shipped unit-cell table; the rod width is rounded to what a slicer places, so
-the body as printed has the εr of that width — the GO and full-wave checks trace it at that εr
+The fill comes from the shipped unit-cell table; the rods alternate layer by layer between the two
+nearest widths a slicer places, so the body as printed has their mean εr — the GO and full-wave checks trace it at that εr
 (the "fabricated" body) beside the design's n. Loss and density of the lattice: the filament's
 scaled by the fill (parallel mixture: ε'' = f·ε''_f, so tanδ = f·εf·tanδf/εeff).
 """
@@ -19,9 +19,8 @@ from antenna_cad.kinds.printed_package import (WIDTH_STEP_NOZZLES, PrintedFabPla
                                               registration_check)
 from antenna_cad.limits import LIMITS
 from antenna_cad.materials import Material
-from antenna_cad.printed.fill import FillMap, fill_map
-from antenna_cad.printed.homogenization import homogenized
-from antenna_cad.printed.lattice import Printable, fill_fraction
+from antenna_cad.printed.fill import FillMap, dithered_fill, dithered_widths, fill_map, rod_width_mm
+from antenna_cad.printed.lattice import Printable
 from antenna_cad.spec.common import resolve_material
 from antenna_cad.stages import with_cad
 from antenna_cad.synthesis.checks import Check
@@ -48,17 +47,22 @@ class LatticeBody:
 
 
 def lattice_body(spec) -> LatticeBody:
-    """The fill for εr_eff = n², clipped to the printable range, and the rod width rounded to an
-    eighth of the nozzle (what the printer makes)."""
+    """The fill for εr_eff = n², clipped to the printable range; the rods alternate layer by layer
+    between the two nearest widths a slicer places (an eighth of the nozzle apart) so that their mean
+    along the axis — the beam's direction — follows it (:func:`antenna_cad.printed.fill.dithered_widths`)."""
     fab = spec.fabrication
     m = resolve_material(spec.material)
     eps = spec.design.refractive_index ** 2
     printable = Printable(fab.lattice, fab.cell_mm, fab.wall_mm, fab.gap_mm)
     fmap = fill_map(lambda r: np.full(np.shape(r), eps), 1.0, fab.lattice, m.eps_r, printable, samples=3)
-    from antenna_cad.printed.parts import rounded_widths
-    w = float(rounded_widths(fmap, np.zeros(1), fab.nozzle_mm * WIDTH_STEP_NOZZLES, fab.wall_mm, fab.gap_mm)[0])
-    f = float(fill_fraction("cubic", w / fab.cell_mm))
-    return LatticeBody(m, fmap, w, f, eps, float(homogenized(fab.lattice, m.eps_r).eps_at(f)))
+    w = float(rod_width_mm(fmap, 0.0))
+    f, e = dithered_fill(w, *widths_limits(fab), fab.cell_mm, fab.lattice, m.eps_r)
+    return LatticeBody(m, fmap, w, float(f), eps, float(e))
+
+
+def widths_limits(fab) -> tuple[float, float, float]:
+    """(step, thinnest, widest) rod width the printer places."""
+    return fab.nozzle_mm * WIDTH_STEP_NOZZLES, fab.wall_mm, fab.cell_mm - fab.gap_mm
 
 
 def envelope(design):
@@ -75,8 +79,8 @@ def printed_eps_check(body: LatticeBody, tolerance: float) -> Check:
     """The body as printed against n², within the spec's εr tolerance (tolerances.eps_r_tolerance)."""
     err = body.eps_printed - body.eps_target
     return Check("printed_eps_error", "pass" if abs(err) <= tolerance else "warn", abs(err), tolerance, "εr",
-                 f"body as printed: rod {body.width_mm:g} mm (fill {body.fill:.3f}) gives εr_eff {body.eps_printed:.4f} "
-                 f"vs n² = {body.eps_target:.4f} ({err:+.4f}; rods rounded to an eighth of the nozzle)")
+                 f"body as printed: rods of mean width {body.width_mm:.3f} mm (fill {body.fill:.3f}, two printable widths "
+                 f"alternated layer by layer) give εr_eff {body.eps_printed:.4f} vs n² = {body.eps_target:.4f} ({err:+.5f})")
 
 
 def fabricate_printed(spec, design) -> PrintedFabPlan:
@@ -96,7 +100,8 @@ def fabricate_printed(spec, design) -> PrintedFabPlan:
     idx, centre, inner = body_cells(env, fab.cell_mm, fab.skin_mm, tol)
     ref = reference_volume_mm3(env, lambda u, w: np.full(np.shape(u), body.fill), fab.skin_mm,
                                fab.cell_mm * REFERENCE_STEP_CELLS)
-    lens = build_lattice_body(env, idx, centre, inner, np.full(len(idx), body.width_mm), fab.cell_mm,
+    widths, _ = dithered_widths(np.full(len(idx), body.width_mm), idx[:, 2], *widths_limits(fab))
+    lens = build_lattice_body(env, idx, centre, inner, widths, fab.cell_mm,
                               skin_mm=fab.skin_mm, bed_mm=(fab.bed.x_mm, fab.bed.y_mm, fab.bed.z_mm), tolerance_mm=tol,
                               segments=segments(design.body_radius_mm, tol), reference_volume_mm3=ref)
     plan = package(spec, body.filament, body.fmap, lens, too_many, checks + (registration_check(fab, lens),),

@@ -173,8 +173,8 @@ def _seam_pairs(index: np.ndarray, inner: np.ndarray, boundary: np.ndarray) -> t
 
 
 def _on_faces(tris: np.ndarray, keys: np.ndarray, origin: np.ndarray, a: float) -> np.ndarray:
-    """Triangles lying on one of the cell faces ``keys`` (axis-aligned, on the face plane, inside the
-    face square)."""
+    """Triangles lying on one of the cell faces ``keys`` (sorted; axis-aligned, on the face plane,
+    inside the face square)."""
     flat = (tris[:, 0] == tris[:, 1]) & (tris[:, 0] == tris[:, 2])   # (m, 3): the axis it is flat in (caps: exact)
     hit = np.zeros(len(tris), bool)
     centroid = (tris.mean(axis=1) - origin) / a
@@ -188,7 +188,8 @@ def _on_faces(tris: np.ndarray, keys: np.ndarray, origin: np.ndarray, a: float) 
         on_plane = (np.abs(2 * c[:, ax] - d[:, ax]) < 1e-6) & (d[:, ax] % 2 != 0)
         d += 1 << 20
         k = (d[:, 0] << 42) | (d[:, 1] << 21) | d[:, 2]
-        hit[sel] = on_plane & np.isin(k, keys)
+        at = np.searchsorted(keys, k).clip(0, len(keys) - 1)
+        hit[sel] = on_plane & (keys[at] == k)
     return hit
 
 
@@ -252,8 +253,10 @@ def _join(grid_tris: np.ndarray, ov: np.ndarray, of: np.ndarray) -> tuple[np.nda
     same = np.all(gv[at] == ov, axis=1)
     remap = np.where(same, at, np.cumsum(~same) - 1 + len(gv))
     v = np.concatenate([gv, ov[~same]])
-    used, f = np.unique(np.concatenate([gf, remap[of]]), return_inverse=True)
-    return v[used], f.reshape(-1, 3)
+    f = np.concatenate([gf, remap[of]])
+    used = np.zeros(len(v), bool)
+    used[f.ravel()] = True
+    return v[used], (np.cumsum(used) - 1)[f]
 
 
 def _region_of(centre: np.ndarray, planes: dict[int, list[float]]) -> np.ndarray:
@@ -311,6 +314,7 @@ def build_lattice_body(env: Envelope, index: np.ndarray, centre: np.ndarray, inn
             seam = _face_keys(index[pp], index[qq] - index[pp])
             ov, of = _indexed(piece) if not piece.is_empty() else (np.zeros((0, 3)), np.zeros((0, 3), np.int64))
             if len(seam):
+                seam = np.sort(seam)
                 tris_in = tris_in[~_on_faces(tris_in, seam, origin, a)]
                 of = of[~_on_faces(ov[of], seam, origin, a)]
             rings = _rings(index[pp], index[qq], s[pp], s[qq], origin, a) if len(seam) else np.zeros((0, 3, 3))

@@ -10,6 +10,7 @@ narrowest gap: the lens there is denser or lighter than the law, and the table s
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Callable
 
@@ -88,3 +89,31 @@ def fill_integral_mm3(fmap: FillMap, r_in_mm: float, shape: str, height_mm: floa
     if shape == "sphere":
         return float(4 * np.pi * np.trapezoid(f * r * r, r))
     return float(2 * np.pi * height_mm * np.trapezoid(f * r, r))
+
+
+def dithered_widths(width_mm, along, step_mm: float, lo_mm: float, hi_mm: float) -> tuple[np.ndarray, np.ndarray]:
+    """Rod widths a slicer places (multiples of ``step_mm`` in [lo_mm, hi_mm]) whose mean along a line of
+    cells is ``width_mm``: the two neighbouring multiples, alternated by the cell's integer position
+    ``along`` the line (error diffusion: the upper one in a fraction t of the cells, spread evenly).
+    A wave crossing the line sees the mean (the cells are far below the wavelength). Returns (widths,
+    t) with t the fraction of upper widths of each cell's line."""
+    lo_q = math.ceil(lo_mm / step_mm - 1e-9)
+    hi_q = math.floor(hi_mm / step_mm + 1e-9)
+    q = np.clip(np.asarray(width_mm, float) / step_mm, lo_q, hi_q)
+    base = np.floor(q)
+    t = q - base
+    i = np.asarray(along, np.int64)
+    upper = np.floor((i + 1) * t + 1e-9) > np.floor(i * t + 1e-9)
+    return (base + upper) * step_mm, t
+
+
+def dithered_fill(width_mm, step_mm: float, lo_mm: float, hi_mm: float, cell_mm: float, lattice: str,
+                  eps_f: float) -> tuple[np.ndarray, np.ndarray]:
+    """(mean fill, mean εr_eff) of a line of cells dithered as :func:`dithered_widths`."""
+    _, t = dithered_widths(width_mm, 0, step_mm, lo_mm, hi_mm)
+    q = np.clip(np.asarray(width_mm, float) / step_mm, math.ceil(lo_mm / step_mm - 1e-9),
+                math.floor(hi_mm / step_mm + 1e-9))
+    w0, w1 = np.floor(q) * step_mm, (np.floor(q) + 1) * step_mm
+    f0, f1 = fill_fraction("cubic", w0 / cell_mm), fill_fraction("cubic", w1 / cell_mm)
+    h = homogenized(lattice, eps_f)
+    return (1 - t) * f0 + t * f1, (1 - t) * h.eps_at(f0) + t * h.eps_at(f1)

@@ -87,7 +87,8 @@ def closed_and_oriented(faces: np.ndarray) -> bool:
     fwd_sorted = np.sort(fwd)
     if np.any(fwd_sorted[1:] == fwd_sorted[:-1]):
         return False
-    return bool(np.isin(rev, fwd_sorted, assume_unique=False).all())
+    at = np.searchsorted(fwd_sorted, rev).clip(0, len(fwd_sorted) - 1)
+    return bool(np.all(fwd_sorted[at] == rev))
 
 
 def segments(radius_mm: float, tolerance_mm: float) -> int:

@@ -65,6 +65,32 @@ def printed_steps(spec, design) -> tuple[np.ndarray, np.ndarray]:
     return np.r_[0.0, (rows + 0.5) * a], eps
 
 
+def fabricate_printed(spec, design) -> PrintedFabPlan:
+    from antenna_cad.fabrication.graded import section_polygon
+    fab = spec.fabrication
+    m = resolve_material(spec.material)
+    fmap = _fill(spec, design)
+    sec = section_polygon(design)
+    too_many = LIMITS["cells"].check(round(sec.area * spec.design.height_mm / fab.cell_mm**3))
+    if not with_cad():
+        return PrintedFabPlan((), {}, {}, (), (), {}, {}, 0.0, {}, {}, fill=fmap, material=m,
+                              check_list=tuple(too_many + fill_checks(spec, fab, m, fmap)))
+    from antenna_cad.printed.body import Envelope, body_cells, build_lattice_body, reference_volume_mm3
+    tol = spec.outputs.mesh_tolerance_mm
+    env = Envelope("extruded", sec, spec.design.height_mm)
+    idx, centre, inner = body_cells(env, fab.cell_mm, fab.skin_mm, tol)
+    a = fab.cell_mm
+    ref = reference_volume_mm3(env, lambda u, w: fill_fraction("cubic", rod_width_mm(fmap, np.abs(w)) / a),
+                               fab.skin_mm, a * REFERENCE_STEP_CELLS)
+    lens = build_lattice_body(env, idx, centre, inner, row_widths(spec, fmap, centre[:, 1], idx[:, 0]), a,
+                              skin_mm=fab.skin_mm,
+                              bed_mm=(fab.bed.x_mm, fab.bed.y_mm, fab.bed.z_mm), tolerance_mm=tol, segments=0,
+                              reference_volume_mm3=ref)
+    return package(spec, m, fmap, lens, too_many, (registration_check(fab, lens),),
+                   step="print on a plate face (the lens axis on the bed)")
+
+
+
 def path_error_mm(spec, design, y_mm: np.ndarray) -> np.ndarray:
     """First-order optical path error of the printed lens at aperture height ``y_mm``: the index the
     lattice gives (row values, linear between row centres: the homogenized medium a wave averages over

@@ -216,7 +216,7 @@ def test_a_lattice_of_too_many_cells_is_refused_before_meshing():
     from antenna_cad.kinds.luneburg import synthesize
     from antenna_cad.kinds.luneburg_printed import fabricate_printed
     from antenna_cad.synthesis.checks import DesignError
-    spec = parse_spec(BASE | {"design": {"diameter_mm": 170, "law": "classic", "layers": {"count": 8}},
+    spec = parse_spec(BASE | {"design": {"diameter_mm": 400, "law": "classic", "layers": {"count": 8}},
                               "fabrication": {"method": "printed", "cell_mm": 3.6}}, "s.yaml")
     with pytest.raises(DesignError, match="lattice cells exceed the limit"):
         fabricate_printed(spec, synthesize(spec))

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from manifold3d import Manifold, Mesh, OpType
@@ -56,7 +57,7 @@ class PrintedPart:
         ext = self.vertices.max(axis=0) - self.vertices.min(axis=0)
         return float(ext[0]), float(ext[1]), float(ext[2])
 
-    @property
+    @cached_property
     def volume_mm3(self) -> float:
         return mesh_volume(self.vertices, self.faces)
 

@@ -3,7 +3,7 @@ trimmed boundary and skin, parts, 3MF/STL bytes) against the number of cells, CP
 recipe's whole build (full-wave off) in a fresh interpreter with its peak RSS. Not a unit test: the
 machine is shared, so read the CPU times and the load average.
 
-    PYTHONPATH=. python benchmarks/printed_bodies.py [--cells-mm 7 5 3.5] [--no-build]
+    PYTHONPATH=. python benchmarks/printed_bodies.py [--scales 0.5 0.75 1] [--no-build]
 """
 
 from __future__ import annotations
@@ -23,14 +23,14 @@ RECIPES = {"mirror_lens": ROOT / "recipes" / "mirror-lens-346mm-printed.yaml",
            "graded": ROOT / "recipes" / "graded-trifocal-160mm-printed.yaml"}
 
 
-def fabrication_row(kind: str, cell_mm: float | None = None) -> dict:
-    """The kind's fabricate() on its recipe (the mirror-lens body at ``cell_mm``): cells, triangles,
-    CPU and wall seconds."""
+def fabrication_row(kind: str, scale: float = 1.0) -> dict:
+    """The kind's fabricate() on its recipe (the mirror-lens body scaled by ``scale``, its cell kept):
+    cells, triangles, CPU and wall seconds."""
     from importlib import import_module
     mod = import_module(f"antenna_cad.kinds.{kind}")
     data = load_spec(RECIPES[kind]).model_dump(mode="json", exclude_none=True)
-    if cell_mm is not None:
-        data["fabrication"]["cell_mm"] = cell_mm
+    for key in ("diameter_mm", "f0_mm", "d0_mm") if scale != 1.0 else ():
+        data["design"][key] *= scale
     spec = parse_spec(data)
     design = mod.synthesize(spec)
     wall, cpu = time.perf_counter(), time.process_time()
@@ -55,11 +55,11 @@ def build_row(recipe: Path) -> dict:
 
 def main() -> int:
     ap = argparse.ArgumentParser()
-    ap.add_argument("--cells-mm", type=float, nargs="+", default=[7.0, 5.0, 3.5])
+    ap.add_argument("--scales", type=float, nargs="+", default=[0.5, 0.75, 1.0])
     ap.add_argument("--no-build", action="store_true")
     args = ap.parse_args()
     print(f"load average {os.getloadavg()[0]:.2f}, {os.cpu_count()} cores")
-    rows = [fabrication_row("mirror_lens", a) for a in args.cells_mm] + [fabrication_row("graded")]
+    rows = [fabrication_row("mirror_lens", x) for x in args.scales] + [fabrication_row("graded")]
     print(f"{'kind':>12} {'cell mm':>8} {'cells':>8} {'triangles':>10} {'CPU s':>7} {'wall s':>7} {'µs/cell':>8} {'MB out':>7}")
     for r in rows:
         print(f"{r['kind']:>12} {r['cell_mm']:8.2f} {r['cells']:8d} {r['triangles']:10d} {r['cpu_s']:7.1f} "

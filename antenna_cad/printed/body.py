@@ -259,6 +259,28 @@ def _join(grid_tris: np.ndarray, ov: np.ndarray, of: np.ndarray) -> tuple[np.nda
     return v[used], (np.cumsum(used) - 1)[f]
 
 
+def _part(index, width_mm, inn, bnd, a, origin, trim: Manifold, shell: Manifold | None):
+    """(vertices, faces, lattice triangles before trimming) of one part: its inner cells meshed, its
+    boundary cells trimmed and joined to its piece of skin, the two welded on their shared faces."""
+    tris_in = lattice_triangles(index[inn], width_mm[inn], a) + origin if inn.any() else np.zeros((0, 3, 3))
+    tris_bd = lattice_triangles(index[bnd], width_mm[bnd], a) + origin if bnd.any() else np.zeros((0, 3, 3))
+    made = len(tris_in) + len(tris_bd)
+    piece = _manifold(*weld(tris_bd)) ^ trim if len(tris_bd) else Manifold()
+    if shell is not None:
+        piece = piece + shell
+    pp, qq = _seam_pairs(index, np.nonzero(inn)[0], np.nonzero(bnd)[0])
+    ov, of = _indexed(piece) if not piece.is_empty() else (np.zeros((0, 3)), np.zeros((0, 3), np.int64))
+    rings = np.zeros((0, 3, 3))
+    if len(pp):
+        seam = np.sort(_face_keys(index[pp], index[qq] - index[pp]))
+        keep_in = ~_on_faces(tris_in, seam, origin, a)
+        of = of[~_on_faces(ov[of], seam, origin, a)]
+        rings = _rings(index[pp], index[qq], width_mm[pp] / 2, width_mm[qq] / 2, origin, a)
+        tris_in = tris_in[keep_in]
+    v, f = _join(np.concatenate([tris_in, rings]), ov, of)
+    return v, f, made
+
+
 def _region_of(centre: np.ndarray, planes: dict[int, list[float]]) -> np.ndarray:
     return np.searchsorted(planes[0], centre[:, 0]) * (len(planes[1]) + 1) + np.searchsorted(planes[1], centre[:, 1])
 
@@ -291,42 +313,21 @@ def build_lattice_body(env: Envelope, index: np.ndarray, centre: np.ndarray, inn
     trim = env.solid(-skin_mm / 2, segments, tolerance_mm)
     shell = env.solid(0.0, segments, tolerance_mm) - env.solid(-skin_mm, segments, tolerance_mm) if skin_mm > 0 else None
     region = _region_of(centre, planes)
-    s = width_mm / 2
     xs, ys = [-1e6] + planes[0] + [1e6], [-1e6] + planes[1] + [1e6]
-    parts, body_volume, tri_count = [], 0.0, 0
+    meshes, tri_count = [], 0
     for r in range(len(xs) - 1):
         for q in range(len(ys) - 1):
             mine = region == r * (len(ys) - 1) + q
             if not mine.any():
                 continue
-            inn, bnd = mine & inner, mine & ~inner
-            tris_in = lattice_triangles(index[inn], width_mm[inn], a) + origin if inn.any() else np.zeros((0, 3, 3))
-            tris_bd = lattice_triangles(index[bnd], width_mm[bnd], a) + origin if bnd.any() else np.zeros((0, 3, 3))
-            tri_count += len(tris_in) + len(tris_bd)
-            piece = Manifold()
-            if len(tris_bd):
-                piece = _manifold(*weld(tris_bd)) ^ trim
             cut = Manifold.cube([xs[r + 1] - xs[r], ys[q + 1] - ys[q], 4e6]).translate([xs[r], ys[q], -2e6])
-            if shell is not None:
-                piece = piece + (shell ^ cut)
-            # the seam: faces between an inner cell p and a boundary cell q of this part
-            pp, qq = _seam_pairs(index, np.nonzero(inn)[0], np.nonzero(bnd)[0])
-            seam = _face_keys(index[pp], index[qq] - index[pp])
-            ov, of = _indexed(piece) if not piece.is_empty() else (np.zeros((0, 3)), np.zeros((0, 3), np.int64))
-            if len(seam):
-                seam = np.sort(seam)
-                tris_in = tris_in[~_on_faces(tris_in, seam, origin, a)]
-                of = of[~_on_faces(ov[of], seam, origin, a)]
-            rings = _rings(index[pp], index[qq], s[pp], s[qq], origin, a) if len(seam) else np.zeros((0, 3, 3))
-            v, f = _join(np.concatenate([tris_in, rings]), ov, of)
-            if not len(f):
-                continue
-            parts.append((v, f))
-    out = []
-    parts.sort(key=lambda vf: tuple(np.round(np.r_[vf[0].min(axis=0), vf[0].max(axis=0)], 6)))
-    from antenna_cad.printed.parts import mesh_volume
-    for n, (v, f) in enumerate(parts):
-        body_volume += mesh_volume(v, f)
-        out.append(PrintedPart(f"lens-{n + 1:02d}" if len(parts) > 1 else "lens", "lens", 1, v - v.min(axis=0), f))
+            v, f, made = _part(index, width_mm, mine & inner, mine & ~inner, a, origin, trim,
+                               None if shell is None else shell ^ cut)
+            tri_count += made
+            if len(f):
+                meshes.append((v, f))
+    meshes.sort(key=lambda vf: tuple(np.round(np.r_[vf[0].min(axis=0), vf[0].max(axis=0)], 6)))
+    out = tuple(PrintedPart(f"lens-{n + 1:02d}" if len(meshes) > 1 else "lens", "lens", 1, v - v.min(axis=0), f)
+                for n, (v, f) in enumerate(meshes))
     cuts = len(planes[0]) + len(planes[1])
-    return PrintedLens(tuple(out), len(index), tri_count, body_volume, reference_volume_mm3, 0, cuts, 0)
+    return PrintedLens(out, len(index), tri_count, sum(p.volume_mm3 for p in out), reference_volume_mm3, 0, cuts, 0)

@@ -136,3 +136,23 @@ def test_a_printed_recipe_reads_back_and_the_collimator_is_still_refused_by_name
         parse_spec(data, "s.yaml")
     assert any("kinds luneburg, graded and mirror_lens so far" in line for line in exc.value.lines)
     assert math.isclose(parse_spec(GR, "s.yaml").fabrication.cell_mm * 4, 3.4)
+
+
+def test_the_mirror_lens_is_synthesized_at_n_and_traced_at_the_printed_index():
+    from antenna_cad.kinds import mirror_lens
+    from antenna_cad.kinds.mirror_lens_printed import lattice_body
+    from antenna_cad.stages import planning
+    spec = load_spec("recipes/mirror-lens-346mm-printed.yaml")
+    design = mirror_lens.synthesize(spec)
+    assert design.profiles.n == pytest.approx(1.3)
+    body = lattice_body(spec)
+    assert mirror_lens.body_material(spec, as_printed=True).eps_r == pytest.approx(body.eps_printed)
+    assert mirror_lens.body_material(spec).density_kg_m3 == pytest.approx(body.fill * 1240.0)
+    with planning(False):
+        plan = mirror_lens.fabricate(spec, design, None, ())
+    names = {c.name: c for c in plan.checks}
+    assert names["printed_eps_error"].status == "pass" and names["printed_fill_clipped"].status == "pass"
+    assert plan.lens is None                                        # CAD-free: limits and fill, no mesh
+    off = parse_spec(spec.model_dump(mode="json", exclude_none=True) | {"design": ML["design"] | {
+        "refractive_index": 1.55}}, "s.yaml")
+    assert lattice_body(off).eps_printed == pytest.approx(1.55**2, abs=1e-3)

@@ -18,7 +18,7 @@ import numpy as np
 from antenna_cad.kinds.printed_package import (WIDTH_STEP_NOZZLES, PrintedFabPlan, fill_checks, package,
                                               registration_check)
 from antenna_cad.limits import LIMITS
-from antenna_cad.printed.fill import FillMap, dithered_fill, dithered_widths, fill_map, rod_width_mm
+from antenna_cad.printed.fill import FillMap, dithered_fill, dithered_widths, eps_of_width, fill_map, rod_width_mm
 from antenna_cad.printed.lattice import Printable, fill_fraction
 from antenna_cad.spec.common import resolve_material
 from antenna_cad.stages import with_cad
@@ -49,7 +49,9 @@ def _limits(spec) -> tuple[float, float, float]:
 def row_widths(spec, fmap: FillMap, y_mm, x_index) -> np.ndarray:
     """Rod widths of the cells centred at ``y_mm``: the law's width dithered along the lens axis
     (``x_index``) between the two nearest widths a slicer places, so each row's mean follows the law."""
-    w, _ = dithered_widths(rod_width_mm(fmap, np.abs(np.asarray(y_mm, float))), x_index, *_limits(spec))
+    fab = spec.fabrication
+    eps = eps_of_width(fab.lattice, resolve_material(spec.material).eps_r, fab.cell_mm)
+    w, _ = dithered_widths(rod_width_mm(fmap, np.abs(np.asarray(y_mm, float))), x_index, *_limits(spec), eps)
     return w
 
 

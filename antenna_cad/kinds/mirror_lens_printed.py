@@ -19,7 +19,7 @@ from antenna_cad.kinds.printed_package import (WIDTH_STEP_NOZZLES, PrintedFabPla
                                               registration_check)
 from antenna_cad.limits import LIMITS
 from antenna_cad.materials import Material
-from antenna_cad.printed.fill import FillMap, dithered_fill, dithered_widths, fill_map, rod_width_mm
+from antenna_cad.printed.fill import FillMap, dithered_fill, dithered_widths, eps_of_width, fill_map, rod_width_mm
 from antenna_cad.printed.lattice import Printable
 from antenna_cad.spec.common import resolve_material
 from antenna_cad.stages import with_cad
@@ -100,7 +100,8 @@ def fabricate_printed(spec, design) -> PrintedFabPlan:
     idx, centre, inner = body_cells(env, fab.cell_mm, fab.skin_mm, tol)
     ref = reference_volume_mm3(env, lambda u, w: np.full(np.shape(u), body.fill), fab.skin_mm,
                                fab.cell_mm * REFERENCE_STEP_CELLS)
-    widths, _ = dithered_widths(np.full(len(idx), body.width_mm), idx[:, 2], *widths_limits(fab))
+    eps = eps_of_width(fab.lattice, body.filament.eps_r, fab.cell_mm)
+    widths, _ = dithered_widths(np.full(len(idx), body.width_mm), idx[:, 2], *widths_limits(fab), eps)
     lens = build_lattice_body(env, idx, centre, inner, widths, fab.cell_mm,
                               skin_mm=fab.skin_mm, bed_mm=(fab.bed.x_mm, fab.bed.y_mm, fab.bed.z_mm), tolerance_mm=tol,
                               segments=segments(design.body_radius_mm, tol), reference_volume_mm3=ref)

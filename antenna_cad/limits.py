@@ -37,7 +37,7 @@ LIMITS = {
     "drawings": Limit("drawings", "fabrication.board", soft=300, hard=3000),
     "pages": Limit("template pages", "outputs.templates", soft=5000, hard=100_000),
     "triangles": Limit("STL triangles", "outputs.mesh_tolerance_mm", soft=5_000_000, hard=20_000_000),
-    "cells": Limit("lattice cells", "fabrication.cell_mm", soft=30_000, hard=50_000),   # printed: ~1 ms, 29 triangles each
+    "cells": Limit("lattice cells", "fabrication.cell_mm", soft=50_000, hard=500_000),   # printed: 24–48 triangles each
     # the gyroid's level set: ~3 µs a point and a triangle per point, one core (benchmarks/printed_lattice.py)
     "gyroid_points": Limit("gyroid level-set points", "fabrication.min_wall_mm", soft=4_000_000, hard=30_000_000),
 }

@@ -50,7 +50,7 @@ def models(radius_mm: float, res: int) -> tuple[np.ndarray, np.ndarray, float, d
     """Voxel ε of the lattice and of its homogenized twin on the cube |x|, |y|, |z| ≤ R (px of λ/res)."""
     from antenna_cad.printed.fill import fill_map
     from antenna_cad.printed.lattice import Printable
-    from antenna_cad.printed.parts import _widths
+    from antenna_cad.printed.parts import rounded_widths
     law = lambda r: 2.0 - (np.asarray(r) / radius_mm) ** 2            # classic Luneburg (seed-002 §2.1)
     fmap = fill_map(law, radius_mm, "cubic", EPS_F, Printable("cubic", CELL_MM, WALL_MM, GAP_MM_PRINT))
     lam = C_MM_GHZ / F_GHZ
@@ -68,14 +68,14 @@ def models(radius_mm: float, res: int) -> tuple[np.ndarray, np.ndarray, float, d
         # cell centres (i, j, k + ½)·a with the cell's rod width; inside a cell a point is solid when two
         # of its three local coordinates are within w/2 (the union of the cell's three rods)
         c = np.stack([np.round(pts[..., 0] / a), np.round(pts[..., 1] / a), np.floor(pts[..., 2] / a) + 0.5], -1) * a
-        w = _widths(fmap, np.linalg.norm(c, axis=-1).ravel(), STEP_MM, WALL_MM, GAP_MM_PRINT).reshape(r.shape)
+        w = rounded_widths(fmap, np.linalg.norm(c, axis=-1).ravel(), STEP_MM, WALL_MM, GAP_MM_PRINT).reshape(r.shape)
         inside = (np.abs(pts - c) < w[..., None] / 2).sum(-1) >= 2
         solid = np.where(r <= r_in, inside, r <= radius_mm)
         lat[ix] = (1 + (EPS_F - 1) * solid).mean(axis=(0, 2, 4))
         eps_h = np.where(r <= r_in, np.interp(r, fmap.r_mm, fmap.eps_printed), np.where(r <= radius_mm, EPS_F, 1.0))
         twin[ix] = eps_h.mean(axis=(0, 2, 4))
     info = {"cells_in_sphere": int(round(4 / 3 * math.pi * r_in**3 / a**3)), "voxel_mm": px}
-    wmin = _widths(fmap, np.array([0.0, r_in]), STEP_MM, WALL_MM, GAP_MM_PRINT)
+    wmin = rounded_widths(fmap, np.array([0.0, r_in]), STEP_MM, WALL_MM, GAP_MM_PRINT)
     info["rod_width_mm"] = [float(wmin.min()), float(wmin.max())]
     info["rod_width_px"] = [float(wmin.min() / px), float(wmin.max() / px)]
     return lat, twin, px, info

@@ -38,7 +38,8 @@ def test_lattice_mesh_is_closed_and_its_volume_is_the_fill():
 
 def test_equal_neighbours_share_their_face_without_internal_triangles():
     v, f = _mesh([(0, 0, 0), (1, 0, 0)], [1.0, 1.0], 3.0)
-    assert len(f) == 2 * 48 + 10 * 2          # 24 arm sides each, 10 end caps; nothing on the shared face
+    assert len(f) == 2 * 40 + 8 + 10 * 2      # 20 arm sides each, one rod core to core, 10 end caps
+    assert closed_and_oriented(f) and mesh_volume(v, f) == pytest.approx(2 * fill_fraction("cubic", 1 / 3) * 27)
     v2, f2 = _mesh([(0, 0, 0), (1, 0, 0)], [1.0, 1.5], 3.0)
     assert len(f2) == 2 * 48 + 10 * 2 + 8     # a square ring out of the wider rod
     assert closed_and_oriented(f2)
@@ -135,7 +136,7 @@ def test_cli_refuses_a_bad_printed_spec_with_exit_2(tmp_path):
 def test_printed_cylinder_holds_whole_cells_and_flags_a_cut_without_room_for_pins():
     with pytest.raises(SpecError) as exc:
         parse_spec(BASE | {"design": {"diameter_mm": 100, "shape": "cylinder", "height_mm": 6.0}}, "s.yaml")
-    assert "fabrication.cell_mm: a cylinder's height must be a whole number of cells" in exc.value.lines[0]
+    assert "fabrication.cell_mm: the height between the plates must be a whole number of cells" in exc.value.lines[0]
     R, a, h = 20.0, 3.0, 6.0
     fm = fill_map(lambda r: 2 - (r / R) ** 2, R, "cubic", 2.7, Printable("cubic", a, 0.8, 0.8))
     ref = fill_integral_mm3(fm, R - 0.8, "cylinder", h) + math.pi * (R**2 - (R - 0.8) ** 2) * h
@@ -199,7 +200,7 @@ def test_kinds_without_a_printed_method_refuse_it_by_name():
             "fabrication": {"method": "printed", "cell_mm": 3}}
     with pytest.raises(SpecError) as exc:
         parse_spec(data, "s.yaml")
-    assert any("fabrication.method: must be one of" in line and "kind luneburg so far" in line
+    assert any("fabrication.method: must be one of" in line and "kinds luneburg, graded and mirror_lens so far" in line
                for line in exc.value.lines)
 
 
@@ -215,7 +216,7 @@ def test_a_lattice_of_too_many_cells_is_refused_before_meshing():
     from antenna_cad.kinds.luneburg import synthesize
     from antenna_cad.kinds.luneburg_printed import fabricate_printed
     from antenna_cad.synthesis.checks import DesignError
-    spec = parse_spec(BASE | {"design": {"diameter_mm": 170, "law": "classic", "layers": {"count": 8}},
+    spec = parse_spec(BASE | {"design": {"diameter_mm": 400, "law": "classic", "layers": {"count": 8}},
                               "fabrication": {"method": "printed", "cell_mm": 3.6}}, "s.yaml")
     with pytest.raises(DesignError, match="lattice cells exceed the limit"):
         fabricate_printed(spec, synthesize(spec))

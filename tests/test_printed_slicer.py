@@ -7,7 +7,7 @@ import shutil
 import pytest
 
 from antenna_cad.kinds.luneburg import fabricate, synthesize
-from antenna_cad.kinds.luneburg_printed import SLICER_FACTOR
+from antenna_cad.kinds.printed_package import SLICER_FACTOR
 from antenna_cad.printed.slicer import SlicerError, extrusion_layers, parse_duration, parse_gcode, slice_3mf
 from antenna_cad.spec import load_spec, parse_spec
 

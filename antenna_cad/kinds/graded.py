@@ -3,6 +3,7 @@
 ``material`` is the base dielectric (loss, density) of the slabs; each slab's εr is the mean of the
 synthesized n²(y) over its band. Verification recomputes σ (3.10) against the field angle and the
 seed's comparison with the homogeneous bifocal lens, and exposes the aperture field as arrays.
+``printed``: the lens as a graded lattice of one filament (:mod:`antenna_cad.kinds.graded_printed`).
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ import numpy as np
 from antenna_cad.asbuilt.patterns_arrays import array_patterns, best_focus, imaged_case, path_mm
 from antenna_cad.spec.common import resolve_material
 from antenna_cad.spec.graded import GradedLayupSpec, GradedSpec
+from antenna_cad.spec.printed import PrintedSpec
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.collimator import wavelength_mm
 from antenna_cad.synthesis.graded_design import GradedDesign, ray_paths, synthesize_graded
@@ -44,10 +46,17 @@ def plan(spec: GradedSpec, design: GradedDesign):
 
 def model(spec: GradedSpec, design: GradedDesign, layup, panels):
     from antenna_cad.geometry.graded import build_model
-    return build_model(design, resolve_material(spec.material), spec.design.height_mm, layup)
+    built = build_model(design, resolve_material(spec.material), spec.design.height_mm, layup)
+    if not isinstance(spec.fabrication, PrintedSpec):
+        return built
+    # printed: the STEP holds the lens envelope and its slabs for reference (the lattice is in printed/)
+    return replace(built, parts=tuple(replace(p, role="reference") for p in built.parts))
 
 
 def fabricate(spec: GradedSpec, design: GradedDesign, layup, panels):
+    if isinstance(spec.fabrication, PrintedSpec):
+        from antenna_cad.kinds.graded_printed import fabricate_printed
+        return fabricate_printed(spec, design)
     if layup is not None:
         from antenna_cad.fabrication.graded_layup import fabricate_graded_layup
         fab = fabricate_graded_layup(design, layup, spec.name)
@@ -130,7 +139,14 @@ def verify(spec: GradedSpec, design: GradedDesign, layup, fab) -> Verification:
     figures = {"sigma_max": float(design.sigma.max()), "sigma_max_mm": float(design.sigma.max() * design.unit_mm),
                "sigma_max_deg": float(design.sigma.max() * design.unit_mm / lam * 360.0),
                "aperture_field_rays": len(pos)}
-    return Verification(figures, (), (layers, field), plots).merged(_patterns(spec, design, lam))
+    v = Verification(figures, (), (layers, field), plots).merged(_patterns(spec, design, lam))
+    if isinstance(spec.fabrication, PrintedSpec):
+        from antenna_cad.kinds.graded_printed import printed_verification
+        from antenna_cad.kinds.printed_package import printed_verification as parts_verification
+        v = v.merged(printed_verification(spec, design))
+        if getattr(fab, "lens", None) is not None:
+            v = v.merged(parts_verification(fab))
+    return v
 
 
 def _patterns(spec: GradedSpec, design: GradedDesign, lam: float) -> Verification:

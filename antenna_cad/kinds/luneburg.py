@@ -245,7 +245,7 @@ def verify(spec: LuneburgSpec, design: LuneburgDesign, layup: RingLayupPlan | No
     from antenna_cad.kinds.luneburg_verify import verify_luneburg   # the tracers and full-wave: a build's cost only
     v = verify_luneburg(spec, design, layup, fab, layer_materials(spec, design))
     if isinstance(spec.fabrication, PrintedSpec):
-        from antenna_cad.kinds.luneburg_printed import printed_verification
+        from antenna_cad.kinds.printed_package import printed_verification
         v = v.merged(printed_verification(fab))
     if layup is None or layup.edge != "taper":
         return v

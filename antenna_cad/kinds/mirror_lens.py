@@ -11,7 +11,8 @@ Verification (3-D GO, :mod:`antenna_cad.raytrace.mirror_lens`): the body as fabr
 the CAD holds — splines through the sampled exact profiles — traced against the exact synthesis;
 then εr, thickness and feed position at ± their tolerances; σ against the field angle with the feed
 on the focal curve; and the aperture field (amplitude, phase) as plain arrays for the radiation
-and full-wave modules (:func:`aperture_field`).
+and full-wave modules (:func:`aperture_field`). A printed body (:mod:`antenna_cad.kinds.mirror_lens_printed`)
+is synthesized at ``design.refractive_index`` and traced as fabricated at the εr its lattice has.
 """
 
 from __future__ import annotations
@@ -33,6 +34,7 @@ from antenna_cad.materials import Material
 from antenna_cad.raytrace.mirror_lens import Body, Surface, aperture_field as trace_aperture_field, sigma_at
 from antenna_cad.spec.common import SheetLayupSpec, resolve_material
 from antenna_cad.spec.mirror_lens import MirrorLensSpec
+from antenna_cad.spec.printed import PrintedSpec
 from antenna_cad.synthesis.checks import Check
 from antenna_cad.synthesis.mirror_lens import (MirrorLensDesign, astigmatism_rows, synthesize_mirror_lens,
                                                target_value)
@@ -50,9 +52,19 @@ def _metal(spec: MirrorLensSpec) -> Material:
     return Material(m.metal, 1.0, 0.0, m.density_kg_m3, "metal (conductor) of the mirror layer, from design.mirror")
 
 
+def body_material(spec: MirrorLensSpec, as_printed: bool = False) -> Material:
+    """The body's dielectric: the spec's material, or a printed lattice at n² (``as_printed``: at the
+    εr its rounded rods give)."""
+    if not isinstance(spec.fabrication, PrintedSpec):
+        return resolve_material(spec.material)
+    from antenna_cad.kinds.mirror_lens_printed import lattice_body
+    body = lattice_body(spec)
+    return body.material(body.eps_printed if as_printed else body.eps_target)
+
+
 def synthesize(spec: MirrorLensSpec) -> MirrorLensDesign:
     g = spec.design
-    m = resolve_material(spec.material)
+    m = body_material(spec)
     return synthesize_mirror_lens(diameter_mm=g.diameter_mm, frequency_ghz=spec.frequency_ghz, n=m.n,
                                   f0=g.f0_norm, d0=g.d0_norm, gamma=g.gamma_norm,
                                   optimize=g.optimize.model_dump() if g.optimize else None,
@@ -94,12 +106,21 @@ def _ring(spec: MirrorLensSpec, design: MirrorLensDesign):
 def model(spec: MirrorLensSpec, design: MirrorLensDesign, layup: LayupPlan | None, panels):
     from antenna_cad.geometry.mirror_lens import build_model
     box = resolve_material(spec.fabrication.box.material) if layup else None
-    return build_model(design, spec.design, layup, resolve_material(spec.material), _metal(spec), box, panels)
+    built = build_model(design, spec.design, layup, body_material(spec, as_printed=True), _metal(spec), box, panels)
+    if not isinstance(spec.fabrication, PrintedSpec):
+        return built
+    # printed: the STEP holds the body's envelope for reference (the lattice is in printed/); no flange
+    return replace(built, parts=tuple(replace(p, role="reference") if p.label == "body" else p
+                                      for p in built.parts if p.label != "flange"))
 
 
 def fabricate(spec: MirrorLensSpec, design: MirrorLensDesign, layup: LayupPlan | None, panels):
     from antenna_cad.fabrication.mirror_lens import add_mirror_step, fabricate_solid
-    m = resolve_material(spec.material)
+    m = body_material(spec, as_printed=True)
+    if isinstance(spec.fabrication, PrintedSpec):
+        from antenna_cad.kinds.mirror_lens_printed import fabricate_printed
+        plan = fabricate_printed(spec, design)
+        return plan if plan.lens is None else add_mirror_step(plan, design, spec.design, m, _metal(spec), spec.name)
     if layup is None:
         return fabricate_solid(design, spec.design, _ring(spec, design), m, _metal(spec),
                                spec.fabrication.stock_allowance_mm, spec.name)
@@ -122,7 +143,7 @@ def summary(spec: MirrorLensSpec, design: MirrorLensDesign, layup: LayupPlan | N
     """Key figures: parameters, series coefficients, profiles at the rim, exact − series at the rim,
     σ against the field angle (units of D, as seed-004 (18)), volume and mass."""
     p, D = design.profiles, design.diameter_mm
-    m = resolve_material(spec.material)
+    m = body_material(spec, as_printed=True)
     front_diff, mirror_diff = design.rim_difference()
     figures = {"n": p.n, "diameter_mm": D, "f0_mm": p.f0 * D, "d0_mm": p.d0 * D, "gamma_mm": p.gamma * D,
                "f0_D": p.f0, "d0_D": p.d0, "gamma_D": p.gamma, "wavelength_mm": design.wavelength_mm,
@@ -147,6 +168,9 @@ def summary(spec: MirrorLensSpec, design: MirrorLensDesign, layup: LayupPlan | N
         figures[f"sigma_D_at_{ang:.1f}deg"] = float(sig)
     if layup is not None:
         figures |= layup_figures(layup)
+    if isinstance(spec.fabrication, PrintedSpec):
+        from antenna_cad.kinds.mirror_lens_printed import summary_figures
+        figures |= summary_figures(spec)
     return figures
 
 
@@ -185,8 +209,8 @@ def aperture_field(spec: MirrorLensSpec, design: MirrorLensDesign, feed_mm=(0.0,
                    body: Body | None = None) -> ApertureFieldMM:
     """GO aperture field of the body as fabricated for a feed at ``feed_mm`` (x, y, z in the kind's frame)."""
     D = design.diameter_mm
-    m = resolve_material(spec.material)
-    body = body or fabricated_body(design, m.tan_delta)
+    m = body_material(spec, as_printed=True)
+    body = body or fabricated_body(design, m.tan_delta, m.n)
     af = trace_aperture_field(body, np.asarray(feed_mm, float) / D, design.wavelength_mm / D)
     return ApertureFieldMM(af.x * D, af.amplitude, af.phase_deg, af.launch_angle, af.beam_angle_deg)
 
@@ -209,7 +233,7 @@ def _sensitivity(spec: MirrorLensSpec, design: MirrorLensDesign):
     """Aperture phase error of the body as fabricated, nominal feed, at ± each build tolerance; the
     added errors combined by root-sum-square against the budget (as the other lenses)."""
     tol, D = spec.tolerances, design.diameter_mm
-    m = resolve_material(spec.material)
+    m = body_material(spec)
     thick, eps, feed = tol.thickness_tolerance_mm / D, tol.eps_r_tolerance, tol.feed_position_tolerance_mm
     axis = (0.0, 0.0, 0.0)
     cases = (("εr", f"{eps:g}", lambda s: (fabricated_body(design, n=np.sqrt(m.eps_r + s * eps)), axis)),
@@ -313,19 +337,21 @@ def _aperture_plot(spec, design: MirrorLensDesign, name: str, feed, bodies):
 
 def _fullwave_parts(spec: MirrorLensSpec, design: MirrorLensDesign, layup: LayupPlan | None) -> dict[str, list]:
     """The full-wave decks' bodies: ideal, and as fabricated (a solid body with its flange ring)."""
-    kw = dict(eps_r=resolve_material(spec.material).eps_r, coating_mm=spec.design.mirror.thickness_mm,
-              resolution=spec.verification.resolution_px_per_lambda, cad_samples=CAD_SAMPLES)
-    return {"ideal": body_parts(design, "ideal", **kw),
-            "fabricated": body_parts(design, "fabricated", flange=None if layup else _ring(spec, design), **kw)}
+    kw = dict(coating_mm=spec.design.mirror.thickness_mm, resolution=spec.verification.resolution_px_per_lambda,
+              cad_samples=CAD_SAMPLES)
+    solid = layup is None and not isinstance(spec.fabrication, PrintedSpec)
+    return {"ideal": body_parts(design, "ideal", eps_r=body_material(spec).eps_r, **kw),
+            "fabricated": body_parts(design, "fabricated", eps_r=body_material(spec, as_printed=True).eps_r,
+                                     flange=_ring(spec, design) if solid else None, **kw)}
 
 
 def verify(spec: MirrorLensSpec, design: MirrorLensDesign, layup: LayupPlan | None, fab) -> Verification:
     """The exact and the fabricated body on axis and at the field edge (feed on the focal curve),
     σ over the field, the tolerance study; p-p phase against the budget; the full-wave check with
     the feed on the axis (:mod:`antenna_cad.kinds.mirror_lens_fullwave`)."""
-    m = resolve_material(spec.material)
+    m, built = body_material(spec), body_material(spec, as_printed=True)
     D, sc = design.diameter_mm, design.scan
-    bodies = (("ideal", design.body(m.tan_delta)), ("fabricated", fabricated_body(design, m.tan_delta)))
+    bodies = (("ideal", design.body(m.tan_delta)), ("fabricated", fabricated_body(design, built.tan_delta, built.n)))
     figures, plots, cases = {}, [_profile_plot(design)], []
     for name, feed in (("on_axis", (0.0, 0.0, 0.0)), ("field_edge", (-sc.delta_r[-1] * D, 0.0, sc.delta_z[-1] * D))):
         plot, fig, case = _aperture_plot(spec, design, name, feed, bodies)
@@ -340,8 +366,13 @@ def verify(spec: MirrorLensSpec, design: MirrorLensDesign, layup: LayupPlan | No
                        f"aperture phase at the field edge ({sc.field_angle_deg[-1]:.1f}°, feed on the focal "
                        f"curve): {edge:.1f}° p-p vs budget {budget:g}°")
     cones = (cone_table(layup, cone_radius(spec, design)),) if layup is not None and layup.edge == "taper" else ()
-    return Verification(figures, (sens_check, edge_check),
+    if isinstance(spec.fabrication, PrintedSpec) and getattr(fab, "lens", None) is not None:
+        from antenna_cad.kinds.printed_package import printed_verification
+        printed = printed_verification(fab)
+    else:
+        printed = Verification()
+    return printed.merged(Verification(figures, (sens_check, edge_check),
                         (_profile_table(design), field_table, _astigmatism_table(design), sens_table) + cones,
                         tuple(plots + [field_plot])).merged(array_patterns(cases, PATTERN_CAPTION)).merged(
         full_wave_verification(design, spec.verification, _fullwave_parts(spec, design, layup),
-                               aperture_field(spec, design)))
+                               aperture_field(spec, design))))

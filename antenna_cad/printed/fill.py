@@ -10,6 +10,7 @@ narrowest gap: the lens there is denser or lighter than the law, and the table s
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Callable
 
@@ -90,3 +91,46 @@ def fill_integral_mm3(fmap: FillMap, r_in_mm: float, shape: str, height_mm: floa
     if shape == "sphere":
         return float(4 * np.pi * np.trapezoid(f * r * r, r))
     return float(2 * np.pi * height_mm * np.trapezoid(f * r, r))
+
+
+def _pair(width_mm, step_mm: float, lo_mm: float, hi_mm: float) -> tuple[np.ndarray, np.ndarray]:
+    """(width clipped to the printable multiples of ``step_mm``, the lower of its two neighbouring multiples)."""
+    lo_q = math.ceil(lo_mm / step_mm - 1e-9)
+    hi_q = math.floor(hi_mm / step_mm + 1e-9)
+    w = np.clip(np.asarray(width_mm, float), lo_q * step_mm, hi_q * step_mm)
+    return w, np.minimum(np.floor(w / step_mm + 1e-9), hi_q - 1) * step_mm
+
+
+def _upper_fraction(w, base, step_mm, average) -> np.ndarray:
+    g0, g1 = average(base), average(base + step_mm)
+    return np.clip((average(w) - g0) / np.where(g1 != g0, g1 - g0, 1.0), 0.0, 1.0)
+
+
+def dithered_widths(width_mm, along, step_mm: float, lo_mm: float, hi_mm: float,
+                    average=lambda w: w) -> tuple[np.ndarray, np.ndarray]:
+    """Rod widths a slicer places (multiples of ``step_mm`` in [lo_mm, hi_mm]) alternated along a line
+    of cells so that the mean of ``average(width)`` (the width itself, or the εr_eff it gives) along the
+    line is that of ``width_mm``: the two neighbouring multiples, the upper one in a fraction t of the
+    cells spread evenly by the cell's integer position ``along`` the line (error diffusion). A wave
+    crossing the line sees the mean (the cells are far below the wavelength). Returns (widths, t)."""
+    w, base = _pair(width_mm, step_mm, lo_mm, hi_mm)
+    t = _upper_fraction(w, base, step_mm, average)
+    i = np.asarray(along, np.int64)
+    upper = np.floor((i + 1) * t + 1e-9) > np.floor(i * t + 1e-9)
+    return base + upper * step_mm, t
+
+
+def eps_of_width(lattice: str, eps_f: float, cell_mm: float):
+    """εr_eff of a rod width (mm) of the cubic lattice, from the unit-cell table."""
+    h = homogenized(lattice, eps_f)
+    return lambda w: h.eps_at(fill_fraction("cubic", np.asarray(w, float) / cell_mm))
+
+
+def dithered_fill(width_mm, step_mm: float, lo_mm: float, hi_mm: float, cell_mm: float, lattice: str,
+                  eps_f: float) -> tuple[np.ndarray, np.ndarray]:
+    """(mean fill, mean εr_eff) of a line of cells dithered on εr_eff as :func:`dithered_widths`."""
+    eps = eps_of_width(lattice, eps_f, cell_mm)
+    w, base = _pair(width_mm, step_mm, lo_mm, hi_mm)
+    t = _upper_fraction(w, base, step_mm, eps)
+    f0, f1 = fill_fraction("cubic", base / cell_mm), fill_fraction("cubic", (base + step_mm) / cell_mm)
+    return (1 - t) * f0 + t * f1, (1 - t) * eps(base) + t * eps(base + step_mm)

@@ -4,7 +4,9 @@ Each cell (centre c = index·a) is the union of three orthogonal square rods of 
 |x|,|y|,|z| ≤ w/2 and six arms reaching the cell faces. Its surface is the arms' 24 side faces; on a
 face shared with a neighbour the two arms' end squares are concentric, so the only surface there is
 the square ring between them (nothing when the widths are equal), oriented out of the wider rod; a
-face with no neighbour is capped. Every coordinate is formed from exact half-integer multiples of a
+face with no neighbour is capped. Two neighbours of equal width share one rod between their cores:
+its four side faces are single quads from core to core (a uniform lattice has 24 triangles per cell,
+not 48). Every coordinate is formed from exact half-integer multiples of a
 plus ±w/2, so shared vertices coincide bit for bit and welding them gives a watertight, consistently
 oriented 2-manifold with no self-intersection. Cost and size are linear in the number of cells.
 """
@@ -47,47 +49,64 @@ def _square(center_axis_val, ax, jk, s, a):
     return out
 
 
+def _neighbours(idx: np.ndarray, step: np.ndarray) -> np.ndarray:
+    """Row of ``idx + step`` in ``idx`` for every cell, −1 where there is none (sorted packed keys)."""
+    lo = idx.min(axis=0) - 1
+    span = idx.max(axis=0) - lo + 2
+    pack = lambda k: ((k[:, 0] - lo[0]) * span[1] + (k[:, 1] - lo[1])) * span[2] + (k[:, 2] - lo[2])
+    key = pack(idx)
+    order = np.argsort(key, kind="stable")
+    ks = key[order]
+    q = pack(idx + step)
+    at = np.searchsorted(ks, q).clip(0, len(ks) - 1)
+    return np.where(ks[at] == q, order[at], -1)
+
+
 def lattice_triangles(index: np.ndarray, width_mm: np.ndarray, cell_mm: float) -> np.ndarray:
     """Triangles (m, 3, 3) of the union of the cells ``index`` (n, 3 ints) with rod widths ``width_mm``
     (n,), each strictly between 0 and the cell."""
     a = cell_mm
     idx = np.asarray(index, np.int64)
     s = np.asarray(width_mm, float) / 2
-    key = {tuple(k): i for i, k in enumerate(idx.tolist())}
     tris = []
     for ax, sg in _ARMS:
         u, v = _others(ax)
         e = np.zeros(3)
         e[ax] = sg
-        core = _square(idx[:, ax], ax, idx, s, a)
-        core[:, :, ax] += sg * s                                  # the core cube's face
-        end = _square(idx[:, ax] + 0.5 * sg, ax, idx, s, a)
-        for c in range(4):                                        # side faces of the arm
+        j = _neighbours(idx, e.astype(np.int64))
+        alone = j < 0
+        shared = ~alone & (s[np.maximum(j, 0)] == s)                # one rod from core to core
+        sel = np.nonzero(~shared if sg < 0 else np.ones(len(idx), bool))[0]   # a shared rod once, from − side
+        line = idx[sel]
+        core = _square(line[:, ax], ax, line, s[sel], a)
+        core[:, :, ax] += sg * s[sel]                             # the core cube's face
+        end = _square(line[:, ax] + 0.5 * sg, ax, line, s[sel], a)
+        far = shared[sel]
+        if far.any():                                             # the neighbour's core face, not the cell face
+            end[:, far] = _square(line[far, ax] + 1, ax, line[far], s[sel][far], a)
+            end[:, far, ax] -= s[sel][far]
+        for c in range(4):                                        # side faces of the arm (or shared rod)
             d = (c + 1) % 4
-            normal = np.zeros((len(idx), 3))
+            normal = np.zeros((len(sel), 3))
             mid = (_SQUARE[c] + _SQUARE[d]) / 2
             normal[:, u], normal[:, v] = mid[0], mid[1]
             tris.append(_orient(_quads(core[c], core[d], end[d], end[c]), np.concatenate([normal, normal])))
-        nb = idx + e.astype(np.int64)
-        j = np.array([key.get(tuple(k), -1) for k in nb.tolist()])
-        alone = j < 0
         if alone.any():                                           # cap: no neighbour across this face
-            q = end[:, alone]
+            q = _square(idx[alone, ax] + 0.5 * sg, ax, idx[alone], s[alone], a)
             tris.append(_orient(_quads(q[0], q[1], q[2], q[3]), e))
         if sg < 0:
             continue                                              # each shared face once, from its − side
-        has = ~alone
-        sp, sq = s[has], s[j[has]]
-        wide = np.maximum(sp, sq)
-        narrow = np.minimum(sp, sq)
-        ring = wide > narrow
+        ring = ~alone & ~shared
         if not ring.any():
             continue
-        line = idx[has][ring]
+        sp, sq = s[ring], s[j[ring]]
+        wide = np.maximum(sp, sq)
+        narrow = np.minimum(sp, sq)
+        line = idx[ring]
         plane = line[:, ax] + 0.5
-        outer = _square(plane, ax, line, wide[ring], a)
-        inner = _square(plane, ax, line, narrow[ring], a)
-        normal = np.where((sp[ring] > sq[ring])[:, None], e, -e)
+        outer = _square(plane, ax, line, wide, a)
+        inner = _square(plane, ax, line, narrow, a)
+        normal = np.where((sp > sq)[:, None], e, -e)
         for c in range(4):
             d = (c + 1) % 4
             tris.append(_orient(_quads(outer[c], outer[d], inner[d], inner[c]), np.concatenate([normal, normal])))

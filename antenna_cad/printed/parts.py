@@ -14,6 +14,7 @@ import ctypes
 import ctypes.util
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from manifold3d import Manifold, Mesh, OpType
@@ -60,7 +61,7 @@ class PrintedPart:
         ext = self.vertices.max(axis=0) - self.vertices.min(axis=0)
         return float(ext[0]), float(ext[1]), float(ext[2])
 
-    @property
+    @cached_property
     def volume_mm3(self) -> float:
         return mesh_volume(self.vertices, self.faces)
 
@@ -113,7 +114,7 @@ def _cells(shape: str, r_in: float, height: float | None, cell: float) -> tuple[
     return idx[keep], rad[keep]
 
 
-def _widths(fmap: FillMap, rad: np.ndarray, step: float, wall: float, gap: float) -> np.ndarray:
+def rounded_widths(fmap: FillMap, rad: np.ndarray, step: float, wall: float, gap: float) -> np.ndarray:
     """Rod widths at the cell centres, rounded to ``step`` and kept printable."""
     w = rod_width_mm(fmap, rad)
     lo, hi = math.ceil(wall / step) * step, math.floor((fmap.cell_mm - gap) / step) * step
@@ -229,7 +230,7 @@ def build_printed_lens(shape: str, radius_mm: float, height_mm: float | None, fm
         triangles = body.num_tri()
     else:
         idx, rad = _cells(shape, r_in, height_mm, a)
-        w = _widths(fmap, rad, width_step_mm, wall_mm, gap_mm)
+        w = rounded_widths(fmap, rad, width_step_mm, wall_mm, gap_mm)
         v, f = weld(lattice_triangles(idx, w, a))
         body = _to_manifold(v + np.array([0.0, 0.0, a / 2]), f)
         cells, triangles = len(idx), len(f)

@@ -4,7 +4,9 @@ A 2-D (cylindrical) lens whose index varies across the aperture only, n = n(y), 
 seed's normalised units (D = 1) and scaled by ``design.unit_mm`` (= D in millimetres). ``material``
 is the base dielectric whose loss and density the slabs carry; each slab's εr comes from the
 synthesized law. Fabrication ``solid``: the slabs are machined from blanks of their permittivity;
-``sheet_layup``: each slab cut from foam sheets of its grade, stacked along the extrusion.
+``sheet_layup``: each slab cut from foam sheets of its grade, stacked along the extrusion;
+``printed``: the lens between the plates printed from one filament (``material``) as a lattice whose
+fill follows εr(y) = n(y)², a whole number of cells between the plates, a solid skin on both faces.
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ from pydantic import Field, model_validator
 from antenna_cad.spec.bounds import MIN_DEG, MIN_RATIO
 from antenna_cad.spec.cam import CamSpec
 from antenna_cad.spec.common import BoardSpec, SheetThickness, SolidSpec, SpecBase, StrictModel
+from antenna_cad.spec.printed import PrintedSpec
 
 
 class SlabsSpec(StrictModel):
@@ -61,10 +64,19 @@ class GradedLayupSpec(StrictModel):
                                 "planar, so the sheet outlines are exact; cam/)")
 
 
-GradedFabrication = Annotated[Union[GradedLayupSpec, SolidSpec], Field(discriminator="method")]
+GradedFabrication = Annotated[Union[GradedLayupSpec, SolidSpec, PrintedSpec], Field(discriminator="method")]
 
 
 class GradedSpec(SpecBase):
     kind: Literal["graded"]
     fabrication: GradedFabrication
     design: GradedDesignSpec
+
+    @model_validator(mode="after")
+    def _printed(self):
+        fab = self.fabrication
+        if isinstance(fab, PrintedSpec):
+            fab.check_lens(self.material, self.frequency_ghz)
+            fab.check_height(self.design.height_mm)
+            fab.check_flat_body("the graded lens")
+        return self

@@ -6,17 +6,22 @@ aperture diameter D, as in the seed (``f0``, ``d0``, ``gamma``), or in millimetr
 or as the ratio ``f0_over_d0`` with the axial length ``length`` = f0 + d0 (seed-004 §3.4: 1).
 ``feed_on_surface`` is the seed's f0 = 0 variant (§2.4). Frame: seed-004 §1, feed at z = 0, the
 body toward +z, the beam leaves toward −z.
+
+``fabrication.method: printed``: ``material`` is the filament and ``design.refractive_index`` the
+body's index n; the body is printed as a uniform lattice whose εr_eff = n² (antenna_cad.printed)
+inside a solid skin.
 """
 
 from __future__ import annotations
 
 import math
-from typing import Literal
+from typing import Annotated, Literal, Union
 
 from pydantic import Field, model_validator
 
 from antenna_cad.spec.bounds import MIN_DEG, MIN_MM, MIN_RATIO
-from antenna_cad.spec.common import SheetLayupSpec, SpecBase, StrictModel, resolve_material
+from antenna_cad.spec.common import SheetLayupSpec, SolidSpec, SpecBase, StrictModel, resolve_material
+from antenna_cad.spec.printed import PrintedSpec
 
 MAX_LAYUP_EPS_R = 2.0       # "foam-like": sheet stock of low-density foams and printed infill
 
@@ -67,7 +72,9 @@ class OptimizeSpec(StrictModel):
 class MirrorLensDesign(StrictModel):
     diameter_mm: float = Field(ge=MIN_MM, le=20000, description="D, the exit aperture diameter")
     refractive_index: float | None = Field(None, gt=1, le=10,
-                                           description="optional check: must equal √εr of material")
+                                           description="the body's index n: optional check that it equals √εr of "
+                                           "material; with fabrication.method printed, required — the lattice "
+                                           "is filled so that its εr_eff = n²")
     feed_on_surface: bool = Field(False, description="f0 = 0: the feed on the front face (seed-004 §2.4)")
     f0: float | None = Field(None, ge=MIN_RATIO, le=10, description="feed to front vertex, units of D")
     f0_mm: float | None = Field(None, ge=MIN_MM, le=200000)
@@ -137,11 +144,22 @@ class MirrorLensDesign(StrictModel):
 class MirrorLensSpec(SpecBase):
     kind: Literal["mirror_lens"]
     design: MirrorLensDesign
+    fabrication: Annotated[Union[SheetLayupSpec, SolidSpec, PrintedSpec], Field(discriminator="method")]
 
     @model_validator(mode="after")
     def _consistent(self):
         m = resolve_material(self.material)
         n = self.design.refractive_index
+        if isinstance(self.fabrication, PrintedSpec):
+            self.fabrication.check_lens(self.material, self.frequency_ghz)
+            self.fabrication.check_flat_body("the mirror-lens body")
+            if n is None:
+                raise ValueError("design.refractive_index: required with fabrication.method printed (the body's "
+                                 "index; the lattice is filled so that its εr_eff = n²)")
+            if n * n >= m.eps_r:
+                raise ValueError(f"design.refractive_index: n² = {n * n:.4g} must be below the filament's εr "
+                                 f"{m.eps_r:g} ({m.name}) for a lattice to print it")
+            return self
         if n is not None and abs(n - math.sqrt(m.eps_r)) > 1e-4:
             raise ValueError(f"design.refractive_index: {n:g} ≠ √εr = {math.sqrt(m.eps_r):.5g} of material "
                              f"{m.name!r}; give the material with εr = n² = {n * n:.5g}")

@@ -96,11 +96,18 @@ class PrintedSpec(StrictModel):
             raise ValueError(f"fabrication.cell_mm: must be ≤ λ/(4·√εr) = {limit:.3g} mm at {frequency_ghz:g} GHz "
                              f"in εr {eps:g} (got {self.cell_mm:g})")
 
+    def check_flat_body(self, what: str) -> None:
+        """A body printed along its own axis (the lens between plates, the mirror-lens body): the
+        sphere's orientations and pins do not apply."""
+        if self.orientation != "axis_up":
+            raise ValueError(f"fabrication.orientation: {what} is printed axis_up (its axis along the printer's z; "
+                             f"got {self.orientation})")
+
     def check_height(self, height_mm: float) -> None:
         """A parallel-plate lens holds a whole number of cells between its plates (a cell cut by a plate
         has another fill than the table's)."""
         cells = height_mm / self.cell_mm
         if round(cells) < 1 or abs(cells - round(cells)) > 1e-3:
             whole = max(1, round(cells))
-            raise ValueError(f"fabrication.cell_mm: a cylinder's height must be a whole number of cells "
+            raise ValueError(f"fabrication.cell_mm: the height between the plates must be a whole number of cells "
                              f"({height_mm:g} mm / {self.cell_mm:g} mm = {cells:.3g}; e.g. {height_mm / whole:.4g} mm)")

@@ -1,0 +1,158 @@
+"""Printed lattice bodies of any section (the graded lens between plates, the mirror-lens body): the
+inner lattice joined to the trimmed boundary and skin, bed cuts on cell faces, the dithered widths
+whose mean follows the law, the kinds' spec and their refusals."""
+
+import math
+
+import numpy as np
+import pytest
+from shapely.geometry import Polygon
+
+from antenna_cad.printed.body import Envelope, body_cells, build_lattice_body, reference_volume_mm3
+from antenna_cad.printed.export3mf import three_mf_bytes
+from antenna_cad.printed.fill import dithered_fill, dithered_widths
+from antenna_cad.printed.homogenization import homogenized
+from antenna_cad.printed.lattice import fill_fraction
+from antenna_cad.printed.parts import closed_and_oriented, mesh_volume
+from antenna_cad.spec import SpecError, load_spec, parse_spec
+
+A, SKIN = 3.0, 1.2
+
+
+def _revolved():
+    return Envelope("revolved", Polygon([(0, 0), (30, 0), (24, 30), (0, 33)]))
+
+
+def _extruded():
+    return Envelope("extruded", Polygon([(-30, -30), (30, -27), (21, 30), (-30, 30)]), 6.0)
+
+
+def _width(centre, env):
+    return np.full(len(centre), 1.5) if env.kind == "revolved" else np.round(1.0 + 0.02 * np.abs(centre[:, 1]), 1)
+
+
+def _fill(env):
+    if env.kind == "revolved":
+        return lambda u, w: np.full(np.shape(u), fill_fraction("cubic", 0.5))
+    return lambda u, w: fill_fraction("cubic", np.round(1.0 + 0.02 * np.abs(w), 1) / A)
+
+
+def _build(env, bed=200.0):
+    idx, centre, inner = body_cells(env, A, SKIN, 0.02)
+    ref = reference_volume_mm3(env, _fill(env), SKIN, 0.1)
+    return build_lattice_body(env, idx, centre, inner, _width(centre, env), A, skin_mm=SKIN, bed_mm=(bed, bed, 300.0),
+                              tolerance_mm=0.02, segments=96, reference_volume_mm3=ref), inner
+
+
+@pytest.mark.parametrize("make", [_revolved, _extruded])
+def test_inner_lattice_and_trimmed_skin_weld_into_closed_parts_of_the_fill_volume(make):
+    lens, inner = _build(make())
+    assert inner.sum() > 0 and (~inner).sum() > 0                  # both paths used, so the seam is
+    assert all(closed_and_oriented(p.faces) for p in lens.parts)
+    assert abs(lens.body_volume_mm3 / lens.reference_volume_mm3 - 1) < 0.015
+    part = lens.parts[0]
+    assert not closed_and_oriented(part.faces[1:])
+
+
+def test_bed_cuts_lie_on_cell_faces_and_every_part_is_closed():
+    lens, _ = _build(_extruded(), bed=40.0)
+    assert lens.cuts == 2 and len(lens.parts) == 4
+    assert all(closed_and_oriented(p.faces) for p in lens.parts)
+    assert all(s <= 40.0 + 2 * A for p in lens.parts for s in p.size_mm[:2])
+    whole, _ = _build(_extruded())
+    assert sum(p.volume_mm3 for p in lens.parts) == pytest.approx(whole.body_volume_mm3, rel=1e-6)
+
+
+def test_inner_cells_lie_inside_the_skin_and_boundary_cells_reach_the_trim():
+    env = _revolved()
+    idx, centre, inner = body_cells(env, A, SKIN, 0.02)
+    hole = env.polygon(-SKIN, 0.02)
+    r = np.hypot(np.abs(centre[inner, 0]) + A / 2, np.abs(centre[inner, 1]) + A / 2)
+    corners = [(rr, z) for rr, zc in zip(r, centre[inner, 2]) for z in (zc - A / 2, zc + A / 2)]
+    assert all(hole.contains(Polygon([(0, z), (rr, z), (rr, z + 1e-3), (0, z + 1e-3)])) for rr, z in corners)
+
+
+def test_the_part_files_are_byte_identical_across_builds():
+    one, _ = _build(_revolved(), bed=40.0)
+    two, _ = _build(_revolved(), bed=40.0)
+    objs = lambda lens: [{"name": p.label, "vertices": p.vertices, "faces": p.faces} for p in lens.parts]
+    assert three_mf_bytes(objs(one), {"Title": "t"}) == three_mf_bytes(objs(two), {"Title": "t"})
+
+
+def test_dithered_widths_are_printable_steps_whose_mean_is_the_asked_width():
+    w, t = dithered_widths(np.full(40, 1.337), np.arange(40), 0.05, 0.8, 2.7)
+    assert set(np.round(w, 9)) == {1.3, 1.35} and t[0] == pytest.approx(0.74)
+    assert w.mean() == pytest.approx(1.337, abs=0.05 / 40)
+    f, e = dithered_fill(1.337, 0.05, 0.8, 2.7, 3.5, "cubic", 2.7)
+    h = homogenized("cubic", 2.7)
+    assert float(e) == pytest.approx(float(h.eps_at(fill_fraction("cubic", 1.337 / 3.5))), abs=2e-3)
+    low, _ = dithered_widths(np.array([0.1]), [0], 0.05, 0.8, 2.7)
+    assert low[0] == pytest.approx(0.8)                             # never below the thinnest wall
+
+
+def test_the_printed_mirror_lens_body_is_at_n_squared_and_the_graded_rows_follow_the_law():
+    from antenna_cad.kinds import graded, graded_printed, mirror_lens_printed
+    ml = load_spec("recipes/mirror-lens-346mm-printed.yaml")
+    body = mirror_lens_printed.lattice_body(ml)
+    assert body.eps_target == pytest.approx(1.69)
+    assert abs(body.eps_printed - body.eps_target) < 1e-3
+    spec = load_spec("recipes/graded-trifocal-160mm-printed.yaml")
+    design = graded.synthesize(spec)
+    edges, eps = graded_printed.printed_steps(spec, design)
+    centres = np.arange(len(eps)) * spec.fabrication.cell_mm
+    inside = centres <= design.half_aperture * design.unit_mm
+    assert np.abs(eps[inside] - graded_printed.law(design)(centres[inside])).max() < 1e-4
+    assert eps[0] == pytest.approx(spec.design.n0**2, abs=0.02)
+
+
+ML = {"name": "m", "kind": "mirror_lens", "frequency_ghz": 13, "material": "pla",
+      "design": {"diameter_mm": 346, "refractive_index": 1.3, "f0_mm": 174, "d0_mm": 172, "gamma": 0.9371},
+      "fabrication": {"method": "printed", "cell_mm": 3.5}}
+GR = load_spec("recipes/graded-trifocal-160mm-printed.yaml").model_dump(mode="json", exclude_none=True)
+
+
+@pytest.mark.parametrize("data, expected", [
+    ({**ML, "design": {k: v for k, v in ML["design"].items() if k != "refractive_index"}},
+     "design.refractive_index: required with fabrication.method printed"),
+    ({**ML, "design": ML["design"] | {"refractive_index": 1.7}}, "design.refractive_index: n² = 2.89 must be below"),
+    ({**ML, "fabrication": {"method": "printed", "cell_mm": 4.0}}, "fabrication.cell_mm: must be ≤ λ/(4·√εr)"),
+    ({**ML, "fabrication": {"method": "printed", "cell_mm": 3.5, "orientation": "axis_flat"}},
+     "fabrication.orientation: the mirror-lens body is printed axis_up"),
+    ({**GR, "fabrication": GR["fabrication"] | {"cell_mm": 0.9}},
+     "fabrication.cell_mm: the height between the plates must be a whole number of cells"),
+    ({**GR, "material": "polystyrene"}, "material: a printed lens needs a filament"),
+])
+def test_illegal_printed_bodies_are_refused_in_one_line(data, expected):
+    with pytest.raises(SpecError) as exc:
+        parse_spec(data, "s.yaml")
+    assert len(exc.value.lines) == 1 and expected in exc.value.lines[0], exc.value.lines
+
+
+def test_a_printed_recipe_reads_back_and_the_collimator_is_still_refused_by_name():
+    assert parse_spec(ML, "s.yaml").design.refractive_index == 1.3
+    data = {"name": "c", "kind": "collimator", "frequency_ghz": 12, "material": "pla",
+            "fabrication": {"method": "printed", "cell_mm": 3}}
+    with pytest.raises(SpecError) as exc:
+        parse_spec(data, "s.yaml")
+    assert any("kinds luneburg, graded and mirror_lens so far" in line for line in exc.value.lines)
+    assert math.isclose(parse_spec(GR, "s.yaml").fabrication.cell_mm * 4, 3.4)
+
+
+def test_the_mirror_lens_is_synthesized_at_n_and_traced_at_the_printed_index():
+    from antenna_cad.kinds import mirror_lens
+    from antenna_cad.kinds.mirror_lens_printed import lattice_body
+    from antenna_cad.stages import planning
+    spec = load_spec("recipes/mirror-lens-346mm-printed.yaml")
+    design = mirror_lens.synthesize(spec)
+    assert design.profiles.n == pytest.approx(1.3)
+    body = lattice_body(spec)
+    assert mirror_lens.body_material(spec, as_printed=True).eps_r == pytest.approx(body.eps_printed)
+    assert mirror_lens.body_material(spec).density_kg_m3 == pytest.approx(body.fill * 1240.0)
+    with planning(False):
+        plan = mirror_lens.fabricate(spec, design, None, ())
+    names = {c.name: c for c in plan.checks}
+    assert names["printed_eps_error"].status == "pass" and names["printed_fill_clipped"].status == "pass"
+    assert plan.lens is None                                        # CAD-free: limits and fill, no mesh
+    off = parse_spec(spec.model_dump(mode="json", exclude_none=True) | {"design": ML["design"] | {
+        "refractive_index": 1.55}}, "s.yaml")
+    assert lattice_body(off).eps_printed == pytest.approx(1.55**2, abs=1e-3)

@@ -29,6 +29,7 @@ GAP_MM = 10.0       # between build items laid out in a row
 
 
 CHUNK = 50_000      # rows formatted at a time (bounds the memory of the Python floats)
+DEFLATE_LEVEL = 1   # 3× faster than zlib's default on the mesh text, 20 % larger (a 12 M-triangle body: 20 s → 7 s)
 
 
 def _rows(fmt: str, array: np.ndarray):
@@ -70,11 +71,12 @@ def model_xml(objects: list[dict], metadata: dict[str, str]):
 
 def three_mf_bytes(objects: list[dict], metadata: dict[str, str]) -> bytes:
     buf = io.BytesIO()
-    with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED, compresslevel=6) as z:
+    with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as z:
         for name, pieces in (("[Content_Types].xml", [_CONTENT_TYPES]), ("_rels/.rels", [_RELS]),
                              ("3D/3dmodel.model", model_xml(objects, metadata))):
-            info = zipfile.ZipInfo(name, _DATE)
+            info = zipfile.ZipInfo(name, _DATE)            # a fixed date: the bytes are reproducible
             info.compress_type = zipfile.ZIP_DEFLATED
+            info._compresslevel = DEFLATE_LEVEL            # as ZipFile.open sets it for a member named by a string
             with z.open(info, "w") as member:
                 for text in pieces:
                     member.write(text.encode("utf-8"))

@@ -37,7 +37,7 @@ from antenna_cad.raytrace.trace2d import Interface, Slabs, Trace2D, aim_at_face,
 from antenna_cad.quietzone.tolerance import added_figures, efficiency_loss_db, eps_r_added_deg, residual_deg, \
     thickness_added_deg
 from antenna_cad.quietzone.verdict import FAST_ERROR_DEG, UNCERTAIN, judged, undecided
-from antenna_cad.quietzone.volume import Zone, radii_mm, stack_ratio, zone_from
+from antenna_cad.quietzone.volume import Zone, radii_mm, stack_ratios, zone_from
 from antenna_cad.spec.common import TestZoneSpec, TolerancesSpec, VerificationSpec
 from antenna_cad.synthesis.checks import Check, DesignError
 from antenna_cad.synthesis.collimator import edge_margin_mm, step_phase_error_deg
@@ -181,15 +181,13 @@ class ZoneStats:
 
 def stack_zone(lens: Lens, layup: LayupPlan, fab=None) -> dict[str, ZoneStats]:
     """:class:`ZoneStats` of each stepped section (stepped; fabricated with ``fab``) by the fast model
-    (:func:`antenna_cad.quietzone.volume.stack_ratio`) over :func:`lens_zone`."""
+    (:func:`antenna_cad.quietzone.volume.stack_ratios`) over :func:`lens_zone`."""
     rl = revolved(lens, layup, fab)
     z_ref = rl.plane_z_mm(0.0)
     zone = lens_zone(lens, z_ref)
     rho = radii_mm(max(lens.radius_mm, zone.diameter_mm / 2), lens.wavelength_mm)
     out = {}
-    for name in rl.sections:
-        ratio = stack_ratio(lambda r, name=name: rl.excess_mm(name, r), lens.n, lens.radius_mm, lens.wavelength_mm,
-                            z_ref - rl.screen_z_mm(), zone.planes_mm, rho)
+    for name, ratio in stack_ratios(rl, z_ref, zone.planes_mm, rho).items():
         j = judged(zone, [(rho, e) for e in ratio])
         p2p, plane = j.worst("phase_p2p_deg")
         out[name] = ZoneStats(p2p, j.worst("phase_rms_deg")[0], plane)

@@ -1,8 +1,7 @@
-"""The quiet zone of the lenses of revolution (collimator, bifocal): their GO rays and GO aperture
-field handed to :mod:`antenna_cad.quietzone` for the nominal feed on the axis — GO through each
-variant (ideal, stepped as cut, as fabricated), and the fast model: the ideal lens's GO field by the
-angular spectrum, a layup's stepped sections by the fast sub-wavelength model on top (a taper-cut
-stack's cones have no sections: GO only there); and, when the full-wave stage ran, its runs' fields
+"""The quiet zone of the lenses of revolution (collimator, bifocal): their GO rays handed to :mod:`antenna_cad.quietzone` for the nominal feed on the axis — GO through each
+variant (ideal, stepped as cut, as fabricated), and the fast model: the ideal lens and a layup's
+stepped sections each carried from the feed through its foam by the multi-slice angular spectrum
+(a taper-cut stack's cones have no sections: GO only there); and, when the full-wave stage ran, its runs' fields
 over the zone's volume (:class:`antenna_cad.fullwave.volume.VolumeField`), which then come first."""
 
 from __future__ import annotations
@@ -18,7 +17,7 @@ from antenna_cad.raytrace.trace2d import Slabs, transmitted_amplitude
 from antenna_cad.verification import Verification
 
 GO = "GO (rays carried straight on; no diffraction)"
-FAST = "fast model (angular spectrum of the GO aperture field; thin screen of the steps diffracted)"
+FAST = "fast model (multi-slice angular spectrum from the feed through the foam; spill-over and edges diffracted)"
 
 
 def _rays(lens: Lens, medium, feed) -> tuple[Rays, float]:
@@ -34,10 +33,9 @@ def _rays(lens: Lens, medium, feed) -> tuple[Rays, float]:
 
 
 def lens_quiet_zone(lens: Lens, variants, feed: tuple[str, float, float], z_ref: float, criteria,
-                    ideal_exit, full_wave: FullWave | None = None) -> Verification:
-    """Quiet-zone figures of every variant at the nominal on-axis ``feed`` (name, z, y); ``ideal_exit``:
-    the ideal lens's GO field on the plane ``z_ref`` (the back of the stack), (y ≥ 0 uniform, E);
-    ``full_wave``: the full-wave stage, whose fields over the zone's volume come first when they cover
+                    full_wave: FullWave | None = None) -> Verification:
+    """Quiet-zone figures of every variant at the nominal on-axis ``feed`` (name, z, y) behind the plane
+    ``z_ref`` (the back of the stack); ``full_wave``: the full-wave stage, whose fields over the zone's volume come first when they cover
     the zone (the fast model then follows as ``quiet_zone_fast_*``)."""
     lam, R = lens.wavelength_mm, lens.radius_mm
     aut = criteria.aut
@@ -50,8 +48,7 @@ def lens_quiet_zone(lens: Lens, variants, feed: tuple[str, float, float], z_ref:
     rho = radii_mm(max(R, zone.diameter_mm / 2), lam)
     sections = {n: m for n, m in variants if isinstance(m, Slabs)}
     rl = RevolvedLens(lens.front_z, lens.back_z, R, lens.eps_r, C_MM_GHZ / lam, feed[1], sections)
-    screens = {n: (lambda r, n=n: rl.excess_mm(n, r), lens.n, R, z_ref - rl.screen_z_mm()) for n in sections}
-    fast = fast_fields(*ideal_exit, lam, zone.planes_mm, rho, screens)
+    fast = fast_fields(rl, z_ref, zone.planes_mm, rho, ["ideal", *sections])
     kept = [n for n, _ in variants if n not in fast]
     name = FAST + (f"; GO for {', '.join(kept)} (taper-cut cones: no stepped section)" if kept else "")
     fast_planes = {n: [(rho, e) for e in fast[n]] if n in fast else go[n] for n, _ in variants}

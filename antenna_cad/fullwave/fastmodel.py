@@ -1,4 +1,5 @@
-"""Fast sub-wavelength-aware model of a stair-stepped lens's phase error.
+"""Fast sub-wavelength-aware models of a stair-stepped lens: its phase error on one plane, and its
+field over the quiet zone (:func:`multislice_field`).
 
 A stack of flat sheets differs from the ideal lens by Δd(r), the foam it has in excess along the axis at
 radius r (zero where the lens is sanded to its profile). The thin phase screen k0(n−1)Δd (seed-000 §7.3)
@@ -120,7 +121,8 @@ def multislice_field(foam_mm: Callable[[float, float, np.ndarray], np.ndarray], 
 
     start = z_front_mm - 0.25 * wavelength_mm
     field = feed_fields(r, np.asarray(start - feed_z_mm), k, pattern, q)[0] * spill_window(r, radius_mm, wavelength_mm)
-    edges = np.linspace(start, z_back_mm, max(1, int(np.ceil((z_back_mm - start) / (SLICE_WAVELENGTHS * wavelength_mm)))) + 1)
+    slices = max(1, int(np.ceil((z_back_mm - start) / (SLICE_WAVELENGTHS * wavelength_mm))))
+    edges = np.linspace(start, z_back_mm, slices + 1)
     for z0, z1 in zip(edges[:-1], edges[1:]):
         half = (z1 - z0) / 2
         field = h.propagate(np.exp(1j * k * (n - 1) * length(z0, z1)) * h.propagate(field, half), half)

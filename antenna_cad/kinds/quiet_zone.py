@@ -1,8 +1,8 @@
-"""The quiet zone of the lenses of revolution (collimator, bifocal): their GO rays handed to :mod:`antenna_cad.quietzone` for the nominal feed on the axis — GO through each
-variant (ideal, stepped as cut, as fabricated), and the fast model: the ideal lens and a layup's
-stepped sections each carried from the feed through its foam by the multi-slice angular spectrum
-(a taper-cut stack's cones have no sections: GO only there); and, when the full-wave stage ran, its runs' fields
-over the zone's volume (:class:`antenna_cad.fullwave.volume.VolumeField`), which then come first."""
+"""The quiet zone of the lenses of revolution (collimator, bifocal) for the nominal feed on the axis,
+handed to :mod:`antenna_cad.quietzone`: GO through each variant (ideal, stepped as cut, as
+fabricated), and the fast model: the ideal lens and a layup's stepped sections each carried from the
+feed through its foam by the multi-slice angular spectrum (a taper-cut stack's cones have no sections:
+GO only there); and, when the full-wave stage ran, its runs' fields over the zone's volume (:class:`antenna_cad.fullwave.volume.VolumeField`), which then come first."""
 
 from __future__ import annotations
 
@@ -35,8 +35,8 @@ def _rays(lens: Lens, medium, feed) -> tuple[Rays, float]:
 def lens_quiet_zone(lens: Lens, variants, feed: tuple[str, float, float], z_ref: float, criteria,
                     full_wave: FullWave | None = None) -> Verification:
     """Quiet-zone figures of every variant at the nominal on-axis ``feed`` (name, z, y) behind the plane
-    ``z_ref`` (the back of the stack); ``full_wave``: the full-wave stage, whose fields over the zone's volume come first when they cover
-    the zone (the fast model then follows as ``quiet_zone_fast_*``)."""
+    ``z_ref`` (the back of the stack); ``full_wave``: the full-wave stage, whose fields over the zone's
+    volume come first when they cover the zone (the fast model then follows as ``quiet_zone_fast_*``)."""
     lam, R = lens.wavelength_mm, lens.radius_mm
     aut = criteria.aut
     aut_d = None if aut is None else (aut.height_mm if aut.circular else float(np.hypot(aut.width_mm, aut.height_mm)))

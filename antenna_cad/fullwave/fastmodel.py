@@ -65,7 +65,8 @@ SLICE_WAVELENGTHS = 0.125       # slice thickness (λ/16 changes the table's fig
 RADIAL_PER_WAVELENGTH = 16      # samples of the quasi-discrete Hankel transform per λ
 SUBSAMPLES = 4                  # foam lengths averaged over each sample's cell (ring edges between samples)
 SPILL_WAVELENGTHS = (1.0, 5.0)  # the feed's own field beside the rim: whole to R + 1 λ, cos² to 0 at R + 5 λ
-DOMAIN_WAVELENGTHS = 8.0        # the transform's radius beyond the rim (its wall reflects; nothing reaches it)
+DOMAIN_WAVELENGTHS = 8.0        # the transform's radius beyond the rim (its wall reflects: absorbed before it)
+ABSORB_NEPERS = 1.0             # per λ of slices at the wall, growing as the square from the spill-over's end
 
 
 class _QuasiDiscreteHankel:
@@ -123,8 +124,11 @@ def multislice_field(foam_mm: Callable[[float, float, np.ndarray], np.ndarray], 
     field = feed_fields(r, np.asarray(start - feed_z_mm), k, pattern, q)[0] * spill_window(r, radius_mm, wavelength_mm)
     slices = max(1, int(np.ceil((z_back_mm - start) / (SLICE_WAVELENGTHS * wavelength_mm))))
     edges = np.linspace(start, z_back_mm, slices + 1)
+    outer = radius_mm + SPILL_WAVELENGTHS[1] * wavelength_mm
+    absorb = np.exp(-ABSORB_NEPERS * (edges[1] - edges[0]) / wavelength_mm
+                    * (np.clip(r - outer, 0.0, None) / (r[-1] - outer)) ** 2)
     for z0, z1 in zip(edges[:-1], edges[1:]):
         half = (z1 - z0) / 2
-        field = h.propagate(np.exp(1j * k * (n - 1) * length(z0, z1)) * h.propagate(field, half), half)
+        field = absorb * h.propagate(np.exp(1j * k * (n - 1) * length(z0, z1)) * h.propagate(field, half), half)
     field = field * np.where(length(start, z_back_mm) > 0, 4 * n / (1 + n) ** 2, 1.0)
     return r, h.propagate(field, z_end_mm - z_back_mm)

@@ -97,6 +97,12 @@ class Rays:
         return y[o], self.amplitude[o] * np.exp(1j * 2 * np.pi / wavelength_mm * path[o])
 
 
+def propagated(r_mm: np.ndarray, field: np.ndarray, wavelength_mm: float, distances_mm: np.ndarray,
+               rho_mm: np.ndarray) -> np.ndarray:
+    """[plane, ρ] the body-of-revolution field E(r) after each distance (angular spectrum)."""
+    return propagate_bor_planes(r_mm, field, wavelength_mm, distances_mm, rho_mm)
+
+
 def fast_fields(lens, z_ref_mm: float, distances_mm: np.ndarray, rho_mm: np.ndarray,
                 variants: list[str]) -> dict[str, np.ndarray]:
     """[plane, ρ] the fast model's field of each variant (``ideal`` or a stepped section) of ``lens``
@@ -108,8 +114,8 @@ def fast_fields(lens, z_ref_mm: float, distances_mm: np.ndarray, rho_mm: np.ndar
     for name in variants:
         r, e = lens.fast_field(name, z_ref_mm)
         grid = radii_mm(float(r[-1]), lam)
-        out[name] = propagate_bor_planes(grid, np.interp(grid, r, e.real) + 1j * np.interp(grid, r, e.imag), lam,
-                                         distances_mm, rho_mm)
+        out[name] = propagated(grid, np.interp(grid, r, e.real) + 1j * np.interp(grid, r, e.imag), lam,
+                               distances_mm, rho_mm)
     return out
 
 

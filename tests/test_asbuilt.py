@@ -177,9 +177,10 @@ def test_auto_picks_the_thickest_stock_within_budget(monkeypatch):
     """The choice follows the stack's own phase over the quiet zone (the AUT's Ø500 mm from 100 to
     600 mm behind the stack, 22 planes, fast model), not one plane and not GO: with a 12° budget the
     one-plane model passes 60 mm (≈ 11° p-p on the plane 2 λ behind) but over the volume 60 mm reads
-    ≈ 14.5° (its worst plane ≈ 170 mm behind), so 30 mm (≈ 6.6°) is chosen — by a fast model taken as
-    exact. With 2° none passes: the thinnest, and sand. With the fast model's measured error (larger
-    than the budget) no candidate is decided: each says so and the thinnest is laid up."""
+    ≈ 23.6° (its worst plane ≈ 124 mm behind), so 30 mm (≈ 4.6°) is chosen — by a fast model taken as
+    exact. With 2° none passes: the thinnest, and sand. With the fast model's measured error (17°, over
+    a quarter of the budget) the candidates within it of the budget are undecided and say so, 80 mm
+    (≈ 46°) still fails, and the thinnest is laid up."""
     from antenna_cad.quietzone.verdict import FAST_ERROR_DEG, UNCERTAIN
     measured = dict(FAST_ERROR_DEG)
     monkeypatch.setitem(FAST_ERROR_DEG, "own_phase_p2p_deg", 0.0)
@@ -201,7 +202,7 @@ def test_auto_picks_the_thickest_stock_within_budget(monkeypatch):
     data["design"]["phase_error_budget_deg"] = 12.0
     design, layup, v = _verify(_spec(data, sheet_thickness_mm="auto", stock_thicknesses_mm=[80, 30, 60]))
     table = next(t for t in v.tables if t.name == "stock-candidates")
-    assert [row[-1] for row in table.rows] == [UNCERTAIN] * 3 and layup.sheet_thickness_mm == 30.0
+    assert [row[-1] for row in table.rows] == [UNCERTAIN, UNCERTAIN, "no"] and layup.sheet_thickness_mm == 30.0
 
 
 def test_auto_build_writes_verification_into_the_manifest(tmp_path):
@@ -214,7 +215,7 @@ def test_auto_build_writes_verification_into_the_manifest(tmp_path):
     v = manifest["verification"]
     assert {t["name"] for t in v["tables"]} == {"aperture", "layers", "stock-candidates", "sensitivity", "patterns",
                                                 "test-zone", "aut-distortion", "feed-limits", "quiet-zone",
-                                                "quiet-zone-planes"}
+                                                "quiet-zone-planes", "quiet-zone-edge", "quiet-zone-planes-edge"}
     rows = next(t for t in v["tables"] if t["name"] == "stock-candidates")["rows"]
     meeting = [r[0] for r in rows if r[-1] == "yes"]          # none decided: the thinnest
     assert chosen == (max(meeting) if meeting else min(r[0] for r in rows if r[1] is not None))

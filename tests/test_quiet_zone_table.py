@@ -25,20 +25,27 @@ def test_the_table_covers_wide_zones():
     assert {r["zone"] for r in ROWS} == {"default", "wide"}
 
 
+# The fast model's worst error on the other verdict figures (the phase p-p ones: FAST_ERROR_DEG)
+STORED_WORST = {"stepped_phase_rms_deg": 1.57, "own_phase_rms_deg": 1.17, "stepped_amplitude_ripple_db": 4.26,
+                "stepped_amplitude_taper_db": 0.56}
+PHASE_P2P = {"phase_p2p_deg": "stepped_phase_p2p_deg", "own_phase_p2p_deg": "own_phase_p2p_deg"}
+
+
 def test_fast_model_against_the_table_on_the_verdict_figures():
-    """The fast model recomputed now equals the table's fast columns (0.01°: the measured model is the
-    shipped one), and its worst error against Meep on each phase verdict figure is the one the verdicts
-    use (FAST_ERROR_DEG, within 0.5°)."""
-    worst = dict.fromkeys(FAST_ERROR_DEG, 0.0)
+    """The fast model recomputed now equals the table's fast columns (0.01: the measured model is the
+    shipped one), and its worst error against Meep on each verdict figure is the stored one: the phase
+    p-p ones the verdicts use (FAST_ERROR_DEG), the others STORED_WORST (within 0.05 either way, so a
+    model that gets worse, or better without the bounds following, fails)."""
+    figures = {**{v: v for v in STORED_WORST}, **PHASE_P2P}
+    worst = dict.fromkeys(figures, 0.0)
     for row in ROWS:
         lens, _, rl, z_ref, zone = zone_case(tuple(float(row[k]) for k in CASE), row["zone"] == "wide")
         fast = zone_figures(zone, fast_zone_planes(lens, rl, z_ref, zone))
-        for figure in ("stepped_phase_p2p_deg", "own_phase_p2p_deg", "stepped_phase_rms_deg"):
+        for key, figure in figures.items():
             assert fast[figure] == pytest.approx(float(row[f"fast_{figure}"]), abs=0.01), (row, figure)
-        for key, figure in (("phase_p2p_deg", "stepped_phase_p2p_deg"), ("own_phase_p2p_deg", "own_phase_p2p_deg")):
             worst[key] = max(worst[key], abs(fast[figure] - float(row[f"meep_{figure}"])))
-    for key, value in worst.items():
-        assert FAST_ERROR_DEG[key] == pytest.approx(value, abs=0.5), key
+    for key, bound in (FAST_ERROR_DEG | STORED_WORST).items():
+        assert worst[key] == pytest.approx(bound, abs=0.05), key
 
 
 def test_a_verdict_within_the_models_error_of_the_limit_is_undecided():

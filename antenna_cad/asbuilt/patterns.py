@@ -237,9 +237,7 @@ def lens_patterns(lens: Lens, variants: list[tuple[str, Medium]], feeds, criteri
     for feed in feeds:                      # the zone for every feed: on the axis over the disc, else on the cut
         ef, on_axis = fields[(variants[0][0], feed[0])]
         if on_axis:
-            half = ef.y_mm >= 0
-            v = v.merged(lens_quiet_zone(lens, variants, feed, z_ref, criteria, (ef.y_mm[half], ef.field[half]),
-                                         full_wave))
+            v = v.merged(lens_quiet_zone(lens, variants, feed, z_ref, criteria, full_wave))
         else:
             v = v.merged(lens_quiet_zone_off_axis(lens, variants, feed, z_ref, criteria, (ef.y_mm, ef.field),
                                                   feed is feeds[0]))

@@ -14,7 +14,7 @@ from antenna_cad.asbuilt.revolved import modelled_stats, revolved
 from antenna_cad.fabrication.layup import LayupPlan
 from antenna_cad.fullwave.verify import FullWave, fast_model
 from antenna_cad.quietzone.verdict import FAST_ERROR_DEG, UNCERTAIN, judged, undecided
-from antenna_cad.quietzone.volume import radii_mm, stack_ratio
+from antenna_cad.quietzone.volume import radii_mm, stack_ratios
 from antenna_cad.spec.common import VerificationSpec
 from antenna_cad.synthesis.checks import DesignError
 from antenna_cad.synthesis.collimator import step_phase_error_deg
@@ -32,15 +32,13 @@ class ZoneStats:
 
 def stack_zone(lens: Lens, layup: LayupPlan, fab=None) -> dict[str, ZoneStats]:
     """:class:`ZoneStats` of each stepped section (stepped; fabricated with ``fab``) by the fast model
-    (:func:`antenna_cad.quietzone.volume.stack_ratio`) over :func:`lens_zone`."""
+    (:func:`antenna_cad.quietzone.volume.stack_ratios`) over :func:`lens_zone`."""
     rl = revolved(lens, layup, fab)
     z_ref = rl.plane_z_mm(0.0)
     zone = lens_zone(lens, z_ref)
     rho = radii_mm(max(lens.radius_mm, zone.diameter_mm / 2), lens.wavelength_mm)
     out = {}
-    for name in rl.sections:
-        ratio = stack_ratio(lambda r, name=name: rl.excess_mm(name, r), lens.n, lens.radius_mm, lens.wavelength_mm,
-                            z_ref - rl.screen_z_mm(), zone.planes_mm, rho)
+    for name, ratio in stack_ratios(rl, z_ref, zone.planes_mm, rho).items():
         j = judged(zone, [(rho, e) for e in ratio])
         p2p, plane = j.worst("phase_p2p_deg")
         out[name] = ZoneStats(p2p, j.worst("phase_rms_deg")[0], plane)

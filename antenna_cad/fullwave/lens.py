@@ -9,7 +9,7 @@ from typing import Callable
 import numpy as np
 
 from antenna_cad.fullwave.deck import ideal_parts, make_deck, slab_parts
-from antenna_cad.fullwave.fastmodel import fast_phase
+from antenna_cad.fullwave.fastmodel import fast_phase, multislice_field
 from antenna_cad.raytrace.trace2d import Slabs
 
 C_MM_GHZ = 299.792458
@@ -57,6 +57,33 @@ class RevolvedLens:
         foam = (np.diff(s.z_edges)[:, None] * s.material[:, cell]).sum(axis=0)
         ideal = np.where(r <= self.radius_mm, self.back_z(r) - self.front_z(r), 0.0)
         return foam - ideal
+
+    def foam_mm(self, variant: str, z0: float, z1: float, r: np.ndarray) -> np.ndarray:
+        """Foam along z between the planes z0 < z1 at radius r (mm): the ideal lens's between its faces
+        (r ≤ radius), a stepped section's in the sheets whose cell at r is dielectric."""
+        r = np.asarray(r, float)
+        if variant == "ideal":
+            rc = np.minimum(r, self.radius_mm)
+            length = np.minimum(z1, self.back_z(rc)) - np.maximum(z0, self.front_z(rc))
+            return np.where(r <= self.radius_mm, np.clip(length, 0.0, None), 0.0)
+        s = self.sections[variant]
+        overlap = np.clip(np.minimum(z1, s.z_edges[1:]) - np.maximum(z0, s.z_edges[:-1]), 0.0, None)
+        return overlap @ s.material[:, np.searchsorted(s.y_breaks, r)]
+
+    def z_span_mm(self, variant: str) -> tuple[float, float]:
+        """The foremost and hindmost z of ``variant``'s foam."""
+        if variant != "ideal":
+            return float(self.sections[variant].z_edges[0]), float(self.sections[variant].z_edges[-1])
+        r = np.linspace(0.0, self.radius_mm, 401)
+        return float(np.min(self.front_z(r))), float(np.max(self.back_z(r)))
+
+    def fast_field(self, variant: str, z_end_mm: float, pattern: str = "dipole", q: float = 1.0):
+        """(r, E) of ``variant`` on the plane ``z_end_mm`` behind it by the multi-slice fast model
+        (:func:`antenna_cad.fullwave.fastmodel.multislice_field`), the feed's ``pattern`` as the
+        full-wave stage's."""
+        z0, z1 = self.z_span_mm(variant)
+        return multislice_field(lambda a, b, r: self.foam_mm(variant, a, b, r), z0, z1, z_end_mm, self.feed_z_mm,
+                                self.radius_mm, self.n, self.wavelength_mm, pattern, q)
 
     def plane_z_mm(self, plane_offset_lambda: float) -> float:
         z = max(float(np.max(s.z_edges)) for s in self.sections.values()) if self.sections else \

@@ -30,7 +30,6 @@ from typing import Callable
 
 import numpy as np
 
-from antenna_cad.fullwave.fastmodel import thin_screen_deg
 from antenna_cad.quietzone.stats import PlaneFigures, levels_db
 from antenna_cad.radiation.aperture import trapezoid_weights
 from antenna_cad.radiation.testzone import propagate_line
@@ -139,7 +138,7 @@ def cut_stack_ratio(excess: Callable, n: float, radius_mm: float, wavelength_mm:
     y = cut_y_mm(radius_mm, wavelength_mm / 2)
     k = 2 * math.pi / wavelength_mm
     kz = k * math.sqrt(1.0 - beam_sin**2)
-    departure = np.exp(1j * np.radians(thin_screen_deg(excess(np.abs(y)), n, wavelength_mm))) - 1.0
+    departure = np.exp(1j * k * (n - 1.0) * excess(np.abs(y))) - 1.0          # k0(n−1)Δd, seed-000 §7.3
     tilt_in, tilt_out = np.exp(1j * k * beam_sin * y), np.exp(1j * k * beam_sin * np.asarray(y_out_mm, float))
     out = []
     for d in lead_mm + np.asarray(distances_mm, float):

@@ -25,8 +25,9 @@ from antenna_cad.verification import Plot, Series, Table, Verification, finite_f
 
 # The fast model's worst error against full-wave on the phase verdict figures, over the wide-zone
 # lenses of tests/data/quiet_zone_table.csv (rings 2.3–4.6 λ wide, εr 1.047–1.3; two zones each): the
-# as-built lens's phase p-p over the zone, and the stack's own (stepped over ideal) p-p.
-FAST_ERROR_DEG = {"phase_p2p_deg": 51.6, "own_phase_p2p_deg": 79.6}
+# as-built lens's phase p-p over the zone, and the stack's own (stepped over ideal) p-p. Both sit on the
+# axis near a null of the ring edges' caustic, where the phase is most sensitive.
+FAST_ERROR_DEG = {"phase_p2p_deg": 11.0, "own_phase_p2p_deg": 17.0}
 UNCERTAIN = "uncertain — run full-wave"
 
 

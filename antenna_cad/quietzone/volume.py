@@ -12,22 +12,20 @@ pattern repeats every λ / (1 − z/√(z² + a²)) — shortest near the lens a
 Fields on a plane z behind the stack:
 * GO: each ray straight on from its exit point (amplitude unchanged, as the seed's model, §4.4;
   no diffraction, so no caustic and no rim wave);
-* the fast model: the GO field of the ideal lens on the plane at the back of the stack propagated by
-  the exact angular spectrum of a body of revolution (:func:`antenna_cad.radiation.testzone.propagate_bor`:
-  rim diffraction and the axial caustic included), times, for a stepped stack, the fast
-  sub-wavelength model's factor of its excess foam (:func:`stack_ratio`: a thin screen at the stack's
-  mean front face, its departure from unity diffracted to the plane by the same angular spectrum).
+* the fast model: each variant (the ideal lens, a stepped section) carried from its feed through its
+  own foam slice by slice (:func:`antenna_cad.fullwave.fastmodel.multislice_field`: the feed's
+  spill-over beside the rim, the rim's and every ring edge's diffraction where they are) to the plane
+  at the back of the stack, then on by the exact angular spectrum of a body of revolution
+  (:func:`antenna_cad.radiation.testzone.propagate_bor_planes`) to each plane (:func:`fast_fields`).
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 
-from antenna_cad.fullwave.fastmodel import thin_screen_deg
 from antenna_cad.radiation.testzone import propagate_bor_planes
 
 MIN_PLANES = 5
@@ -105,25 +103,24 @@ def propagated(r_mm: np.ndarray, field: np.ndarray, wavelength_mm: float, distan
     return propagate_bor_planes(r_mm, field, wavelength_mm, distances_mm, rho_mm)
 
 
-def fast_fields(r_mm: np.ndarray, ideal_field: np.ndarray, wavelength_mm: float, distances_mm: np.ndarray,
-                rho_mm: np.ndarray, screens: dict[str, tuple[Callable, float, float, float]]) -> dict[str, np.ndarray]:
-    """[plane, ρ] the fast model's field of the ideal lens and of each stepped variant; ``screens``:
-    variant → (excess foam Δd(r), n, lens radius, screen-to-back-of-stack distance)."""
-    ideal = propagated(r_mm, ideal_field, wavelength_mm, distances_mm, rho_mm)
-    out = {"ideal": ideal}
-    for name, (excess, n, radius, lead) in screens.items():
-        out[name] = ideal * stack_ratio(excess, n, radius, wavelength_mm, lead, distances_mm, rho_mm)
+def fast_fields(lens, z_ref_mm: float, distances_mm: np.ndarray, rho_mm: np.ndarray,
+                variants: list[str]) -> dict[str, np.ndarray]:
+    """[plane, ρ] the fast model's field of each variant (``ideal`` or a stepped section) of ``lens``
+    (:class:`antenna_cad.fullwave.lens.RevolvedLens`) on the planes ``distances_mm`` behind ``z_ref_mm``
+    (the back of the stack): the multi-slice field on that plane (``lens.fast_field``) propagated on by
+    the exact angular spectrum of a body of revolution."""
+    lam = lens.wavelength_mm
+    out = {}
+    for name in variants:
+        r, e = lens.fast_field(name, z_ref_mm)
+        grid = radii_mm(float(r[-1]), lam)
+        out[name] = propagated(grid, np.interp(grid, r, e.real) + 1j * np.interp(grid, r, e.imag), lam,
+                               distances_mm, rho_mm)
     return out
 
 
-def stack_ratio(excess: Callable, n: float, radius_mm: float, wavelength_mm: float, lead_mm: float,
-                distances_mm: np.ndarray, rho_mm: np.ndarray) -> np.ndarray:
-    """[plane, ρ] the fast model's field of a stepped stack over the ideal lens's: its excess foam Δd(r)
-    as the thin screen exp(i·k0(n−1)Δd) of seed-000 §7.3 ``lead_mm`` before the back of the stack, on an
-    unbounded plane wave: 1 + what the screen's departure from unity diffracts to each distance behind
-    it (the rim's own diffraction is the ideal lens's, not the stack's)."""
-    r = radii_mm(radius_mm, wavelength_mm / 2)
-    departure = np.exp(1j * np.radians(thin_screen_deg(excess(r), n, wavelength_mm))) - 1.0
-    d = lead_mm + np.asarray(distances_mm, float)
-    carrier = np.exp(-2j * math.pi / wavelength_mm * d)[:, None]          # the plane wave's own phase
-    return 1.0 + carrier * propagate_bor_planes(r, departure, wavelength_mm, d, rho_mm)
+def stack_ratios(lens, z_ref_mm: float, distances_mm: np.ndarray, rho_mm: np.ndarray) -> dict[str, np.ndarray]:
+    """[plane, ρ] each stepped section's fast-model field over the ideal lens's: the stack's own factor
+    (what sanding removes; the rim's own diffraction divides out)."""
+    fields = fast_fields(lens, z_ref_mm, distances_mm, rho_mm, ["ideal", *lens.sections])
+    return {name: fields[name] / fields["ideal"] for name in lens.sections}

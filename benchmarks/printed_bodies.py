@@ -10,13 +10,14 @@ from __future__ import annotations
 
 import argparse
 import os
-import subprocess
 import sys
-import tempfile
 import time
 from pathlib import Path
 
 from antenna_cad.spec import load_spec, parse_spec
+
+sys.path.insert(0, str(Path(__file__).parent))
+from printed_lattice import build_row  # noqa: E402  (the same fresh-interpreter build, another recipe)
 
 ROOT = Path(__file__).resolve().parents[1]
 RECIPES = {"mirror_lens": ROOT / "recipes" / "mirror-lens-346mm-printed.yaml",
@@ -38,19 +39,6 @@ def fabrication_row(kind: str, scale: float = 1.0) -> dict:
     return {"kind": kind, "cell_mm": spec.fabrication.cell_mm, "cells": fab.lens.cells,
             "triangles": int(fab.figures["printed_triangles"]), "cpu_s": time.process_time() - cpu,
             "wall_s": time.perf_counter() - wall, "mb_out": sum(len(v) for v in fab.files.values()) / 1e6}
-
-
-def build_row(recipe: Path) -> dict:
-    """The recipe's build in a fresh interpreter: wall time, CPU time, peak RSS (of the build)."""
-    env = dict(os.environ, ANTENNA_CAD_MEEP_PYTHON="/usr/bin/false", PYTHONPATH=str(ROOT))
-    code = ("import resource,sys,time;from antenna_cad.api import build;t=time.perf_counter();"
-            f"build({str(recipe)!r}, sys.argv[1]);w=time.perf_counter()-t;"
-            "r=resource.getrusage(resource.RUSAGE_SELF);"
-            "print(w, r.ru_utime+r.ru_stime, r.ru_maxrss/1024)")
-    with tempfile.TemporaryDirectory() as out:
-        run = subprocess.run([sys.executable, "-c", code, out], capture_output=True, text=True, env=env, check=True)
-    wall, cpu, peak = map(float, run.stdout.split()[-3:])
-    return {"wall_s": wall, "cpu_s": cpu, "peak_mb": peak}
 
 
 def main() -> int:

@@ -46,11 +46,11 @@ def fabrication_row(diameter_mm: float, recipe: Path = RECIPE) -> dict:
             "points": gyroid_grid_points("sphere", diameter_mm / 2, diameter_mm / 2, edge)}
 
 
-def build_row() -> dict:
+def build_row(recipe: Path = RECIPE) -> dict:
     """The recipe's build in a fresh interpreter: wall time, CPU time, peak RSS (of the build)."""
     env = dict(os.environ, ANTENNA_CAD_MEEP_PYTHON="/usr/bin/false", PYTHONPATH=str(ROOT))
     code = ("import resource,sys,time;from antenna_cad.api import build;t=time.perf_counter();"
-            f"build({str(RECIPE)!r}, sys.argv[1]);w=time.perf_counter()-t;"
+            f"build({str(recipe)!r}, sys.argv[1]);w=time.perf_counter()-t;"
             "r=resource.getrusage(resource.RUSAGE_SELF);"
             "print(w, r.ru_utime+r.ru_stime, r.ru_maxrss/1024)")
     with tempfile.TemporaryDirectory() as out:

@@ -19,11 +19,11 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
-from manifold3d import CrossSection, Manifold, Mesh64
+from manifold3d import CrossSection, Manifold
 from shapely.geometry import Polygon, box
 
 from antenna_cad.printed.lattice_mesh import WELD_BITS, WELD_MM, _square, lattice_triangles, weld
-from antenna_cad.printed.parts import PrintedLens, PrintedPart
+from antenna_cad.printed.parts import PrintedLens, PrintedPart, mesh_arrays, to_manifold
 
 _DIRS = np.array([(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)], np.int64)
 
@@ -219,19 +219,6 @@ def _rings(idx_p, idx_q, s_p, s_q, origin, a) -> np.ndarray:
     return np.concatenate(out) + origin if out else np.zeros((0, 3, 3))
 
 
-def _manifold(v: np.ndarray, f: np.ndarray) -> Manifold:
-    m = Manifold(Mesh64(vert_properties=np.ascontiguousarray(v, np.float64),
-                        tri_verts=np.ascontiguousarray(f, np.uint64)))
-    if m.status().name != "NoError":
-        raise RuntimeError(f"lattice mesh rejected by manifold3d: {m.status().name}")
-    return m
-
-
-def _indexed(m: Manifold) -> tuple[np.ndarray, np.ndarray]:
-    mesh = m.to_mesh64()
-    return np.asarray(mesh.vert_properties[:, :3], float), np.asarray(mesh.tri_verts, np.int64)
-
-
 def _grid_keys(v: np.ndarray, lo: np.ndarray) -> np.ndarray:
     q = np.round((v - lo) / WELD_MM).astype(np.int64)
     return (q[:, 0] << 2 * WELD_BITS) | (q[:, 1] << WELD_BITS) | q[:, 2]
@@ -265,11 +252,11 @@ def _part(index, width_mm, inn, bnd, a, origin, trim: Manifold, shell: Manifold 
     tris_in = lattice_triangles(index[inn], width_mm[inn], a) + origin if inn.any() else np.zeros((0, 3, 3))
     tris_bd = lattice_triangles(index[bnd], width_mm[bnd], a) + origin if bnd.any() else np.zeros((0, 3, 3))
     made = len(tris_in) + len(tris_bd)
-    piece = _manifold(*weld(tris_bd)) ^ trim if len(tris_bd) else Manifold()
+    piece = to_manifold(*weld(tris_bd), double=True) ^ trim if len(tris_bd) else Manifold()
     if shell is not None:
         piece = piece + shell
     pp, qq = _seam_pairs(index, np.nonzero(inn)[0], np.nonzero(bnd)[0])
-    ov, of = _indexed(piece) if not piece.is_empty() else (np.zeros((0, 3)), np.zeros((0, 3), np.int64))
+    ov, of = mesh_arrays(piece, double=True) if not piece.is_empty() else (np.zeros((0, 3)), np.zeros((0, 3), np.int64))
     rings = np.zeros((0, 3, 3))
     if len(pp):
         seam = np.sort(_face_keys(index[pp], index[qq] - index[pp]))

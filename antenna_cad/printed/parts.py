@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
-from manifold3d import Manifold, Mesh, OpType
+from manifold3d import Manifold, Mesh, Mesh64, OpType
 
 from antenna_cad.printed.fill import FillMap, rod_width_mm
 from antenna_cad.printed.gyroid_mesh import gyroid_lattice
@@ -121,17 +121,25 @@ def rounded_widths(fmap: FillMap, rad: np.ndarray, step: float, wall: float, gap
     return np.clip(np.round(w / step) * step, lo, hi)
 
 
-def _to_manifold(vertices: np.ndarray, faces: np.ndarray) -> Manifold:
-    m = Manifold(Mesh(vert_properties=np.ascontiguousarray(vertices, np.float32),
-                      tri_verts=np.ascontiguousarray(faces, np.uint32)))
+def to_manifold(vertices: np.ndarray, faces: np.ndarray, double: bool = False) -> Manifold:
+    """A closed mesh as a manifold3d solid (``double``: float64 vertices, as a body joined to its grid bit
+    for bit needs); a mesh manifold3d rejects raises."""
+    if double:
+        mesh = Mesh64(vert_properties=np.ascontiguousarray(vertices, np.float64),
+                      tri_verts=np.ascontiguousarray(faces, np.uint64))
+    else:
+        mesh = Mesh(vert_properties=np.ascontiguousarray(vertices, np.float32),
+                    tri_verts=np.ascontiguousarray(faces, np.uint32))
+    m = Manifold(mesh)
     if m.status().name != "NoError":
         raise RuntimeError(f"lattice mesh rejected by manifold3d: {m.status().name}")
     return m
 
 
-def _arrays(m: Manifold) -> tuple[np.ndarray, np.ndarray]:
-    mesh = m.to_mesh()
-    return np.asarray(mesh.vert_properties[:, :3], float), np.asarray(mesh.tri_verts, np.int32)
+def mesh_arrays(m: Manifold, double: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """(vertices, faces) of a manifold3d solid (``double``: from its float64 mesh, int64 faces)."""
+    mesh = m.to_mesh64() if double else m.to_mesh()
+    return np.asarray(mesh.vert_properties[:, :3], float), np.asarray(mesh.tri_verts, np.int64 if double else np.int32)
 
 
 M_MMAP_THRESHOLD = -3       # glibc mallopt parameter
@@ -232,7 +240,7 @@ def build_printed_lens(shape: str, radius_mm: float, height_mm: float | None, fm
         idx, rad = _cells(shape, r_in, height_mm, a)
         w = rounded_widths(fmap, rad, width_step_mm, wall_mm, gap_mm)
         v, f = weld(lattice_triangles(idx, w, a))
-        body = _to_manifold(v + np.array([0.0, 0.0, a / 2]), f)
+        body = to_manifold(v + np.array([0.0, 0.0, a / 2]), f)
         cells, triangles = len(idx), len(f)
         del v, f
     n = segments(radius_mm, tolerance_mm)
@@ -266,12 +274,12 @@ def build_printed_lens(shape: str, radius_mm: float, height_mm: float | None, fm
     parts = []
     pieces.sort(key=lambda m: tuple(np.round(m.bounding_box(), 6)))
     for q in range(len(pieces)):
-        pv, pf = _arrays(pieces[q])
+        pv, pf = mesh_arrays(pieces[q])
         pieces[q] = None                                          # one copy of each part at a time
         label = f"lens-{q + 1:02d}" if len(pieces) > 1 or shape == "sphere" else "lens"
         parts.append(PrintedPart(label, "lens", copies, pv - pv.min(axis=0), pf))
     if pin_count:
-        pv, pf = _arrays(_cylinder_along(2, pins.diameter_mm / 2, 0.0, pins.length_mm,
+        pv, pf = mesh_arrays(_cylinder_along(2, pins.diameter_mm / 2, 0.0, pins.length_mm,
                                          segments(pins.diameter_mm / 2, tolerance_mm)))
         parts.append(PrintedPart("pin", "pin", pin_count, pv - pv.min(axis=0), pf))
     return PrintedLens(tuple(parts), cells * copies, triangles * copies, body_volume, reference_volume_mm3,

@@ -107,7 +107,7 @@ def _layer_table(lens: Lens, layup: LayupPlan, fab) -> Table:
     pieces = [sum(p.sheet_index == s.index for p in fab.pieces) for s in layup.sheets]
     if layup.edge == "taper":
         gaps = Taper(lens, layup).largest_gap_mm()
-        rows = tuple((s.label, cell(s.z_min_mm), cell(s.z_max_mm), *map(_r, s.cone_mm), cell(g), k)
+        rows = tuple((s.label, cell(s.z_min_mm), cell(s.z_max_mm), *map(cell, s.cone_mm), cell(g), k)
                      for s, g, k in zip(layup.sheets, gaps, pieces))
         return Table("layers", "Sheets (taper-cut)", ("sheet", "z min mm", "z max mm", "cone radius front mm",
                                                       "cone radius back mm", "largest gap to the profile mm",

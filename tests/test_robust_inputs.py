@@ -71,7 +71,7 @@ def test_resource_limits_warn_then_refuse():
     with pytest.raises(DesignError) as err:
         limit.check(401)
     assert err.value.field == "fabrication.sheet_thickness_mm" and "limit of 400" in str(err.value)
-    assert set(LIMITS) == {"sheets", "shells", "slots", "pieces", "drawings", "pages", "triangles", "cells"}
+    assert set(LIMITS) == {"sheets", "shells", "slots", "pieces", "drawings", "pages", "triangles", "cells", "gyroid_points"}
 
 
 def test_counts_read_plans_of_any_kind():

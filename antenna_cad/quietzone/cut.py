@@ -54,7 +54,9 @@ def residual_phase_deg(y_mm, field, disc_mm: float) -> tuple[np.ndarray, np.ndar
     carry no phase and are left out."""
     y, e = np.asarray(y_mm, float), np.asarray(field, complex)
     inside = np.abs(y) <= disc_mm / 2 * (1 + 1e-12)
-    inside &= np.abs(e) > 10 ** (SHADOW_DB / 20) * np.abs(e[inside]).max()
+    inside &= np.abs(e) > 10 ** (SHADOW_DB / 20) * np.abs(e[inside]).max(initial=0.0)
+    if not inside.any():                                   # the whole disc in the shadow
+        return np.zeros(0), np.zeros(0)
     yi, ei = y[inside], e[inside]
     c = int(np.argmin(np.abs(yi)))
     ph = np.degrees(np.angle(ei / ei[c]))
@@ -92,6 +94,8 @@ def cut_plane_figures(y_mm, field, disc_mm: float, z_mm: float, amplitude_db: fl
     y, e = np.asarray(y_mm, float), np.asarray(field, complex)
     y_lit, ph = residual_phase_deg(y, e, disc_mm)
     inside = np.abs(y) <= disc_mm / 2 * (1 + 1e-12)
+    if len(y_lit) < 2 or not np.abs(e[inside]).max() > 0:  # the beam misses the zone: nothing is within limits
+        return PlaneFigures(float(z_mm), float(disc_mm), math.inf, math.inf, math.inf, -math.inf, math.inf, 0.0)
     yi, lv = y[inside], levels_db(e[inside])
     w, wl = _weights(yi, disc_mm), _weights(y_lit, disc_mm)
     rho = disc_mm / 2

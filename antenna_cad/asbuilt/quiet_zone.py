@@ -49,12 +49,18 @@ def _zone(lens: Lens, z_ref: float, criteria) -> Zone:
     return lens_zone(lens, z_ref, criteria.zone, aut_d)
 
 
+def _revolved(lens: Lens, variants, feed_z_mm: float) -> RevolvedLens:
+    """The lens with the stepped sections among ``variants``, its feed on the axis at ``feed_z_mm``."""
+    sections = {n: m for n, m in variants if isinstance(m, Slabs)}
+    return RevolvedLens(lens.front_z, lens.back_z, lens.radius_mm, lens.eps_r, C_MM_GHZ / lens.wavelength_mm,
+                        feed_z_mm, sections)
+
+
 def _screens(lens: Lens, variants, feed_z_mm: float, z_ref: float) -> dict:
     """variant → the fast model's thin screen of each stepped section (excess foam, n, radius, lead)."""
-    sections = {n: m for n, m in variants if isinstance(m, Slabs)}
-    rl = RevolvedLens(lens.front_z, lens.back_z, lens.radius_mm, lens.eps_r, C_MM_GHZ / lens.wavelength_mm,
-                      feed_z_mm, sections)
-    return {n: (lambda r, n=n: rl.excess_mm(n, r), lens.n, lens.radius_mm, z_ref - rl.screen_z_mm()) for n in sections}
+    rl = _revolved(lens, variants, feed_z_mm)
+    return {n: (lambda r, n=n: rl.excess_mm(n, r), lens.n, lens.radius_mm, z_ref - rl.screen_z_mm())
+            for n in rl.sections}
 
 
 def lens_quiet_zone(lens: Lens, variants, feed: tuple[str, float, float], z_ref: float, criteria,
@@ -69,9 +75,8 @@ def lens_quiet_zone(lens: Lens, variants, feed: tuple[str, float, float], z_ref:
         rays, cross[name] = _rays(lens, medium, feed[1:])
         go[name] = [rays.field_at(z_ref + z, lam) for z in zone.planes_mm]
     rho = radii_mm(max(R, zone.diameter_mm / 2), lam)
-    sections = {n: m for n, m in variants if isinstance(m, Slabs)}
-    rl = RevolvedLens(lens.front_z, lens.back_z, R, lens.eps_r, C_MM_GHZ / lam, feed[1], sections)
-    fast = fast_fields(rl, z_ref, zone.planes_mm, rho, ["ideal", *sections])
+    rl = _revolved(lens, variants, feed[1])
+    fast = fast_fields(rl, z_ref, zone.planes_mm, rho, ["ideal", *rl.sections])
     kept = [n for n, _ in variants if n not in fast]
     name = FAST + (f"; GO for {', '.join(kept)} (taper-cut cones: no stepped section)" if kept else "")
     fast_planes = {n: [(rho, e) for e in fast[n]] if n in fast else go[n] for n, _ in variants}

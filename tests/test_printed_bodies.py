@@ -91,9 +91,9 @@ def test_dithered_widths_are_printable_steps_whose_mean_is_the_asked_width():
 
 
 def test_the_printed_mirror_lens_body_is_at_n_squared_and_the_graded_rows_follow_the_law():
-    from antenna_cad.kinds import graded, graded_printed, mirror_lens_printed
+    from antenna_cad.kinds import graded, graded_printed, uniform_printed
     ml = load_spec("recipes/mirror-lens-346mm-printed.yaml")
-    body = mirror_lens_printed.lattice_body(ml)
+    body = uniform_printed.lattice_body(ml)
     assert body.eps_target == pytest.approx(1.69)
     assert abs(body.eps_printed - body.eps_target) < 1e-3
     spec = load_spec("recipes/graded-trifocal-160mm-printed.yaml")
@@ -140,7 +140,7 @@ def test_a_printed_recipe_reads_back_and_the_collimator_is_still_refused_by_name
 
 def test_the_mirror_lens_is_synthesized_at_n_and_traced_at_the_printed_index():
     from antenna_cad.kinds import mirror_lens
-    from antenna_cad.kinds.mirror_lens_printed import lattice_body
+    from antenna_cad.kinds.uniform_printed import lattice_body
     from antenna_cad.stages import planning
     spec = load_spec("recipes/mirror-lens-346mm-printed.yaml")
     design = mirror_lens.synthesize(spec)

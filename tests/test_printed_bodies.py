@@ -115,6 +115,8 @@ GR = load_spec("recipes/graded-trifocal-160mm-printed.yaml").model_dump(mode="js
     ({**ML, "design": {k: v for k, v in ML["design"].items() if k != "refractive_index"}},
      "design.refractive_index: required with fabrication.method printed"),
     ({**ML, "design": ML["design"] | {"refractive_index": 1.7}}, "design.refractive_index: n² = 2.89 must be below"),
+    ({**ML, "fabrication": {"method": "printed", "cell_mm": 3.5, "lattice": "gyroid", "min_wall_mm": 0.4, "min_gap_mm": 0.4}},
+     "fabrication.lattice: the body is printed as the cubic lattice"),
     ({**ML, "fabrication": {"method": "printed", "cell_mm": 4.0}}, "fabrication.cell_mm: must be ≤ λ/(4·√εr)"),
     ({**ML, "fabrication": {"method": "printed", "cell_mm": 3.5, "orientation": "axis_flat"}},
      "fabrication.orientation: the mirror-lens body is printed axis_up"),
@@ -128,13 +130,12 @@ def test_illegal_printed_bodies_are_refused_in_one_line(data, expected):
     assert len(exc.value.lines) == 1 and expected in exc.value.lines[0], exc.value.lines
 
 
-def test_a_printed_recipe_reads_back_and_the_collimator_is_still_refused_by_name():
+def test_a_printed_recipe_reads_back_and_a_kind_not_printed_is_refused_by_name():
     assert parse_spec(ML, "s.yaml").design.refractive_index == 1.3
-    data = {"name": "c", "kind": "collimator", "frequency_ghz": 12, "material": "pla",
-            "fabrication": {"method": "printed", "cell_mm": 3}}
+    data = load_spec("recipes/bifocal-dielectric-160mm.yaml").model_dump(mode="json", exclude_none=True)
     with pytest.raises(SpecError) as exc:
-        parse_spec(data, "s.yaml")
-    assert any("kinds luneburg, graded and mirror_lens so far" in line for line in exc.value.lines)
+        parse_spec(data | {"fabrication": {"method": "printed", "cell_mm": 3}}, "s.yaml")
+    assert any("kinds luneburg, graded, mirror_lens and collimator so far" in line for line in exc.value.lines)
     assert math.isclose(parse_spec(GR, "s.yaml").fabrication.cell_mm * 4, 3.4)
 
 

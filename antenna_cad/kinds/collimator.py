@@ -89,21 +89,23 @@ def model(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | Non
     return replace(built, parts=tuple(replace(p, role="reference") for p in built.parts))
 
 
-def printed_section(design: CollimatorDesign) -> np.ndarray:
-    """The lens's meridian section (r, z) in the printer's frame: the flat face on the bed (z = 0), the
-    vertex up (no overhang: each layer lies inside the one below); the hyperbola sampled finer than
-    CHORD_TOL_MM."""
+def printed_section(design: CollimatorDesign, skin_mm: float) -> np.ndarray:
+    """The lens's meridian section (r, z) in the printer's frame: the flat face on the bed, the vertex up
+    (no overhang: each layer lies inside the one below); the hyperbola sampled finer than CHORD_TOL_MM.
+    The flat face lies at z = −``skin_mm`` so that the skin's inner face is a plane of cell centres
+    (z = 0): the horizontal rods there are half fused into the skin, and the lattice above it holds its
+    mean fill (a plane off the cell's symmetry planes cuts a layer of other fill along the whole face)."""
     R, d = design.diameter_mm / 2, design.thickness_mm
     r = np.linspace(0.0, R, max(32, int(np.ceil(R / np.sqrt(CHORD_TOL_MM))) * 2))
     z = d - profile_z_mm(r, design.focal_length_mm, design.n)
-    return np.vstack([np.column_stack([r, z]), [(0.0, 0.0)]])
+    return np.vstack([np.column_stack([r, z]), [(0.0, 0.0)]]) - (0.0, skin_mm)
 
 
 def fabricate(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | None, panels):
     m = index_material(spec, as_printed=True)
     if isinstance(spec.fabrication, PrintedSpec):
         from antenna_cad.kinds.uniform_printed import fabricate_printed, revolved_envelope
-        return fabricate_printed(spec, revolved_envelope(printed_section(design)), design.volume_mm3,
+        return fabricate_printed(spec, revolved_envelope(printed_section(design, spec.fabrication.skin_mm)), design.volume_mm3,
                                  design.diameter_mm / 2, "print on the flat face, the vertex up")
     if layup is None:
         from antenna_cad.fabrication.machined import fabricate_machined

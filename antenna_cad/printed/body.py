@@ -177,12 +177,11 @@ def _on_faces(tris: np.ndarray, keys: np.ndarray, origin: np.ndarray, a: float) 
     inside the face square)."""
     flat = (tris[:, 0] == tris[:, 1]) & (tris[:, 0] == tris[:, 2])   # (m, 3): the axis it is flat in (caps: exact)
     hit = np.zeros(len(tris), bool)
-    centroid = (tris.mean(axis=1) - origin) / a
     for ax in range(3):
         sel = np.nonzero(flat[:, ax])[0]
         if not len(sel):
             continue
-        c = centroid[sel]
+        c = (tris[sel].mean(axis=1) - origin) / a                  # centroids of the flat ones only
         d = 2 * np.round(c).astype(np.int64)                   # the cell line, doubled
         d[:, ax] = np.round(2 * c[:, ax]).astype(np.int64)      # the face plane, doubled (odd)
         on_plane = (np.abs(2 * c[:, ax] - d[:, ax]) < 1e-6) & (d[:, ax] % 2 != 0)

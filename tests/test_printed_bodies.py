@@ -153,3 +153,21 @@ def test_the_mirror_lens_is_synthesized_at_n_and_traced_at_the_printed_index():
     off = parse_spec(spec.model_dump(mode="json", exclude_none=True) | {"design": ML["design"] | {
         "refractive_index": 1.55}}, "s.yaml")
     assert lattice_body(off).eps_printed == pytest.approx(1.55**2, abs=1e-3)
+
+
+def test_weld_keeps_the_first_of_each_vertex_in_key_order_and_the_3mf_text_is_the_model_in_order():
+    import io
+    import zipfile
+
+    from antenna_cad.printed.export3mf import model_xml
+    from antenna_cad.printed.lattice_mesh import lattice_triangles, weld
+    idx = np.stack(np.meshgrid(*[np.arange(3)] * 3, indexing="ij"), -1).reshape(-1, 3)
+    tris = lattice_triangles(idx, np.where(idx[:, 2] % 2, 1.2, 1.5), A)
+    v, f = weld(tris)
+    assert np.array_equal(v[f], tris) and len(v) == len(np.unique(tris.reshape(-1, 3), axis=0))
+    assert np.all(np.diff(v[:, 0]) >= 0)                                 # x is the key's leading coordinate
+    objs = [{"name": "a", "vertices": v, "faces": f}, {"name": "b", "vertices": v[::-1] + 1, "faces": f[:, ::-1]}]
+    with zipfile.ZipFile(io.BytesIO(three_mf_bytes(objs, {"Title": "t"}))) as z:
+        assert z.read("3D/3dmodel.model").decode() == "".join(model_xml(objs, {"Title": "t"}))
+    with pytest.raises(TypeError):                                       # the text thread's error, in the caller
+        three_mf_bytes([{"name": "c", "vertices": v, "faces": np.zeros((2, 2), int)}], {})

@@ -105,8 +105,9 @@ def fabricate(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan |
     m = index_material(spec, as_printed=True)
     if isinstance(spec.fabrication, PrintedSpec):
         from antenna_cad.kinds.uniform_printed import fabricate_printed, revolved_envelope
-        return fabricate_printed(spec, revolved_envelope(printed_section(design, spec.fabrication.skin_mm)), design.volume_mm3,
-                                 design.diameter_mm / 2, "print on the flat face, the vertex up")
+        env = revolved_envelope(printed_section(design, spec.fabrication.skin_mm))
+        return fabricate_printed(spec, env, design.volume_mm3, design.diameter_mm / 2,
+                                 "print on the flat face, the vertex up")
     if layup is None:
         from antenna_cad.fabrication.machined import fabricate_machined
         return fabricate_machined(design, m, spec.fabrication.stock_allowance_mm, spec.name)

@@ -12,7 +12,8 @@ from typing import Annotated, Literal, Union
 from pydantic import Field, model_validator
 
 from antenna_cad.spec.bounds import MIN_DEG
-from antenna_cad.spec.common import AutSpec, SheetLayupSpec, SolidSpec, SpecBase, StrictModel, TestZoneSpec, resolve_material
+from antenna_cad.spec.common import (AutSpec, SheetLayupSpec, SolidSpec, SpecBase, StrictModel, TestZoneSpec,
+                                     resolve_material)
 from antenna_cad.spec.printed import PrintedSpec, check_material_index
 
 

@@ -22,7 +22,7 @@ import shapely
 from manifold3d import CrossSection, Manifold
 from shapely.geometry import Polygon, box
 
-from antenna_cad.printed.lattice_mesh import WELD_BITS, WELD_MM, _square, lattice_triangles, weld
+from antenna_cad.printed.lattice_mesh import WELD_BITS, WELD_MM, _square, cross_rows, lattice_triangles, weld
 from antenna_cad.printed.parts import PrintedLens, PrintedPart, mesh_arrays, to_manifold
 
 _DIRS = np.array([(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)], np.int64)
@@ -211,7 +211,7 @@ def _rings(idx_p, idx_q, s_p, s_q, origin, a) -> np.ndarray:
             for c in range(4):
                 d = (c + 1) % 4
                 t = np.concatenate([np.stack([outer[c], outer[d], inner[d]], 1), np.stack([outer[c], inner[d], inner[c]], 1)])
-                n = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
+                n = cross_rows(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
                 flip = np.einsum("ij,ij->i", n, np.concatenate([normal, normal])) < 0
                 t[flip] = t[flip][:, ::-1]
                 out.append(t)

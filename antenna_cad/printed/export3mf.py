@@ -16,6 +16,8 @@ from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
 
+from antenna_cad.printed.lattice_mesh import cross_rows
+
 _CONTENT_TYPES = ('<?xml version="1.0" encoding="UTF-8"?>\n'
                   '<Types xmlns="http://schemas.openxmlformats.org/package/2006/content-types">'
                   '<Default Extension="rels" ContentType="application/vnd.openxmlformats-package.relationships+xml"/>'
@@ -125,7 +127,7 @@ def three_mf_bytes(objects: list[dict], metadata: dict[str, str]) -> bytes:
 def stl_bytes(vertices: np.ndarray, faces: np.ndarray, name: str) -> bytes:
     """Binary STL of a triangle mesh (normals from the counter-clockwise winding)."""
     t = np.asarray(vertices, np.float64)[np.asarray(faces, np.int64)]
-    n = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
+    n = cross_rows(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
     length = np.linalg.norm(n, axis=1, keepdims=True)
     n = np.divide(n, length, out=np.zeros_like(n), where=length > 0)
     rec = np.zeros(len(t), dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("attr", "<u2")])

@@ -24,13 +24,18 @@ def _others(ax: int) -> tuple[int, int]:
     return (ax + 1) % 3, (ax + 2) % 3
 
 
-def _orient(tris: np.ndarray, normal: np.ndarray) -> np.ndarray:
-    """Flip triangles (n, 3, 3) whose geometric normal points against ``normal`` (n, 3) or (3,)."""
-    p, q = tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]
-    n = np.empty_like(p)                            # p × q, as np.cross forms it (its generic path is slower)
+def cross_rows(p: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """Row-wise p × q of (n, 3) arrays: the same numbers as ``np.cross``, whose generic path is ~4× slower."""
+    n = np.empty(np.broadcast_shapes(p.shape, q.shape))
     n[:, 0] = p[:, 1] * q[:, 2] - p[:, 2] * q[:, 1]
     n[:, 1] = p[:, 2] * q[:, 0] - p[:, 0] * q[:, 2]
     n[:, 2] = p[:, 0] * q[:, 1] - p[:, 1] * q[:, 0]
+    return n
+
+
+def _orient(tris: np.ndarray, normal: np.ndarray) -> np.ndarray:
+    """Flip triangles (n, 3, 3) whose geometric normal points against ``normal`` (n, 3) or (3,)."""
+    n = cross_rows(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0])
     flip = np.einsum("ij,ij->i", n, np.broadcast_to(normal, n.shape)) < 0
     tris[flip] = tris[flip][:, ::-1]
     return tris

@@ -16,7 +16,7 @@ from antenna_cad.printed.fill import fill_integral_mm3, fill_map
 from antenna_cad.printed.lattice import Printable, fill_fraction
 from antenna_cad.printed.lattice_mesh import lattice_triangles, weld
 from antenna_cad.printed.parts import Pins, build_printed_lens, closed_and_oriented, mesh_volume
-from antenna_cad.spec import SpecError, parse_spec
+from antenna_cad.spec import SpecError, load_spec, parse_spec
 
 
 def _mesh(idx, w, a):
@@ -196,12 +196,11 @@ def test_printed_recipe_builds_and_its_files_read_back(tmp_path, monkeypatch):
 
 
 def test_kinds_without_a_printed_method_refuse_it_by_name():
-    data = {"name": "g", "kind": "collimator", "frequency_ghz": 12, "material": "pla",
-            "fabrication": {"method": "printed", "cell_mm": 3}}
+    data = load_spec("recipes/bifocal-dielectric-160mm.yaml").model_dump(mode="json", exclude_none=True)
     with pytest.raises(SpecError) as exc:
-        parse_spec(data, "s.yaml")
-    assert any("fabrication.method: must be one of" in line and "kinds luneburg, graded and mirror_lens so far" in line
-               for line in exc.value.lines)
+        parse_spec(data | {"fabrication": {"method": "printed", "cell_mm": 3}}, "s.yaml")
+    assert any("fabrication.method: must be one of" in line
+               and "kinds luneburg, graded, mirror_lens and collimator so far" in line for line in exc.value.lines)
 
 
 def test_a_hemisphere_taller_than_the_bed_is_refused():

@@ -1,4 +1,6 @@
-"""Adapters of the single-surface collimator (seed-000) between its spec and the stages."""
+"""Adapters of the single-surface collimator (seed-000) between its spec and the stages. A printed lens
+(``fabrication.method: printed``) is synthesized at ``design.refractive_index`` and printed as a uniform
+lattice (:mod:`antenna_cad.kinds.uniform_printed`); the as-built checks trace it at the εr as printed."""
 
 from __future__ import annotations
 
@@ -8,6 +10,7 @@ from functools import partial
 import numpy as np
 
 from antenna_cad.fabrication.layup import LayupPlan
+from antenna_cad.fabrication.outline import CHORD_TOL_MM
 from antenna_cad.asbuilt.lens import Lens, lens_variants, zone_depth_mm
 from antenna_cad.asbuilt.stock import stock_study
 from antenna_cad.asbuilt.verify import verify_lens
@@ -16,10 +19,12 @@ from antenna_cad.kinds.layup import fabricate_layup, layup_figures, neck_checks,
 from antenna_cad.asbuilt.patterns import collimator_feed_limits, criteria_from, lens_patterns
 from antenna_cad.raytrace.collimator import front_face, single_surface_p2p_deg, usable_half_range_mm
 from antenna_cad.raytrace.trace2d import Interface
+from antenna_cad.kinds.uniform_printed import index_material
 from antenna_cad.spec.collimator import CollimatorSpec
 from antenna_cad.spec.common import resolve_material
+from antenna_cad.spec.printed import PrintedSpec
 from antenna_cad.synthesis.checks import Check
-from antenna_cad.synthesis.collimator import CollimatorDesign, synthesize_collimator
+from antenna_cad.synthesis.collimator import CollimatorDesign, profile_z_mm, synthesize_collimator
 from antenna_cad.verification import Verification
 
 DEFAULT_ANTENNA_GAP_MM = 100.0      # seed-000 §5.10: the scan plane 10 cm behind the flat face
@@ -27,7 +32,7 @@ SCAN_GRID = np.linspace(0.0, 1.0, 41)   # transverse feed displacement / f searc
 
 
 def synthesize(spec: CollimatorSpec) -> CollimatorDesign:
-    m = resolve_material(spec.material)
+    m = index_material(spec)
     aut = spec.design.aut
     return synthesize_collimator(
         diameter_mm=spec.design.diameter_mm, focal_length_mm=spec.design.focal_length_mm,
@@ -54,8 +59,9 @@ def _antenna_gap_mm(spec: CollimatorSpec) -> float:
 
 
 def _lens(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | None) -> Lens:
-    """The lens the as-built trace sees: its flat face at the back of the stack (the back slab stays)."""
-    m = resolve_material(spec.material)
+    """The lens the as-built trace sees: its flat face at the back of the stack (the back slab stays); a
+    printed lens at the εr of its lattice as printed."""
+    m = index_material(spec, as_printed=True)
     f, n = design.focal_length_mm, design.n
     back = layup.sheets[-1].z_max_mm if layup is not None else design.thickness_mm
     return Lens(radius_mm=design.diameter_mm / 2, eps_r=m.eps_r, tan_delta=m.tan_delta,
@@ -76,11 +82,32 @@ def model(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | Non
     from antenna_cad.geometry.collimator import build_model
     fab = spec.fabrication
     box_material = resolve_material(fab.box.material) if layup else None
-    return build_model(design, layup, resolve_material(spec.material), box_material, panels)
+    built = build_model(design, layup, index_material(spec, as_printed=True), box_material, panels)
+    if not isinstance(fab, PrintedSpec):
+        return built
+    # printed: the STEP holds the lens's envelope for reference (the lattice is in printed/)
+    return replace(built, parts=tuple(replace(p, role="reference") for p in built.parts))
+
+
+def printed_section(design: CollimatorDesign, skin_mm: float) -> np.ndarray:
+    """The lens's meridian section (r, z) in the printer's frame: the flat face on the bed, the vertex up
+    (no overhang: each layer lies inside the one below); the hyperbola sampled finer than CHORD_TOL_MM.
+    The flat face lies at z = −``skin_mm`` so that the skin's inner face is a plane of cell centres
+    (z = 0): the horizontal rods there are half fused into the skin, and the lattice above it holds its
+    mean fill (a plane off the cell's symmetry planes cuts a layer of other fill along the whole face)."""
+    R, d = design.diameter_mm / 2, design.thickness_mm
+    r = np.linspace(0.0, R, max(32, int(np.ceil(R / np.sqrt(CHORD_TOL_MM))) * 2))
+    z = d - profile_z_mm(r, design.focal_length_mm, design.n)
+    return np.vstack([np.column_stack([r, z]), [(0.0, 0.0)]]) - (0.0, skin_mm)
 
 
 def fabricate(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | None, panels):
-    m = resolve_material(spec.material)
+    m = index_material(spec, as_printed=True)
+    if isinstance(spec.fabrication, PrintedSpec):
+        from antenna_cad.kinds.uniform_printed import fabricate_printed, revolved_envelope
+        env = revolved_envelope(printed_section(design, spec.fabrication.skin_mm))
+        return fabricate_printed(spec, env, design.volume_mm3, design.diameter_mm / 2,
+                                 "print on the flat face, the vertex up")
     if layup is None:
         from antenna_cad.fabrication.machined import fabricate_machined
         return fabricate_machined(design, m, spec.fabrication.stock_allowance_mm, spec.name)
@@ -92,6 +119,9 @@ def summary(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | N
     figures = design.key_figures()
     if layup is not None:
         figures |= layup_figures(layup)
+    if isinstance(spec.fabrication, PrintedSpec):
+        from antenna_cad.kinds.uniform_printed import summary_figures
+        figures |= summary_figures(spec)
     return figures
 
 
@@ -133,5 +163,8 @@ def verify(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | No
     v = v.merged(lens_patterns(lens, lens_variants(lens, layup, fab), feeds, crit, full_wave=fw)).merged(
         collimator_feed_limits(design, gap, crit.aut.height_mm if crit.aut else D, crit.aut.taper_k if crit.aut else 0,
                                crit.difference, SCAN_GRID))
+    if isinstance(spec.fabrication, PrintedSpec) and getattr(fab, "lens", None) is not None:
+        from antenna_cad.kinds.printed_package import printed_verification
+        v = printed_verification(fab).merged(v)
     return replace(v, figures={"scan_half_range_mm": edge,
                                "scan_half_angle_deg": float(np.degrees(np.arctan2(edge, f)))} | v.figures)

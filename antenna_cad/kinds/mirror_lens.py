@@ -11,7 +11,7 @@ Verification (3-D GO, :mod:`antenna_cad.raytrace.mirror_lens`): the body as fabr
 the CAD holds — splines through the sampled exact profiles — traced against the exact synthesis;
 then εr, thickness and feed position at ± their tolerances; σ against the field angle with the feed
 on the focal curve; and the aperture field (amplitude, phase) as plain arrays for the radiation
-and full-wave modules (:func:`aperture_field`). A printed body (:mod:`antenna_cad.kinds.mirror_lens_printed`)
+and full-wave modules (:func:`aperture_field`). A printed body (:mod:`antenna_cad.kinds.uniform_printed`)
 is synthesized at ``design.refractive_index`` and traced as fabricated at the εr its lattice has.
 """
 
@@ -55,11 +55,8 @@ def _metal(spec: MirrorLensSpec) -> Material:
 def body_material(spec: MirrorLensSpec, as_printed: bool = False) -> Material:
     """The body's dielectric: the spec's material, or a printed lattice at n² (``as_printed``: at the
     εr its rounded rods give)."""
-    if not isinstance(spec.fabrication, PrintedSpec):
-        return resolve_material(spec.material)
-    from antenna_cad.kinds.mirror_lens_printed import lattice_body
-    body = lattice_body(spec)
-    return body.material(body.eps_printed if as_printed else body.eps_target)
+    from antenna_cad.kinds.uniform_printed import index_material
+    return index_material(spec, as_printed)
 
 
 def synthesize(spec: MirrorLensSpec) -> MirrorLensDesign:
@@ -118,8 +115,11 @@ def fabricate(spec: MirrorLensSpec, design: MirrorLensDesign, layup: LayupPlan |
     from antenna_cad.fabrication.mirror_lens import add_mirror_step, fabricate_solid
     m = body_material(spec, as_printed=True)
     if isinstance(spec.fabrication, PrintedSpec):
-        from antenna_cad.kinds.mirror_lens_printed import fabricate_printed
-        plan = fabricate_printed(spec, design)
+        from antenna_cad.kinds.uniform_printed import fabricate_printed, revolved_envelope
+        z_lo, _ = design.z_range_mm
+        section = design.section_mm() - (0.0, z_lo)       # the printer's frame: axis up, z from the lowest point
+        plan = fabricate_printed(spec, revolved_envelope(section), design.volume_mm3(), design.body_radius_mm,
+                                 "print with the axis up, the front face on the bed")
         return plan if plan.lens is None else add_mirror_step(plan, design, spec.design, m, _metal(spec), spec.name)
     if layup is None:
         return fabricate_solid(design, spec.design, _ring(spec, design), m, _metal(spec),
@@ -169,7 +169,7 @@ def summary(spec: MirrorLensSpec, design: MirrorLensDesign, layup: LayupPlan | N
     if layup is not None:
         figures |= layup_figures(layup)
     if isinstance(spec.fabrication, PrintedSpec):
-        from antenna_cad.kinds.mirror_lens_printed import summary_figures
+        from antenna_cad.kinds.uniform_printed import summary_figures
         figures |= summary_figures(spec)
     return figures
 

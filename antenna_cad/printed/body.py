@@ -22,7 +22,7 @@ import shapely
 from manifold3d import CrossSection, Manifold
 from shapely.geometry import Polygon, box
 
-from antenna_cad.printed.lattice_mesh import WELD_BITS, WELD_MM, _square, lattice_triangles, weld
+from antenna_cad.printed.lattice_mesh import WELD_BITS, WELD_MM, _square, cross_rows, lattice_triangles, weld
 from antenna_cad.printed.parts import PrintedLens, PrintedPart, mesh_arrays, to_manifold
 
 _DIRS = np.array([(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)], np.int64)
@@ -177,12 +177,11 @@ def _on_faces(tris: np.ndarray, keys: np.ndarray, origin: np.ndarray, a: float) 
     inside the face square)."""
     flat = (tris[:, 0] == tris[:, 1]) & (tris[:, 0] == tris[:, 2])   # (m, 3): the axis it is flat in (caps: exact)
     hit = np.zeros(len(tris), bool)
-    centroid = (tris.mean(axis=1) - origin) / a
     for ax in range(3):
         sel = np.nonzero(flat[:, ax])[0]
         if not len(sel):
             continue
-        c = centroid[sel]
+        c = (tris[sel].mean(axis=1) - origin) / a                  # centroids of the flat ones only
         d = 2 * np.round(c).astype(np.int64)                   # the cell line, doubled
         d[:, ax] = np.round(2 * c[:, ax]).astype(np.int64)      # the face plane, doubled (odd)
         on_plane = (np.abs(2 * c[:, ax] - d[:, ax]) < 1e-6) & (d[:, ax] % 2 != 0)
@@ -212,7 +211,7 @@ def _rings(idx_p, idx_q, s_p, s_q, origin, a) -> np.ndarray:
             for c in range(4):
                 d = (c + 1) % 4
                 t = np.concatenate([np.stack([outer[c], outer[d], inner[d]], 1), np.stack([outer[c], inner[d], inner[c]], 1)])
-                n = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
+                n = cross_rows(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
                 flip = np.einsum("ij,ij->i", n, np.concatenate([normal, normal])) < 0
                 t[flip] = t[flip][:, ::-1]
                 out.append(t)

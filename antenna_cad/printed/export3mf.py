@@ -9,10 +9,14 @@ object, model-level ``metadata`` (name/value).
 from __future__ import annotations
 
 import io
+import queue
+import threading
 import zipfile
 from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
+
+from antenna_cad.printed.lattice_mesh import cross_rows
 
 _CONTENT_TYPES = ('<?xml version="1.0" encoding="UTF-8"?>\n'
                   '<Types xmlns="http://schemas.openxmlformats.org/package/2006/content-types">'
@@ -69,6 +73,43 @@ def model_xml(objects: list[dict], metadata: dict[str, str]):
     yield "".join(out)
 
 
+def _ahead(pieces, depth: int = 2):
+    """The pieces of an iterator, made in a thread ``depth`` pieces ahead: the text of the next chunk is
+    formatted while zlib (which releases the GIL) deflates this one; the same pieces in the same order."""
+    box: queue.Queue = queue.Queue(depth)
+    stop = threading.Event()
+    end = object()
+
+    def make():
+        try:
+            for piece in pieces:
+                while not stop.is_set():
+                    try:
+                        box.put((piece, None), timeout=0.1)
+                        break
+                    except queue.Full:
+                        continue
+                if stop.is_set():
+                    return
+            box.put((end, None))
+        except BaseException as exc:            # re-raised in the caller
+            box.put((end, exc))
+
+    worker = threading.Thread(target=make, daemon=True, name="3mf-text")
+    worker.start()
+    try:
+        while True:
+            piece, exc = box.get()
+            if piece is end:
+                if exc is not None:
+                    raise exc
+                return
+            yield piece
+    finally:
+        stop.set()
+        worker.join()
+
+
 def three_mf_bytes(objects: list[dict], metadata: dict[str, str]) -> bytes:
     buf = io.BytesIO()
     with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as z:
@@ -78,15 +119,15 @@ def three_mf_bytes(objects: list[dict], metadata: dict[str, str]) -> bytes:
             info.compress_type = zipfile.ZIP_DEFLATED
             info._compresslevel = DEFLATE_LEVEL            # as ZipFile.open sets it for a member named by a string
             with z.open(info, "w") as member:
-                for text in pieces:
-                    member.write(text.encode("utf-8"))
+                for data in _ahead(text.encode("utf-8") for text in pieces):
+                    member.write(data)
     return buf.getvalue()
 
 
 def stl_bytes(vertices: np.ndarray, faces: np.ndarray, name: str) -> bytes:
     """Binary STL of a triangle mesh (normals from the counter-clockwise winding)."""
     t = np.asarray(vertices, np.float64)[np.asarray(faces, np.int64)]
-    n = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
+    n = cross_rows(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
     length = np.linalg.norm(n, axis=1, keepdims=True)
     n = np.divide(n, length, out=np.zeros_like(n), where=length > 0)
     rec = np.zeros(len(t), dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("attr", "<u2")])

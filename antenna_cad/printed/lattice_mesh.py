@@ -24,9 +24,18 @@ def _others(ax: int) -> tuple[int, int]:
     return (ax + 1) % 3, (ax + 2) % 3
 
 
+def cross_rows(p: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """Row-wise p × q of (n, 3) arrays: the same numbers as ``np.cross``, whose generic path is ~4× slower."""
+    n = np.empty(np.broadcast_shapes(p.shape, q.shape))
+    n[:, 0] = p[:, 1] * q[:, 2] - p[:, 2] * q[:, 1]
+    n[:, 1] = p[:, 2] * q[:, 0] - p[:, 0] * q[:, 2]
+    n[:, 2] = p[:, 0] * q[:, 1] - p[:, 1] * q[:, 0]
+    return n
+
+
 def _orient(tris: np.ndarray, normal: np.ndarray) -> np.ndarray:
     """Flip triangles (n, 3, 3) whose geometric normal points against ``normal`` (n, 3) or (3,)."""
-    n = np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0])
+    n = cross_rows(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0])
     flip = np.einsum("ij,ij->i", n, np.broadcast_to(normal, n.shape)) < 0
     tris[flip] = tris[flip][:, ::-1]
     return tris
@@ -125,5 +134,11 @@ def weld(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     if q.max() >= 1 << WELD_BITS:
         raise ValueError(f"lattice larger than {(1 << WELD_BITS) * WELD_MM / 1000:.1f} m")
     key = (q[:, 0] << 2 * WELD_BITS) | (q[:, 1] << WELD_BITS) | q[:, 2]
-    _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
-    return flat[first], inverse.reshape(-1, 3)
+    order = np.argsort(key, kind="stable")          # np.unique(return_index, return_inverse), without its extra passes
+    sorted_key = key[order]
+    first = np.empty(len(key), bool)
+    first[:1] = True
+    np.not_equal(sorted_key[1:], sorted_key[:-1], out=first[1:])
+    inverse = np.empty(len(key), np.int64)
+    inverse[order] = np.cumsum(first) - 1
+    return flat[order[first]], inverse.reshape(-1, 3)

@@ -22,7 +22,7 @@ from manifold3d import Manifold, Mesh, Mesh64, OpType
 from antenna_cad.printed.fill import FillMap, rod_width_mm
 from antenna_cad.printed.gyroid_mesh import gyroid_lattice
 from antenna_cad.printed.lattice import gyroid_edge_mm
-from antenna_cad.printed.lattice_mesh import lattice_triangles, weld
+from antenna_cad.printed.lattice_mesh import cross_rows, lattice_triangles, weld
 
 MAX_SEGMENTS = 256
 
@@ -80,7 +80,7 @@ class PrintedLens:
 
 def mesh_volume(vertices: np.ndarray, faces: np.ndarray) -> float:
     t = vertices[faces]
-    return float(np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])).sum() / 6.0)
+    return float(np.einsum("ij,ij->i", t[:, 0], cross_rows(t[:, 1], t[:, 2])).sum() / 6.0)
 
 
 def closed_and_oriented(faces: np.ndarray) -> bool:

@@ -83,7 +83,7 @@ def _format(source: str, err: dict) -> str:
         else:
             msg, got = f"must be one of {ctx.get('expected_tags', '?')}", f" (got {_got(ctx.get('tag'))})"
             if key == "method" and ctx.get("tag") == "printed":
-                msg += " (a printed lattice is made for kinds luneburg, graded and mirror_lens so far)"
+                msg += " (a printed lattice is made for kinds luneburg, graded, mirror_lens and collimator so far)"
     return f"{source}: {loc or '<root>'}: {msg}{got}"
 
 

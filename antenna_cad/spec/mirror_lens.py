@@ -14,14 +14,13 @@ inside a solid skin.
 
 from __future__ import annotations
 
-import math
 from typing import Annotated, Literal, Union
 
 from pydantic import Field, model_validator
 
 from antenna_cad.spec.bounds import MIN_DEG, MIN_MM, MIN_RATIO
 from antenna_cad.spec.common import SheetLayupSpec, SolidSpec, SpecBase, StrictModel, resolve_material
-from antenna_cad.spec.printed import PrintedSpec
+from antenna_cad.spec.printed import PrintedSpec, check_material_index
 
 MAX_LAYUP_EPS_R = 2.0       # "foam-like": sheet stock of low-density foams and printed infill
 
@@ -153,16 +152,9 @@ class MirrorLensSpec(SpecBase):
         if isinstance(self.fabrication, PrintedSpec):
             self.fabrication.check_lens(self.material, self.frequency_ghz)
             self.fabrication.check_flat_body("the mirror-lens body")
-            if n is None:
-                raise ValueError("design.refractive_index: required with fabrication.method printed (the body's "
-                                 "index; the lattice is filled so that its εr_eff = n²)")
-            if n * n >= m.eps_r:
-                raise ValueError(f"design.refractive_index: n² = {n * n:.4g} must be below the filament's εr "
-                                 f"{m.eps_r:g} ({m.name}) for a lattice to print it")
+            self.fabrication.check_uniform_index(self.material, n, "the body")
             return self
-        if n is not None and abs(n - math.sqrt(m.eps_r)) > 1e-4:
-            raise ValueError(f"design.refractive_index: {n:g} ≠ √εr = {math.sqrt(m.eps_r):.5g} of material "
-                             f"{m.name!r}; give the material with εr = n² = {n * n:.5g}")
+        check_material_index(m, n)
         if isinstance(self.fabrication, SheetLayupSpec) and m.eps_r > MAX_LAYUP_EPS_R:
             raise ValueError(f"fabrication.method: sheet_layup is for foam-like stock (εr ≤ {MAX_LAYUP_EPS_R:g}); "
                              f"{m.name} has εr {m.eps_r:g}: use method: solid (machined or printed)")

@@ -89,12 +89,31 @@ class PrintedSpec(StrictModel):
         if isinstance(material, str) and material not in FILAMENT_NAMES:
             raise ValueError(f"material: a printed lens needs a filament ({', '.join(FILAMENT_NAMES)}) or an "
                              f"inline material (got {material!r})")
-        eps = material.eps_r if isinstance(material, InlineMaterial) else \
-            next(m.eps_r for m in FILAMENTS if m.name == material)
+        eps, _ = filament_eps(material)
         limit = C_MM_GHZ / frequency_ghz / (4 * math.sqrt(eps))
         if self.cell_mm > limit:
             raise ValueError(f"fabrication.cell_mm: must be ≤ λ/(4·√εr) = {limit:.3g} mm at {frequency_ghz:g} GHz "
                              f"in εr {eps:g} (got {self.cell_mm:g})")
+
+    def check_uniform_index(self, material, n: float | None, what: str) -> None:
+        """A body printed as a uniform cubic lattice at the index ``design.refractive_index`` (the
+        mirror-lens body, the collimator): n given, n² below the filament's εr and at or above the lowest
+        εr_eff the printer makes (the thinnest rod, :class:`Printable`); ValueError naming the field."""
+        from antenna_cad.printed.homogenization import homogenized
+        if self.lattice != "cubic":
+            raise ValueError(f"fabrication.lattice: {what} is printed as the cubic lattice (got {self.lattice})")
+        if n is None:
+            raise ValueError(f"design.refractive_index: required with fabrication.method printed ({what}'s index; "
+                             "the lattice is filled so that its εr_eff = n²)")
+        eps_f, name = filament_eps(material)
+        if n * n >= eps_f:
+            raise ValueError(f"design.refractive_index: n² = {n * n:.4g} must be below the filament's εr "
+                             f"{eps_f:g} ({name}) for a lattice to print it")
+        lowest = float(homogenized("cubic", eps_f).eps_at(
+            Printable("cubic", self.cell_mm, self.wall_mm, self.gap_mm).fill_range[0]))
+        if n * n < lowest:
+            raise ValueError(f"design.refractive_index: n² = {n * n:.4g} must be ≥ {lowest:.4g}, the lowest εr_eff "
+                             f"a {self.cell_mm:g} mm cell of {name} prints (rods ≥ {self.wall_mm:g} mm)")
 
     def check_flat_body(self, what: str) -> None:
         """A body printed along its own axis (the lens between plates, the mirror-lens body): the
@@ -111,3 +130,18 @@ class PrintedSpec(StrictModel):
             whole = max(1, round(cells))
             raise ValueError(f"fabrication.cell_mm: the height between the plates must be a whole number of cells "
                              f"({height_mm:g} mm / {self.cell_mm:g} mm = {cells:.3g}; e.g. {height_mm / whole:.4g} mm)")
+
+
+def filament_eps(material) -> tuple[float, str]:
+    """(εr, name) of a spec's filament: a library name or an inline material."""
+    if isinstance(material, InlineMaterial):
+        return material.eps_r, material.name
+    return next(m.eps_r for m in FILAMENTS if m.name == material), material
+
+
+def check_material_index(material, n: float | None) -> None:
+    """Not printed: ``design.refractive_index``, when given, is a check that it equals √εr of the
+    (resolved) material."""
+    if n is not None and abs(n - math.sqrt(material.eps_r)) > 1e-4:
+        raise ValueError(f"design.refractive_index: {n:g} ≠ √εr = {math.sqrt(material.eps_r):.5g} of material "
+                         f"{material.name!r}; give the material with εr = n² = {n * n:.5g}")

@@ -1,6 +1,7 @@
-"""``fabrication.method: printed`` for the aplanatic mirror-lens (seed-004): the body at the index
-``design.refractive_index`` printed from one filament (``material``) as a uniform cubic lattice whose
-εr_eff = n² (antenna_cad.printed), inside a solid skin that gives the mirror face its smooth surface.
+"""``fabrication.method: printed`` for a body of one index n = ``design.refractive_index`` — the
+aplanatic mirror-lens body (seed-004) and the single-surface collimator (seed-000): printed from one
+filament (``material``) as a uniform cubic lattice whose εr_eff = n² (antenna_cad.printed), inside a
+solid skin that gives the refracting (and mirror) faces their smooth surface.
 
 The fill comes from the shipped unit-cell table; the rods alternate layer by layer between the two
 nearest widths a slicer places, so the body as printed has their mean εr — the GO and full-wave checks trace it at that εr
@@ -22,6 +23,7 @@ from antenna_cad.materials import Material
 from antenna_cad.printed.fill import FillMap, dithered_fill, dithered_widths, eps_of_width, fill_map, rod_width_mm
 from antenna_cad.printed.lattice import Printable
 from antenna_cad.spec.common import resolve_material
+from antenna_cad.spec.printed import PrintedSpec
 from antenna_cad.stages import with_cad
 from antenna_cad.synthesis.checks import Check
 
@@ -60,19 +62,26 @@ def lattice_body(spec) -> LatticeBody:
     return LatticeBody(m, fmap, w, float(f), eps, float(e))
 
 
+def index_material(spec, as_printed: bool = False) -> Material:
+    """The body's dielectric: the spec's material, or when printed the lattice at n² (``as_printed``: at
+    the εr its rods give)."""
+    if not isinstance(spec.fabrication, PrintedSpec):
+        return resolve_material(spec.material)
+    body = lattice_body(spec)
+    return body.material(body.eps_printed if as_printed else body.eps_target)
+
+
 def widths_limits(fab) -> tuple[float, float, float]:
     """(step, thinnest, widest) rod width the printer places."""
     return fab.nozzle_mm * WIDTH_STEP_NOZZLES, fab.wall_mm, fab.cell_mm - fab.gap_mm
 
 
-def envelope(design):
-    """The body's meridian section in the printer's frame: the axis up, z from the body's lowest point."""
+def revolved_envelope(section_mm: np.ndarray):
+    """A body of revolution's meridian section (r, z) (r ≥ 0, closed) as the printed body's envelope."""
     from shapely.geometry import Polygon
 
     from antenna_cad.printed.body import Envelope
-    sec = design.section_mm()
-    z_lo, _ = design.z_range_mm
-    return Envelope("revolved", Polygon(np.column_stack([sec[:, 0], sec[:, 1] - z_lo])).buffer(0))
+    return Envelope("revolved", Polygon(section_mm).buffer(0))
 
 
 def printed_eps_check(body: LatticeBody, tolerance: float) -> Check:
@@ -83,12 +92,13 @@ def printed_eps_check(body: LatticeBody, tolerance: float) -> Check:
                  f"alternated layer by layer) give εr_eff {body.eps_printed:.4f} vs n² = {body.eps_target:.4f} ({err:+.5f})")
 
 
-def fabricate_printed(spec, design) -> PrintedFabPlan:
-    """The body as printed parts (3MF, STL per part), cut list and checks; the mirror coating is the
-    kind's next step (added by the caller)."""
+def fabricate_printed(spec, env, volume_mm3: float, radius_mm: float, step: str) -> PrintedFabPlan:
+    """The body of envelope ``env`` (:func:`revolved_envelope`, ``volume_mm3``, largest radius
+    ``radius_mm``) as printed parts (3MF, STL per part), cut list and checks; ``step``: how it is
+    printed (the cut list's process step)."""
     fab = spec.fabrication
     body = lattice_body(spec)
-    too_many = LIMITS["cells"].check(round(design.volume_mm3() / fab.cell_mm**3))
+    too_many = LIMITS["cells"].check(round(volume_mm3 / fab.cell_mm**3))
     checks = (printed_eps_check(body, spec.tolerances.eps_r_tolerance),)
     if not with_cad():
         return PrintedFabPlan((), {}, {}, (), (), {}, {}, 0.0, {}, {}, fill=body.fmap, material=body.filament,
@@ -96,7 +106,6 @@ def fabricate_printed(spec, design) -> PrintedFabPlan:
     from antenna_cad.printed.body import body_cells, build_lattice_body, reference_volume_mm3
     from antenna_cad.printed.parts import segments
     tol = spec.outputs.mesh_tolerance_mm
-    env = envelope(design)
     idx, centre, inner = body_cells(env, fab.cell_mm, fab.skin_mm, tol)
     ref = reference_volume_mm3(env, lambda u, w: np.full(np.shape(u), body.fill), fab.skin_mm,
                                fab.cell_mm * REFERENCE_STEP_CELLS)
@@ -104,10 +113,9 @@ def fabricate_printed(spec, design) -> PrintedFabPlan:
     widths, _ = dithered_widths(np.full(len(idx), body.width_mm), idx[:, 2], *widths_limits(fab), eps)
     lens = build_lattice_body(env, idx, centre, inner, widths, fab.cell_mm,
                               skin_mm=fab.skin_mm, bed_mm=(fab.bed.x_mm, fab.bed.y_mm, fab.bed.z_mm), tolerance_mm=tol,
-                              segments=segments(design.body_radius_mm, tol), reference_volume_mm3=ref)
-    plan = package(spec, body.filament, body.fmap, lens, too_many, checks + (registration_check(fab, lens),),
-                   step="print with the axis up, the front face on the bed")
-    return plan
+                              segments=segments(radius_mm, tol), reference_volume_mm3=ref)
+    return package(spec, body.filament, body.fmap, lens, too_many, checks + (registration_check(fab, lens),),
+                   step=step)
 
 
 def summary_figures(spec) -> dict[str, float]:

@@ -3,6 +3,8 @@ view and one template picture per recipe in docs/gallery/ (small PNGs, committed
 
     python docs/gen_gallery.py [RECIPE ...] [--work DIR]
 
+Named recipes are rebuilt and their sections replaced (or added) in the existing page.
+
 The assembly view is the one embedded in each build's report.html; the template picture is the first
 1:1 drawing (DXF) drawn by ezdxf; the key figures are the manifest's. A recipe that fails to build gets
 a row saying so. Run from the repository root; the builds go to a temporary folder.
@@ -50,8 +52,11 @@ def main() -> None:
         _save_view(result.out_dir / "report.html", DOCS / "gallery" / f"{r.name}.png")
         drawn = _save_template(result.out_dir, DOCS / "gallery" / f"{r.name}-template.png")
         entries.append((r, result, drawn))
-    if not args.recipes:
-        (DOCS / "gallery.md").write_text(_page(entries), encoding="utf-8")
+    page = DOCS / "gallery.md"
+    if args.recipes and page.is_file():         # only the named recipes rebuilt: the others' sections kept
+        page.write_text(_merged(page.read_text(encoding="utf-8"), entries, api.recipes()), encoding="utf-8")
+    else:
+        page.write_text(_page(entries), encoding="utf-8")
 
 
 def _save_view(report: Path, target: Path) -> None:
@@ -124,6 +129,17 @@ def _page(entries) -> str:
         lines += ["", f"Checks: {counts['pass']} pass, {counts['warn']} warn, {counts['fail']} fail; "
                       f"{len(result.parts)} parts, {len(result.files)} files.", ""]
     return "\n".join(lines)
+
+
+def _merged(old_page: str, entries, recipes) -> str:
+    """The gallery page with the rebuilt recipes' sections replaced or inserted, in the recipes' order."""
+    sections = {}
+    for block in re.split(r"^(?=## )", old_page, flags=re.M)[1:]:
+        sections[block.split("\n", 1)[0][3:].strip()] = block.rstrip("\n") + "\n"
+    for entry in entries:
+        sections[entry[0].name] = "## " + _page([entry]).split("\n## ", 1)[1].rstrip("\n") + "\n"
+    header = _page([]).rstrip("\n") + "\n"
+    return "\n".join([header] + [sections[r.name] for r in recipes if r.name in sections])
 
 
 if __name__ == "__main__":

@@ -8,12 +8,13 @@ import numpy as np
 import pytest
 from shapely.geometry import Polygon
 
-from antenna_cad.printed.body import Envelope, body_cells, build_lattice_body, reference_volume_mm3
+from antenna_cad.printed.body import (Envelope, bed_planes, body_cells, body_pins, build_lattice_body, lattice_origin,
+                                     reference_volume_mm3)
 from antenna_cad.printed.export3mf import three_mf_bytes
 from antenna_cad.printed.fill import dithered_fill, dithered_widths
 from antenna_cad.printed.homogenization import homogenized
 from antenna_cad.printed.lattice import fill_fraction
-from antenna_cad.printed.parts import closed_and_oriented, mesh_volume
+from antenna_cad.printed.parts import Pins, closed_and_oriented, mesh_volume
 from antenna_cad.spec import SpecError, load_spec, parse_spec
 
 A, SKIN = 3.0, 1.2
@@ -37,11 +38,22 @@ def _fill(env):
     return lambda u, w: fill_fraction("cubic", np.round(1.0 + 0.02 * np.abs(w), 1) / A)
 
 
-def _build(env, bed=200.0):
+def _build(env, bed=200.0, pins=None):
     idx, centre, inner = body_cells(env, A, SKIN, 0.02)
     ref = reference_volume_mm3(env, _fill(env), SKIN, 0.1)
     return build_lattice_body(env, idx, centre, inner, _width(centre, env), A, skin_mm=SKIN, bed_mm=(bed, bed, 300.0),
-                              tolerance_mm=0.02, segments=96, reference_volume_mm3=ref), inner
+                              tolerance_mm=0.02, segments=96, reference_volume_mm3=ref, pins=pins), inner
+
+
+def _winding(vertices, faces, points):
+    """Generalized winding number of a closed mesh at ``points`` (n, 3): 1 inside, 0 outside (Van
+    Oosterom and Strackee's solid angle of each triangle)."""
+    a, b, c = (vertices[faces[:, k]][None] - points[:, None] for k in range(3))
+    la, lb, lc = (np.linalg.norm(x, axis=2) for x in (a, b, c))
+    dot = lambda x, y: np.einsum("pfi,pfi->pf", x, y)
+    num = dot(a, np.cross(b, c))
+    den = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb
+    return np.arctan2(num, den).sum(axis=1) / (2 * np.pi)
 
 
 @pytest.mark.parametrize("make", [_revolved, _extruded])
@@ -61,6 +73,41 @@ def test_bed_cuts_lie_on_cell_faces_and_every_part_is_closed():
     assert all(s <= 40.0 + 2 * A for p in lens.parts for s in p.size_mm[:2])
     whole, _ = _build(_extruded())
     assert sum(p.volume_mm3 for p in lens.parts) == pytest.approx(whole.body_volume_mm3, rel=1e-6)
+
+
+@pytest.mark.parametrize("make", [_revolved, _extruded])
+def test_bed_cuts_of_a_body_are_registered_by_pins_in_blind_holes_of_solid_bosses(make):
+    env, pins = make(), Pins(4.0, 12.0, 0.2, 0.8)
+    if env.kind == "extruded":
+        env = Envelope("extruded", env.section, 18.0)       # tall enough for a Ø5.8 mm boss 1 mm off the plates
+    lens, _ = _build(env, bed=40.0, pins=pins)
+    plain, _ = _build(env, bed=40.0)
+    lens_parts = [p for p in lens.parts if p.role == "lens"]
+    assert lens.cuts == 2 and lens.unpinned_cuts == 0 and lens.pins == 4 and len(lens_parts) == 4
+    assert lens.parts[-1].role == "pin" and lens.parts[-1].count == 4
+    assert all(closed_and_oriented(p.faces) for p in lens.parts)
+    o = lattice_origin(env, A)
+    u0, w0, u1, w1 = env.full.bounds
+    ext = ((-u1, u1), (-u1, u1)) if env.kind == "revolved" else ((u0, u1), (w0, w1))
+    planes = {k: bed_planes(ext[k], 40.0, A, o[k]) for k in (0, 1)}
+    *_, sites, _ = body_pins(env, planes, pins, SKIN, 0.02)
+    assert len(sites) == 4
+    probes, inside = [], []
+    for axis, c, u, z in sites:
+        e = np.eye(3)[axis]
+        at = np.array([c, u, z]) if axis == 0 else np.array([u, c, z])
+        side = np.eye(3)[1 - axis] * (pins.hole_radius + pins.wall_mm / 2)
+        for s in (-1, 1):
+            probes += [at + s * e * pins.depth / 2, at + s * e * (pins.depth + pins.wall_mm / 2),
+                       at + s * e * pins.depth / 2 + side]
+            inside += [0, 1, 1]                          # the hole, the boss's end, the boss's wall
+    probes = np.array(probes)
+    total = sum(_winding(p.vertices + np.array(p.offset_mm), p.faces, probes) for p in lens_parts)
+    assert np.allclose(total, inside, atol=1e-6)        # each probe in exactly one part, or in none
+    added = lens.body_volume_mm3 - plain.body_volume_mm3  # bosses' solid less the lattice they replace, less holes
+    boss = np.pi * pins.boss_radius**2 * 2 * (pins.depth + pins.wall_mm)
+    hole = np.pi * pins.hole_radius**2 * 2 * pins.depth
+    assert -4 * hole < added < 4 * (boss - hole)
 
 
 def test_inner_cells_lie_inside_the_skin_and_boundary_cells_reach_the_trim():

@@ -53,7 +53,8 @@ def small_plan():
 def test_the_printed_lens_is_closed_parts_of_the_fill_volume(small_plan):
     spec, design, plan = small_plan
     lens = plan.lens
-    assert len(lens.parts) == 2 and lens.cuts == 1                  # a 60 mm bed across a Ø100 mm lens
+    assert [p.role for p in lens.parts] == ["lens", "lens", "pin"]  # a 60 mm bed across a Ø100 mm lens
+    assert lens.cuts == 1 and lens.pins == lens.parts[2].count == 2 and lens.unpinned_cuts == 0
     assert all(closed_and_oriented(p.faces) for p in lens.parts)
     total = sum(mesh_volume(p.vertices, p.faces) for p in lens.parts)
     assert abs(total / lens.reference_volume_mm3 - 1) < VOLUME_TOLERANCE

@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from antenna_cad.kinds.printed_package import (WIDTH_STEP_NOZZLES, PrintedFabPlan, fill_checks, package,
-                                              registration_check)
+                                              registration_pins)
 from antenna_cad.limits import LIMITS
 from antenna_cad.printed.fill import FillMap, dithered_fill, dithered_widths, eps_of_width, fill_map, rod_width_mm
 from antenna_cad.printed.lattice import Printable, fill_fraction
@@ -87,8 +87,8 @@ def fabricate_printed(spec, design) -> PrintedFabPlan:
     lens = build_lattice_body(env, idx, centre, inner, row_widths(spec, fmap, centre[:, 1], idx[:, 0]), a,
                               skin_mm=fab.skin_mm,
                               bed_mm=(fab.bed.x_mm, fab.bed.y_mm, fab.bed.z_mm), tolerance_mm=tol, segments=0,
-                              reference_volume_mm3=ref)
-    return package(spec, m, fmap, lens, too_many, (registration_check(fab, lens),),
+                              reference_volume_mm3=ref, pins=registration_pins(fab))
+    return package(spec, m, fmap, lens, too_many, (),
                    step="print on a plate face (the lens axis on the bed)")
 
 

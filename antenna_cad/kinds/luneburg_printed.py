@@ -12,7 +12,8 @@ import math
 
 import numpy as np
 
-from antenna_cad.kinds.printed_package import WIDTH_STEP_NOZZLES, PrintedFabPlan, fill_checks, package
+from antenna_cad.kinds.printed_package import (WIDTH_STEP_NOZZLES, PrintedFabPlan, fill_checks, package,
+                                              registration_pins)
 from antenna_cad.limits import LIMITS
 from antenna_cad.materials import Material
 from antenna_cad.printed.fill import FillMap, fill_integral_mm3, fill_map
@@ -72,12 +73,10 @@ def fabricate_printed(spec, design) -> PrintedFabPlan:
     if not with_cad():          # the CAD-free validate: the limits and the fill, not the lattice's mesh
         checks = too_many + fill_checks(spec, fab, m, fmap)
         return PrintedFabPlan((), {}, {}, (), (), {}, {}, 0.0, {}, {}, fill=fmap, material=m, check_list=tuple(checks))
-    from antenna_cad.printed.parts import Pins, build_printed_lens
-    pins = None if fab.registration is None else Pins(fab.registration.diameter_mm, fab.registration.length_mm,
-                                                      fab.registration.clearance_mm, fab.wall_mm)
+    from antenna_cad.printed.parts import build_printed_lens
     lens = build_printed_lens(shape, R, design.height_mm, fmap, skin_mm=skin, wall_mm=fab.wall_mm, gap_mm=fab.gap_mm,
                               width_step_mm=fab.nozzle_mm * WIDTH_STEP_NOZZLES,
-                              bed_mm=(fab.bed.x_mm, fab.bed.y_mm, fab.bed.z_mm), pins=pins,
+                              bed_mm=(fab.bed.x_mm, fab.bed.y_mm, fab.bed.z_mm), pins=registration_pins(fab),
                               tolerance_mm=spec.outputs.mesh_tolerance_mm, reference_volume_mm3=ref)
     return package(spec, m, fmap, lens, too_many)
 

@@ -122,6 +122,10 @@ def _mesh_checks(fab, lens, closed) -> list[Check]:
     out.append(Check.upper("printed_volume", abs(rel), VOLUME_TOLERANCE, "",
                            f"meshed lattice + skin {lens.body_volume_mm3 / 1000:.1f} cm³ vs analytic ∫fill dV + skin "
                            f"{lens.reference_volume_mm3 / 1000:.1f} cm³ ({rel:+.2%})"))
+    if fab.registration is None and lens.cuts:
+        out.append(Check("printed_registration", "warn", float(lens.cuts), 0.0, "cuts",
+                         f"{lens.cuts} bed cuts and no registration pins (fabrication.registration: null): align "
+                         "and bond the parts on a flat plate (a jig)"))
     if fab.registration is not None and lens.unpinned_cuts:
         out.append(Check("printed_registration", "warn", float(lens.unpinned_cuts), 0.0, "cuts",
                          f"{lens.unpinned_cuts} bed cuts leave no room for a Ø{fab.registration.diameter_mm:g} mm pin "
@@ -134,14 +138,11 @@ def _mesh_checks(fab, lens, closed) -> list[Check]:
     return out
 
 
-def registration_check(fab, lens) -> Check:
-    """Pins are made for the Luneburg lens's cuts; a body split to the bed here is aligned by hand."""
-    if not lens.cuts:
-        return Check("printed_registration", "pass", 0.0, 0.0, "cuts", "one part: nothing to align")
-    return Check("printed_registration", "warn", float(lens.cuts), 0.0, "cuts",
-                 f"{lens.cuts} bed cuts (on cell faces): registration pins are made for the Luneburg lens only; "
-                 "align and bond these parts on a flat plate (a jig)" +
-                 ("" if fab.registration is None else "; fabrication.registration is not used here"))
+def registration_pins(fab):
+    """The spec's registration pins (bosses one min wall thick), or None: align by hand."""
+    from antenna_cad.printed.parts import Pins
+    r = fab.registration
+    return None if r is None else Pins(r.diameter_mm, r.length_mm, r.clearance_mm, fab.wall_mm)
 
 
 def _slicer_check(fab: PrintedSpec, three_mf: bytes, plate_mm3: float, area_mm2: float) -> tuple[Check, dict]:

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from antenna_cad.kinds.printed_package import (WIDTH_STEP_NOZZLES, PrintedFabPlan, fill_checks, package,
-                                              registration_check)
+                                              registration_pins)
 from antenna_cad.limits import LIMITS
 from antenna_cad.materials import Material
 from antenna_cad.printed.fill import FillMap, dithered_fill, dithered_widths, eps_of_width, fill_map, rod_width_mm
@@ -113,9 +113,8 @@ def fabricate_printed(spec, env, volume_mm3: float, radius_mm: float, step: str)
     widths, _ = dithered_widths(np.full(len(idx), body.width_mm), idx[:, 2], *widths_limits(fab), eps)
     lens = build_lattice_body(env, idx, centre, inner, widths, fab.cell_mm,
                               skin_mm=fab.skin_mm, bed_mm=(fab.bed.x_mm, fab.bed.y_mm, fab.bed.z_mm), tolerance_mm=tol,
-                              segments=segments(radius_mm, tol), reference_volume_mm3=ref)
-    return package(spec, body.filament, body.fmap, lens, too_many, checks + (registration_check(fab, lens),),
-                   step=step)
+                              segments=segments(radius_mm, tol), reference_volume_mm3=ref, pins=registration_pins(fab))
+    return package(spec, body.filament, body.fmap, lens, too_many, checks, step=step)
 
 
 def summary_figures(spec) -> dict[str, float]:

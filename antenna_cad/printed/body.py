@@ -19,11 +19,13 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
-from manifold3d import CrossSection, Manifold
+from manifold3d import CrossSection, Manifold, OpType
 from shapely.geometry import Polygon, box
 
 from antenna_cad.printed.lattice_mesh import WELD_BITS, WELD_MM, _square, cross_rows, lattice_triangles, weld
-from antenna_cad.printed.parts import PrintedLens, PrintedPart, mesh_arrays, to_manifold
+from antenna_cad.printed.parts import (Pins, PrintedLens, PrintedPart, cut_pin_points, cut_pin_solids, mesh_arrays,
+                                      pin_part, to_manifold)
+from antenna_cad.printed.parts import segments as circle_segments
 
 _DIRS = np.array([(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)], np.int64)
 
@@ -245,15 +247,18 @@ def _join(grid_tris: np.ndarray, ov: np.ndarray, of: np.ndarray) -> tuple[np.nda
     return v[used], (np.cumsum(used) - 1)[f]
 
 
-def _part(index, width_mm, inn, bnd, a, origin, trim: Manifold, shell: Manifold | None):
+def _part(index, width_mm, inn, bnd, a, origin, trim: Manifold, shell: Manifold | None, pins: tuple | None):
     """(vertices, faces, lattice triangles before trimming) of one part: its inner cells meshed, its
-    boundary cells trimmed and joined to its piece of skin, the two welded on their shared faces."""
+    boundary cells trimmed and joined to its piece of skin and its halves of the pin bosses (``pins``:
+    bosses, holes), the pin holes drilled, the two welded on their shared faces."""
     tris_in = lattice_triangles(index[inn], width_mm[inn], a) + origin if inn.any() else np.zeros((0, 3, 3))
     tris_bd = lattice_triangles(index[bnd], width_mm[bnd], a) + origin if bnd.any() else np.zeros((0, 3, 3))
     made = len(tris_in) + len(tris_bd)
     piece = to_manifold(*weld(tris_bd), double=True) ^ trim if len(tris_bd) else Manifold()
     if shell is not None:
         piece = piece + shell
+    if pins is not None:
+        piece = (piece + pins[0]) - pins[1]
     pp, qq = _seam_pairs(index, np.nonzero(inn)[0], np.nonzero(bnd)[0])
     ov, of = mesh_arrays(piece, double=True) if not piece.is_empty() else (np.zeros((0, 3)), np.zeros((0, 3), np.int64))
     rings = np.zeros((0, 3, 3))
@@ -279,11 +284,63 @@ def bed_planes(extent: tuple[float, float], bed: float, a: float, origin: float)
     return [origin + (round((lo + (hi - lo) * q / count - origin) / a - 0.5) + 0.5) * a for q in range(1, count)]
 
 
+def _boss_fits(env: Envelope, inside: Polygon, axis: int, c: float, span: float, radius: float,
+               z_range: tuple[float, float]):
+    """``fits(u, z)``: a boss of ``radius`` along ``axis`` from c − span to c + span, centred at (u, z) on
+    the cut plane, lies inside ``inside`` (a section) and the height ``z_range`` (sampled on its surface)."""
+    t, th = np.meshgrid(np.linspace(-span, span, 5), np.linspace(0.0, 2 * math.pi, 16, endpoint=False))
+    ring = np.stack([t.ravel(), radius * np.cos(th.ravel()), radius * np.sin(th.ravel())], 1)
+    shapely.prepare(inside)
+
+    def fits(u: float, z: float) -> bool:
+        p = np.zeros_like(ring)
+        p[:, axis], p[:, 1 - axis], p[:, 2] = c + ring[:, 0], u + ring[:, 1], z + ring[:, 2]
+        su, sw = env.coords(p)
+        return bool(z_range[0] <= p[:, 2].min() and p[:, 2].max() <= z_range[1] and shapely.contains_xy(inside, su, sw).all())
+    return fits
+
+
+def body_pins(env: Envelope, planes: dict, pins: Pins, skin_mm: float, tolerance_mm: float):
+    """(bosses, holes, [(axis, c, u, z) per pin], cuts without room for a pin): two pins across every
+    bed cut, each boss 1 mm clear of the skin's inner surface (and of a plate of an extruded body)."""
+    u0, w0, u1, w1 = env.full.bounds
+    rb, span = pins.boss_radius, pins.depth + pins.wall_mm
+    inside = env.polygon(-skin_mm - 1.0, tolerance_mm)
+    u_range = (-u1, u1) if env.kind == "revolved" else None
+    z_range = (w0, w1) if env.kind == "revolved" else (1.0, env.height_mm - 1.0)
+    n = circle_segments(rb, tolerance_mm)
+    bosses, holes, where, unpinned = [], [], [], 0
+    for axis in (0, 1):
+        for c in planes[axis]:
+            span_u = u_range or ((u0, u1), (w0, w1))[1 - axis]
+            points = cut_pin_points(axis, c, planes, pins, span_u, z_range,
+                                    _boss_fits(env, inside, axis, c, span, rb, z_range))
+            unpinned += not points
+            b, h = cut_pin_solids(axis, c, points, pins, n)
+            bosses += b
+            holes += h
+            where += [(axis, c, u, z) for u, z in points]
+    return bosses, holes, where, unpinned
+
+
+def _cells_near_pins(centre: np.ndarray, where, pins: Pins, a: float) -> np.ndarray:
+    """Cells whose cube comes within a quarter cell of a pin boss's box: they pass through the
+    boolean with the boss, so no boss surface lies on a face between them and the inner cells."""
+    near = np.zeros(len(centre), bool)
+    reach = np.array([pins.depth + pins.wall_mm, pins.boss_radius, pins.boss_radius]) + a / 4 + a / 2
+    for axis, c, u, z in where:
+        at = np.array([c, u, z]) if axis == 0 else np.array([u, c, z])
+        half = reach if axis == 0 else reach[[1, 0, 2]]
+        near |= np.all(np.abs(centre - at) < half, axis=1)
+    return near
+
+
 def build_lattice_body(env: Envelope, index: np.ndarray, centre: np.ndarray, inner: np.ndarray, width_mm: np.ndarray,
                        cell_mm: float, *, skin_mm: float, bed_mm: tuple[float, float, float], tolerance_mm: float,
-                       segments: int, reference_volume_mm3: float) -> PrintedLens:
+                       segments: int, reference_volume_mm3: float, pins: Pins | None = None) -> PrintedLens:
     """The printable parts of the body: cells ``index`` (centres ``centre``, ``inner`` as from
-    :func:`body_cells`) with rod widths ``width_mm``; parts on the bed, sorted by position."""
+    :func:`body_cells`) with rod widths ``width_mm``; parts on the bed, sorted by position, registered
+    by ``pins`` across every bed cut (two a cut where the body has room; printed as a part of their own)."""
     a = cell_mm
     origin = lattice_origin(env, a)
     full = env.full
@@ -298,6 +355,15 @@ def build_lattice_body(env: Envelope, index: np.ndarray, centre: np.ndarray, inn
                          "(horizontal cuts are not made)")
     trim = env.solid(-skin_mm / 2, segments, tolerance_mm)
     shell = env.solid(0.0, segments, tolerance_mm) - env.solid(-skin_mm, segments, tolerance_mm) if skin_mm > 0 else None
+    bosses = holes = None
+    pin_count = unpinned = 0
+    if pins is not None and (planes[0] or planes[1]):
+        boss_list, hole_list, where, unpinned = body_pins(env, planes, pins, skin_mm, tolerance_mm)
+        pin_count = len(where)
+        if where:
+            bosses = Manifold.batch_boolean(boss_list, OpType.Add)
+            holes = Manifold.batch_boolean(hole_list, OpType.Add)
+            inner = inner & ~_cells_near_pins(centre, where, pins, a)
     region = _region_of(centre, planes)
     xs, ys = [-1e6] + planes[0] + [1e6], [-1e6] + planes[1] + [1e6]
     meshes, tri_count = [], 0
@@ -308,12 +374,15 @@ def build_lattice_body(env: Envelope, index: np.ndarray, centre: np.ndarray, inn
                 continue
             cut = Manifold.cube([xs[r + 1] - xs[r], ys[q + 1] - ys[q], 4e6]).translate([xs[r], ys[q], -2e6])
             v, f, made = _part(index, width_mm, mine & inner, mine & ~inner, a, origin, trim,
-                               None if shell is None else shell ^ cut)
+                               None if shell is None else shell ^ cut, None if bosses is None else (bosses ^ cut, holes))
             tri_count += made
             if len(f):
                 meshes.append((v, f))
     meshes.sort(key=lambda vf: tuple(np.round(np.r_[vf[0].min(axis=0), vf[0].max(axis=0)], 6)))
-    out = tuple(PrintedPart(f"lens-{n + 1:02d}" if len(meshes) > 1 else "lens", "lens", 1, v - v.min(axis=0), f)
-                for n, (v, f) in enumerate(meshes))
+    out = tuple(PrintedPart(f"lens-{n + 1:02d}" if len(meshes) > 1 else "lens", "lens", 1, v - v.min(axis=0), f,
+                            tuple(float(x) for x in v.min(axis=0))) for n, (v, f) in enumerate(meshes))
     cuts = len(planes[0]) + len(planes[1])
-    return PrintedLens(out, len(index), tri_count, sum(p.volume_mm3 for p in out), reference_volume_mm3, 0, cuts, 0)
+    volume = sum(p.volume_mm3 for p in out)
+    if pin_count:
+        out += (pin_part(pins, pin_count, tolerance_mm),)
+    return PrintedLens(out, len(index), tri_count, volume, reference_volume_mm3, pin_count, cuts, unpinned)

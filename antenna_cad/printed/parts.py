@@ -55,6 +55,7 @@ class PrintedPart:
     count: int                  # copies to print
     vertices: np.ndarray        # placed on the bed: bounding box from the origin
     faces: np.ndarray
+    offset_mm: tuple[float, float, float] = (0.0, 0.0, 0.0)   # vertices + offset_mm: the part in the lens frame
 
     @property
     def size_mm(self) -> tuple[float, float, float]:
@@ -71,7 +72,8 @@ class PrintedLens:
     parts: tuple[PrintedPart, ...]
     cells: int                  # lattice cells (all copies)
     lattice_triangles: int      # before trimming (all copies)
-    body_volume_mm3: float      # lattice + skin, before pins (all copies)
+    body_volume_mm3: float      # lattice + skin (all copies); a sphere's before its pins, a body's with its
+                                # pin bosses and holes (a few mm³ a pin: the boss's solid less its lattice and hole)
     reference_volume_mm3: float  # ∫ fill dV + skin, analytic
     pins: int                   # pins across all cuts
     cuts: int                   # bed cuts (besides a sphere's equator)
@@ -168,28 +170,40 @@ def _bed_planes(extent: float, bed: float, lo: float) -> list[float]:
     return [lo + extent * q / count for q in range(1, count)]
 
 
-def _vertical_pin_points(axis: int, c: float, planes: dict, r_in: float, zmax: float, pins: Pins,
-                         shape: str) -> list[tuple[float, float]]:
-    """Two pin positions (along the other horizontal axis, z) on the cut plane x_axis = c, inside the
-    inner body and clear of the other cuts: the farthest-apart pair of a grid of candidates."""
-    other = 1 - axis
+def cut_pin_points(axis: int, c: float, planes: dict, pins: Pins, u_range: tuple[float, float],
+                   z_range: tuple[float, float], fits) -> list[tuple[float, float]]:
+    """Two pin positions (u along the other horizontal axis, z) on the cut plane x_axis = c where
+    ``fits(u, z)`` holds, clear of the other cuts: the farthest-apart pair of a grid of candidates."""
     rb = pins.boss_radius
-    grid = np.arange(-r_in, r_in, rb)
-    zs = np.arange(rb + 1, zmax - rb, rb)
-    cand = []
-    for u in grid:
-        if any(abs(u - q) < rb + pins.depth for q in planes[other]):
-            continue
-        for z in zs:
-            rho = math.sqrt(c * c + u * u + (z * z if shape == "sphere" else 0.0))
-            if rho < r_in - rb - 1:
-                cand.append((u, z))
+    cand = [(u, z) for u in np.arange(*u_range, rb) if all(abs(u - q) >= rb + pins.depth for q in planes[1 - axis])
+            for z in np.arange(*z_range, rb) if fits(u, z)]
     if len(cand) < 2:
         return cand
     p = np.array(cand)
     d = np.linalg.norm(p[:, None] - p[None], axis=2)
     a, b = np.unravel_index(np.argmax(d), d.shape)
     return [tuple(p[a]), tuple(p[b])]
+
+
+def cut_pin_solids(axis: int, c: float, points, pins: Pins, n: int) -> tuple[list, list]:
+    """(bosses, holes) of the pins at ``points`` (u, z) across the cut plane x_axis = c: a solid boss
+    one wall around each blind hole, the hole half a pin deep (and 0.5 mm to spare) on each side."""
+    span = pins.depth + pins.wall_mm
+    rot = [0.0, 0.0, 0.0] if axis == 0 else [0.0, 0.0, 90.0]
+    bosses, holes = [], []
+    for u, z in points:
+        at = [0.0, 0.0, z]
+        at[axis], at[1 - axis] = c, u
+        bosses.append(_cylinder_along(0, pins.boss_radius, -span, span, n).rotate(rot).translate(at))
+        holes.append(_cylinder_along(0, pins.hole_radius, -pins.depth, pins.depth, n).rotate(rot).translate(at))
+    return bosses, holes
+
+
+def pin_part(pins: Pins, count: int, tolerance_mm: float) -> PrintedPart:
+    """The registration pin, printed ``count`` times."""
+    pv, pf = mesh_arrays(_cylinder_along(2, pins.diameter_mm / 2, 0.0, pins.length_mm,
+                                         segments(pins.diameter_mm / 2, tolerance_mm)))
+    return PrintedPart("pin", "pin", count, pv - pv.min(axis=0), pf)
 
 
 def _pin_solids(shape: str, pins: Pins, planes: dict, r_in: float, height: float, copies: int,
@@ -199,26 +213,24 @@ def _pin_solids(shape: str, pins: Pins, planes: dict, r_in: float, height: float
     bosses, holes = [], []
     count = unpinned = 0
     pn = segments(pins.boss_radius, tolerance_mm)
+    rb = pins.boss_radius
     if shape == "sphere":
-        rho = r_in - pins.boss_radius
+        rho = r_in - rb
         for q in range(3):
             t = 2 * math.pi * q / 3
             at = [rho * math.cos(t), rho * math.sin(t), 0.0]
-            bosses.append(_cylinder_along(2, pins.boss_radius, 0.0, pins.depth + pins.wall_mm, pn).translate(at))
+            bosses.append(_cylinder_along(2, rb, 0.0, pins.depth + pins.wall_mm, pn).translate(at))
             holes.append(_cylinder_along(2, pins.hole_radius, -1.0, pins.depth, pn).translate(at))
         count += 3
-    span = pins.depth + pins.wall_mm
     for axis in (0, 1):
-        rot = [0.0, 0.0, 0.0] if axis == 0 else [0.0, 0.0, 90.0]
         for c in planes[axis]:
-            points = _vertical_pin_points(axis, c, planes, r_in, height, pins, shape)
+            fits = lambda u, z: math.sqrt(c * c + u * u + (z * z if shape == "sphere" else 0.0)) < r_in - rb - 1
+            points = cut_pin_points(axis, c, planes, pins, (-r_in, r_in), (rb + 1, height - rb), fits)
             unpinned += not points
-            for u, z in points:
-                at = [0.0, 0.0, z]
-                at[axis], at[1 - axis] = c, u
-                bosses.append(_cylinder_along(0, pins.boss_radius, -span, span, pn).rotate(rot).translate(at))
-                holes.append(_cylinder_along(0, pins.hole_radius, -pins.depth, pins.depth, pn).rotate(rot).translate(at))
-                count += copies
+            b, h = cut_pin_solids(axis, c, points, pins, pn)
+            bosses += b
+            holes += h
+            count += copies * len(points)
     return bosses, holes, count, unpinned
 
 
@@ -277,11 +289,10 @@ def build_printed_lens(shape: str, radius_mm: float, height_mm: float | None, fm
         pv, pf = mesh_arrays(pieces[q])
         pieces[q] = None                                          # one copy of each part at a time
         label = f"lens-{q + 1:02d}" if len(pieces) > 1 or shape == "sphere" else "lens"
-        parts.append(PrintedPart(label, "lens", copies, pv - pv.min(axis=0), pf))
+        lo = pv.min(axis=0)
+        parts.append(PrintedPart(label, "lens", copies, pv - lo, pf, tuple(float(x) for x in lo)))
     if pin_count:
-        pv, pf = mesh_arrays(_cylinder_along(2, pins.diameter_mm / 2, 0.0, pins.length_mm,
-                                         segments(pins.diameter_mm / 2, tolerance_mm)))
-        parts.append(PrintedPart("pin", "pin", pin_count, pv - pv.min(axis=0), pf))
+        parts.append(pin_part(pins, pin_count, tolerance_mm))
     return PrintedLens(tuple(parts), cells * copies, triangles * copies, body_volume, reference_volume_mm3,
                        pin_count, len(planes[0]) + len(planes[1]), unpinned)
 

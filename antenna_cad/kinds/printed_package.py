@@ -61,11 +61,12 @@ def package(spec, m: Material, fmap: FillMap, lens, too_many: list, extra_checks
         objects.append({"name": part.label, "vertices": part.vertices, "faces": part.faces,
                         "metadata": {"copies": str(part.count), "role": part.role, "volume_mm3": f"{vol:.1f}"}})
         x, y, z = part.size_mm
+        how = step if part.role == "lens" else "print standing on an end (a registration pin, half in each part of a cut)"
         for c in range(part.count):
             order += 1
             rows.append(CutRow(f"{part.label}-{c + 1}" if part.count > 1 else part.label, f"printed-{part.role}",
                                m.name, "", 0.0, 0.0, False, x, y, z, 0.0, mass, order,
-                               f"{step}; {vol / 1000:.1f} cm³, filament {vol / area / 1000:.2f} m, "
+                               f"{how}; {vol / 1000:.1f} cm³, filament {vol / area / 1000:.2f} m, "
                                f"~{hours:.1f} h at {fab.flow_mm3_s:g} mm³/s; file printed/{part.label}.stl"))
     files[f"printed/{spec.name}.3mf"] = three_mf_bytes(objects, {"Title": spec.name, "Designer": "make-lens"} |
                                                        {f"make-lens:{k}": v for k, v in settings.items()})

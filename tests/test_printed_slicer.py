@@ -1,8 +1,10 @@
 """Slicer check of printed lenses: the G-code comment parser and extrusion reader on known text, the
 check's skip without a slicer, and (PrusaSlicer on the PATH) a small printed sphere's 3MF sliced solid,
-its layers and filament against the build's own volume."""
+its layers and filament against the build's own volume; a slicer past its time limit is stopped."""
 
+import os
 import shutil
+import time
 
 import pytest
 
@@ -28,10 +30,10 @@ G1 X5 Y5 E-0.8 ; retract while moving: not an extrusion
 """
 
 
-def _small_sphere(diameter_mm: float, slicer_check: bool):
+def _small_sphere(diameter_mm: float, slicer_check: bool, **fabrication):
     data = load_spec(RECIPE).model_dump(mode="json")
     data["design"]["diameter_mm"] = diameter_mm
-    data["fabrication"]["slicer_check"] = slicer_check
+    data["fabrication"] |= {"slicer_check": slicer_check} | fabrication
     spec = parse_spec(data)
     return fabricate(spec, synthesize(spec), None, ())
 
@@ -66,6 +68,19 @@ def test_slicer_check_skips_when_off_or_missing(monkeypatch):
     monkeypatch.setenv("PATH", "/nonexistent")
     check = _check(_small_sphere(30.0, True))
     assert check.status == "skip" and "not on the PATH" in check.message
+    assert "printed_slicer_time_h" not in fab.figures
+
+
+def test_a_slicer_past_its_time_limit_is_stopped_and_the_check_warns(monkeypatch, tmp_path):
+    slow = tmp_path / "prusa-slicer"
+    slow.write_text("#!/bin/sh\nexec sleep 30\n")
+    slow.chmod(0o755)
+    monkeypatch.setenv("PATH", f"{tmp_path}:{os.environ['PATH']}")
+    fab = _small_sphere(30.0, True, slicer_timeout_s=10)
+    started = time.monotonic()
+    check = _check(fab)
+    assert time.monotonic() - started < 25
+    assert check.status == "warn" and "did not finish in 10 s" in check.message and "slicer_timeout_s" in check.message
     assert "printed_slicer_time_h" not in fab.figures
 
 

@@ -149,14 +149,17 @@ def registration_pins(fab):
 def _slicer_check(fab: PrintedSpec, three_mf: bytes, plate_mm3: float, area_mm2: float) -> tuple[Check, dict]:
     """The 3MF sliced by PrusaSlicer (each part once, one plate), its filament and time beside ours for
     the same plate; skip when not asked for or no slicer is on the PATH."""
-    from antenna_cad.printed.slicer import EXECUTABLE, SlicerError, find_slicer, slice_3mf
+    from antenna_cad.printed.slicer import EXECUTABLE, SlicerError, SlicerTimeout, find_slicer, slice_3mf
     ours_h = plate_mm3 / fab.flow_mm3_s / 3600
     if not fab.slicer_check or find_slicer() is None:
         why = "off (fabrication.slicer_check: false)" if not fab.slicer_check else f"{EXECUTABLE} not on the PATH"
         return Check("printed_slicer", "skip", 0.0, SLICER_FACTOR, "×", f"slicer check not run: {why}"), {}
     try:
         s = slice_3mf(three_mf, nozzle_mm=fab.nozzle_mm, layer_height_mm=fab.layer_height_mm,
-                      filament_diameter_mm=fab.filament_diameter_mm)
+                      filament_diameter_mm=fab.filament_diameter_mm, timeout_s=fab.slicer_timeout_s)
+    except SlicerTimeout as err:
+        return Check("printed_slicer", "warn", 0.0, SLICER_FACTOR, "×",
+                     f"not judged: {err}; raise fabrication.slicer_timeout_s or slice the 3MF yourself"), {}
     except SlicerError as err:
         return Check("printed_slicer", "fail", 0.0, SLICER_FACTOR, "×", f"the 3MF does not slice: {err}"), {}
     ratio = s.filament_cm3 * 1000 / plate_mm3

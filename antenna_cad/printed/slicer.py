@@ -28,6 +28,10 @@ class SlicerError(RuntimeError):
     """The slicer ran but produced no G-code (its last message)."""
 
 
+class SlicerTimeout(SlicerError):
+    """The slicer did not finish in the time allowed (it is stopped)."""
+
+
 @dataclass(frozen=True)
 class SliceResult:
     slicer: str             # name and version, e.g. "PrusaSlicer-2.5.0+UNKNOWN"
@@ -75,7 +79,7 @@ def parse_gcode(gcode: str) -> dict:
 def slice_3mf(data: bytes, *, nozzle_mm: float, layer_height_mm: float, filament_diameter_mm: float,
               exe: str | None = None, timeout_s: float = TIMEOUT_S) -> SliceResult:
     """Slice a 3MF package (bytes) solid, in a private temporary folder; raises SlicerError when the
-    slicer writes no G-code."""
+    slicer writes no G-code, SlicerTimeout when it runs past ``timeout_s``."""
     exe = exe or find_slicer()
     if exe is None:
         raise SlicerError(f"{EXECUTABLE} not on PATH")
@@ -86,7 +90,10 @@ def slice_3mf(data: bytes, *, nozzle_mm: float, layer_height_mm: float, filament
                "--first-layer-height", f"{layer_height_mm:g}", "--filament-diameter", f"{filament_diameter_mm:g}",
                "--fill-density", "100%", "--fill-pattern", "rectilinear", "--perimeters", "1", "--skirts", "0",
                "--output", str(out), str(src)]
-        run = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout_s, cwd=tmp)
+        try:
+            run = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout_s, cwd=tmp)
+        except subprocess.TimeoutExpired:
+            raise SlicerTimeout(f"{EXECUTABLE} did not finish in {timeout_s:g} s (stopped)") from None
         if run.returncode != 0 or not out.exists():
             last = (run.stderr.strip() or run.stdout.strip() or "no output").splitlines()[-1]
             raise SlicerError(f"{EXECUTABLE} exit {run.returncode}: {last}")

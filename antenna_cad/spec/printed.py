@@ -56,6 +56,8 @@ class PrintedSpec(StrictModel):
     slicer_check: bool = Field(False, description="slice the 3MF with PrusaSlicer (prusa-slicer on the PATH) and "
                                "report its print time and filament beside the build's estimate; minutes for a "
                                "large lens")
+    slicer_timeout_s: float = Field(1800.0, ge=10, le=86400, description="the slicer check's time limit; past it the "
+                                    "slicer is stopped and the check warns (not judged)")
 
     @property
     def wall_mm(self) -> float:

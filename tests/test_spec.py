@@ -98,7 +98,7 @@ def test_merge_keys_may_override(tmp_path):
 
 
 @pytest.mark.parametrize("path,value,expected", [
-    ("fabrication.method", "sheet-layup", "fabrication.method: must be one of 'sheet_layup', 'solid' (got 'sheet-layup')"),
+    ("fabrication.method", "sheet-layup", "fabrication.method: must be one of 'sheet_layup', 'solid', 'printed' (got 'sheet-layup')"),
     ("design.aut.diameter_mm", float("inf"), "design.aut.diameter_mm: must be a finite number"),
     ("design.diameter_mm", float("nan"), "design.diameter_mm: must be a finite number"),
     ("design.aut", {"diameter_mm": "x" * 500}, "(got 'xxxxxxxx"),

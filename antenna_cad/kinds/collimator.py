@@ -104,9 +104,9 @@ def printed_section(design: CollimatorDesign, skin_mm: float) -> np.ndarray:
 def fabricate(spec: CollimatorSpec, design: CollimatorDesign, layup: LayupPlan | None, panels):
     m = index_material(spec, as_printed=True)
     if isinstance(spec.fabrication, PrintedSpec):
-        from antenna_cad.kinds.uniform_printed import fabricate_printed, revolved_envelope
-        env = revolved_envelope(printed_section(design, spec.fabrication.skin_mm))
-        return fabricate_printed(spec, env, design.volume_mm3, design.diameter_mm / 2,
+        from antenna_cad.kinds.uniform_printed import fabricate_printed
+        return fabricate_printed(spec, printed_section(design, spec.fabrication.skin_mm), design.volume_mm3,
+                                 design.diameter_mm / 2,
                                  "print on the flat face, the vertex up")
     if layup is None:
         from antenna_cad.fabrication.machined import fabricate_machined

@@ -115,10 +115,10 @@ def fabricate(spec: MirrorLensSpec, design: MirrorLensDesign, layup: LayupPlan |
     from antenna_cad.fabrication.mirror_lens import add_mirror_step, fabricate_solid
     m = body_material(spec, as_printed=True)
     if isinstance(spec.fabrication, PrintedSpec):
-        from antenna_cad.kinds.uniform_printed import fabricate_printed, revolved_envelope
+        from antenna_cad.kinds.uniform_printed import fabricate_printed
         z_lo, _ = design.z_range_mm
         section = design.section_mm() - (0.0, z_lo)       # the printer's frame: axis up, z from the lowest point
-        plan = fabricate_printed(spec, revolved_envelope(section), design.volume_mm3(), design.body_radius_mm,
+        plan = fabricate_printed(spec, section, design.volume_mm3(), design.body_radius_mm,
                                  "print with the axis up, the front face on the bed")
         return plan if plan.lens is None else add_mirror_step(plan, design, spec.design, m, _metal(spec), spec.name)
     if layup is None:

@@ -92,10 +92,11 @@ def printed_eps_check(body: LatticeBody, tolerance: float) -> Check:
                  f"alternated layer by layer) give εr_eff {body.eps_printed:.4f} vs n² = {body.eps_target:.4f} ({err:+.5f})")
 
 
-def fabricate_printed(spec, env, volume_mm3: float, radius_mm: float, step: str) -> PrintedFabPlan:
-    """The body of envelope ``env`` (:func:`revolved_envelope`, ``volume_mm3``, largest radius
-    ``radius_mm``) as printed parts (3MF, STL per part), cut list and checks; ``step``: how it is
-    printed (the cut list's process step)."""
+def fabricate_printed(spec, section_mm: np.ndarray, volume_mm3: float, radius_mm: float, step: str) -> PrintedFabPlan:
+    """The body of revolution of meridian section ``section_mm`` (:func:`revolved_envelope`; ``volume_mm3``,
+    largest radius ``radius_mm``) as printed parts (3MF, STL per part), cut list and checks; ``step``: how
+    it is printed (the cut list's process step). Without the CAD stages, the checks only (no mesh library
+    is loaded)."""
     fab = spec.fabrication
     body = lattice_body(spec)
     too_many = LIMITS["cells"].check(round(volume_mm3 / fab.cell_mm**3))
@@ -106,6 +107,7 @@ def fabricate_printed(spec, env, volume_mm3: float, radius_mm: float, step: str)
     from antenna_cad.printed.body import body_cells, build_lattice_body, reference_volume_mm3
     from antenna_cad.printed.parts import segments
     tol = spec.outputs.mesh_tolerance_mm
+    env = revolved_envelope(section_mm)
     idx, centre, inner = body_cells(env, fab.cell_mm, fab.skin_mm, tol)
     ref = reference_volume_mm3(env, lambda u, w: np.full(np.shape(u), body.fill), fab.skin_mm,
                                fab.cell_mm * REFERENCE_STEP_CELLS)

@@ -42,23 +42,24 @@ def package(spec, m: Material, fmap: FillMap, lens, too_many: list, extra_checks
     """The printed parts as files (3MF of all parts, STL per part, the fill table), cut-list rows with
     mass, filament length and print time, the figures and the checks (cell, fill clip, meshes, bed,
     slicer) of a lattice lens ``lens`` (:class:`antenna_cad.printed.parts.PrintedLens`)."""
-    from antenna_cad.printed.export3mf import stl_bytes, three_mf_bytes
-    from antenna_cad.printed.parts import closed_and_oriented
+    from antenna_cad.export.forked import forked_map
+    from antenna_cad.printed.export3mf import three_mf_bytes
     fab: PrintedSpec = spec.fabrication
     settings = {"filament": m.name, "filament_eps_r": f"{m.eps_r:g}", "filament_tan_delta": f"{m.tan_delta:g}",
                 "nozzle_mm": f"{fab.nozzle_mm:g}", "layer_height_mm": f"{fab.layer_height_mm:g}",
                 "infill_percent": "100 (the lattice is the model: print solid, no extra infill)",
                 "perimeters": "1", "supports": "none", "lattice": f"{fab.lattice}, cell {fab.cell_mm:g} mm",
                 "orientation": fab.orientation}
-    rows, files, objects = [], {}, []
+    rows, files, objects, closed = [], {}, [], {}
     area = math.pi * (fab.filament_diameter_mm / 2) ** 2
     order = 0
-    for part in lens.parts:
+    encoded = forked_map(_part_files, [(p.vertices, p.faces, f"{spec.name} {p.label}") for p in lens.parts])
+    for part, (stl, mesh_text, closed[part.label]) in zip(lens.parts, list(encoded)):
         vol = part.volume_mm3
         mass = vol * 1e-9 * m.density_kg_m3
         hours = vol / fab.flow_mm3_s / 3600
-        files[f"printed/{part.label}.stl"] = stl_bytes(part.vertices, part.faces, f"{spec.name} {part.label}")
-        objects.append({"name": part.label, "vertices": part.vertices, "faces": part.faces,
+        files[f"printed/{part.label}.stl"] = stl
+        objects.append({"name": part.label, "vertices": part.vertices, "faces": part.faces, "rows": mesh_text,
                         "metadata": {"copies": str(part.count), "role": part.role, "volume_mm3": f"{vol:.1f}"}})
         x, y, z = part.size_mm
         for c in range(part.count):
@@ -83,7 +84,7 @@ def package(spec, m: Material, fmap: FillMap, lens, too_many: list, extra_checks
     slice_check, slice_figures = _slicer_check(fab, files[f"printed/{spec.name}.3mf"],
                                                sum(p.volume_mm3 for p in lens.parts), area)
     figures |= slice_figures
-    checks = too_many + fill_checks(spec, fab, m, fmap) + _mesh_checks(fab, lens, closed_and_oriented) + \
+    checks = too_many + fill_checks(spec, fab, m, fmap) + _mesh_checks(fab, lens, closed) + \
         list(extra_checks) + [slice_check]
     return PrintedFabPlan((), {}, {}, (), tuple(rows), {m.name: mass_kg, "all": mass_kg}, {}, 0.0, {}, {},
                           files=files, lens=lens, fill=fmap, material=m, check_list=tuple(checks), figures=figures)
@@ -111,10 +112,20 @@ def fill_checks(spec, fab, m, fmap: FillMap) -> list[Check]:
     return out
 
 
-def _mesh_checks(fab, lens, closed) -> list[Check]:
-    """The printed parts' meshes: closed and oriented, their volume, registration pins, the bed."""
+def _part_files(vertices, faces, name: str) -> tuple[bytes, list[bytes], bool]:
+    """One part's binary STL, its mesh text of the 3MF (UTF-8) and whether it is closed and oriented:
+    what :func:`package` makes of the parts at once, one child process each."""
+    from antenna_cad.printed.export3mf import mesh_rows, stl_bytes
+    from antenna_cad.printed.parts import closed_and_oriented
+    return (stl_bytes(vertices, faces, name), [text.encode("utf-8") for text in mesh_rows(vertices, faces)],
+            closed_and_oriented(faces))
+
+
+def _mesh_checks(fab, lens, closed: dict[str, bool]) -> list[Check]:
+    """The printed parts' meshes: closed and oriented (``closed``: by label), their volume, registration
+    pins, the bed."""
     out = []
-    bad = [p.label for p in lens.parts if not closed(p.faces)]
+    bad = [p.label for p in lens.parts if not closed[p.label]]
     out.append(Check("printed_parts_closed", "fail" if bad else "pass", float(len(bad)), 0.0, "parts",
                      f"every part's mesh closed and consistently oriented (each directed edge once, its reverse "
                      f"once); {', '.join(bad) or 'none'} failing"))

@@ -80,6 +80,7 @@ def revolved_envelope(section_mm: np.ndarray):
     """A body of revolution's meridian section (r, z) (r ≥ 0, closed) as the printed body's envelope."""
     from shapely.geometry import Polygon
 
+    from antenna_cad.export.forked import forked_map
     from antenna_cad.printed.body import Envelope
     return Envelope("revolved", Polygon(section_mm).buffer(0))
 
@@ -113,7 +114,7 @@ def fabricate_printed(spec, env, volume_mm3: float, radius_mm: float, step: str)
     widths, _ = dithered_widths(np.full(len(idx), body.width_mm), idx[:, 2], *widths_limits(fab), eps)
     lens = build_lattice_body(env, idx, centre, inner, widths, fab.cell_mm,
                               skin_mm=fab.skin_mm, bed_mm=(fab.bed.x_mm, fab.bed.y_mm, fab.bed.z_mm), tolerance_mm=tol,
-                              segments=segments(radius_mm, tol), reference_volume_mm3=ref)
+                              segments=segments(radius_mm, tol), reference_volume_mm3=ref, map_parts=forked_map)
     return package(spec, body.filament, body.fmap, lens, too_many, checks + (registration_check(fab, lens),),
                    step=step)
 

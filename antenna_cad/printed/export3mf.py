@@ -43,9 +43,17 @@ def _rows(fmt: str, array: np.ndarray):
         yield (fmt * len(part)) % tuple(part.ravel().tolist())
 
 
+def mesh_rows(vertices: np.ndarray, faces: np.ndarray):
+    """An object's vertices and triangles as 3dmodel.model text, in pieces (``rows`` of :func:`model_xml`)."""
+    yield from _rows('<vertex x="%.4f" y="%.4f" z="%.4f"/>\n', np.asarray(vertices, float))
+    yield "</vertices><triangles>\n"
+    yield from _rows('<triangle v1="%d" v2="%d" v3="%d"/>\n', np.asarray(faces))
+
+
 def model_xml(objects: list[dict], metadata: dict[str, str]):
     """The 3dmodel.model text, in pieces: ``objects`` are dicts with name, vertices (n, 3), faces (m, 3)
-    and their own metadata; build items in a row along x, each on the bed."""
+    and their own metadata, and may carry ``rows``, their mesh text made beforehand (:func:`mesh_rows`,
+    str or UTF-8 bytes); build items in a row along x, each on the bed."""
     out = [f'<?xml version="1.0" encoding="UTF-8"?>\n<model unit="millimeter" xml:lang="en-US" xmlns="{_NS}">\n']
     out += [f'<metadata name={quoteattr(k)}>{escape(str(v))}</metadata>\n' for k, v in sorted(metadata.items())]
     out.append("<resources>\n")
@@ -60,9 +68,7 @@ def model_xml(objects: list[dict], metadata: dict[str, str]):
             out.append(f'<metadata name={quoteattr(key)}>{escape(str(value))}</metadata>\n')
         out.append("<mesh><vertices>\n")
         yield "".join(out)
-        yield from _rows('<vertex x="%.4f" y="%.4f" z="%.4f"/>\n', v)
-        yield "</vertices><triangles>\n"
-        yield from _rows('<triangle v1="%d" v2="%d" v3="%d"/>\n', f)
+        yield from obj["rows"] if "rows" in obj else mesh_rows(v, f)
         out = ["</triangles></mesh></object>\n"]
         lo = v.min(axis=0)
         items.append(f'<item objectid="{oid}" transform="1 0 0 0 1 0 0 0 1 {x - lo[0]:.4f} {-lo[1]:.4f} {-lo[2]:.4f}"/>\n')
@@ -119,7 +125,7 @@ def three_mf_bytes(objects: list[dict], metadata: dict[str, str]) -> bytes:
             info.compress_type = zipfile.ZIP_DEFLATED
             info._compresslevel = DEFLATE_LEVEL            # as ZipFile.open sets it for a member named by a string
             with z.open(info, "w") as member:
-                for data in _ahead(text.encode("utf-8") for text in pieces):
+                for data in _ahead(text if isinstance(text, bytes) else text.encode("utf-8") for text in pieces):
                     member.write(data)
     return buf.getvalue()
 

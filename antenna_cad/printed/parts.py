@@ -14,7 +14,6 @@ import ctypes
 import ctypes.util
 import math
 from dataclasses import dataclass
-from functools import cached_property
 
 import numpy as np
 from manifold3d import Manifold, Mesh, Mesh64, OpType
@@ -55,15 +54,16 @@ class PrintedPart:
     count: int                  # copies to print
     vertices: np.ndarray        # placed on the bed: bounding box from the origin
     faces: np.ndarray
+    volume_mm3: float | None = None     # the mesh's (:func:`mesh_volume`): computed when not given
+
+    def __post_init__(self):
+        if self.volume_mm3 is None:
+            object.__setattr__(self, "volume_mm3", mesh_volume(self.vertices, self.faces))
 
     @property
     def size_mm(self) -> tuple[float, float, float]:
         ext = self.vertices.max(axis=0) - self.vertices.min(axis=0)
         return float(ext[0]), float(ext[1]), float(ext[2])
-
-    @cached_property
-    def volume_mm3(self) -> float:
-        return mesh_volume(self.vertices, self.faces)
 
 
 @dataclass(frozen=True)

@@ -50,17 +50,13 @@ def package(spec, m: Material, fmap: FillMap, lens, too_many: list, extra_checks
                 "infill_percent": "100 (the lattice is the model: print solid, no extra infill)",
                 "perimeters": "1", "supports": "none", "lattice": f"{fab.lattice}, cell {fab.cell_mm:g} mm",
                 "orientation": fab.orientation}
-    rows, files, objects, closed = [], {}, [], {}
+    rows, files, closed = [], {}, {}
     area = math.pi * (fab.filament_diameter_mm / 2) ** 2
     order = 0
-    encoded = forked_map(_part_files, [(p.vertices, p.faces, f"{spec.name} {p.label}") for p in lens.parts])
-    for part, (stl, mesh_text, closed[part.label]) in zip(lens.parts, list(encoded)):
+    for part in lens.parts:
         vol = part.volume_mm3
         mass = vol * 1e-9 * m.density_kg_m3
         hours = vol / fab.flow_mm3_s / 3600
-        files[f"printed/{part.label}.stl"] = stl
-        objects.append({"name": part.label, "vertices": part.vertices, "faces": part.faces, "rows": mesh_text,
-                        "metadata": {"copies": str(part.count), "role": part.role, "volume_mm3": f"{vol:.1f}"}})
         x, y, z = part.size_mm
         for c in range(part.count):
             order += 1
@@ -68,8 +64,18 @@ def package(spec, m: Material, fmap: FillMap, lens, too_many: list, extra_checks
                                m.name, "", 0.0, 0.0, False, x, y, z, 0.0, mass, order,
                                f"{step}; {vol / 1000:.1f} cm³, filament {vol / area / 1000:.2f} m, "
                                f"~{hours:.1f} h at {fab.flow_mm3_s:g} mm³/s; file printed/{part.label}.stl"))
-    files[f"printed/{spec.name}.3mf"] = three_mf_bytes(objects, {"Title": spec.name, "Designer": "make-lens"} |
-                                                       {f"make-lens:{k}": v for k, v in settings.items()})
+    encoded = forked_map(_part_files, [(p.vertices, p.faces, f"{spec.name} {p.label}") for p in lens.parts])
+
+    def objects():          # each part's files as its child ends: the 3MF deflates it while the others run
+        for part, (stl, mesh_text, closed[part.label]) in zip(lens.parts, encoded):
+            files[f"printed/{part.label}.stl"] = stl
+            yield {"name": part.label, "vertices": part.vertices, "faces": part.faces, "rows": mesh_text,
+                   "metadata": {"copies": str(part.count), "role": part.role, "volume_mm3": f"{part.volume_mm3:.1f}"}}
+    try:
+        files[f"printed/{spec.name}.3mf"] = three_mf_bytes(objects(), {"Title": spec.name, "Designer": "make-lens"} |
+                                                           {f"make-lens:{k}": v for k, v in settings.items()})
+    finally:
+        encoded.close()
     files["printed/fill.csv"] = _fill_csv(fmap)
     total_vol = sum(p.volume_mm3 * p.count for p in lens.parts)
     mass_kg = total_vol * 1e-9 * m.density_kg_m3

@@ -12,6 +12,7 @@ import io
 import queue
 import threading
 import zipfile
+from collections.abc import Iterable
 from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
@@ -50,7 +51,7 @@ def mesh_rows(vertices: np.ndarray, faces: np.ndarray):
     yield from _rows('<triangle v1="%d" v2="%d" v3="%d"/>\n', np.asarray(faces))
 
 
-def model_xml(objects: list[dict], metadata: dict[str, str]):
+def model_xml(objects: Iterable[dict], metadata: dict[str, str]):
     """The 3dmodel.model text, in pieces: ``objects`` are dicts with name, vertices (n, 3), faces (m, 3)
     and their own metadata, and may carry ``rows``, their mesh text made beforehand (:func:`mesh_rows`,
     str or UTF-8 bytes); build items in a row along x, each on the bed."""
@@ -68,7 +69,7 @@ def model_xml(objects: list[dict], metadata: dict[str, str]):
             out.append(f'<metadata name={quoteattr(key)}>{escape(str(value))}</metadata>\n')
         out.append("<mesh><vertices>\n")
         yield "".join(out)
-        yield from obj["rows"] if "rows" in obj else mesh_rows(v, f)
+        yield from obj["rows"] if "rows" in obj else _ahead(mesh_rows(v, f))
         out = ["</triangles></mesh></object>\n"]
         lo = v.min(axis=0)
         items.append(f'<item objectid="{oid}" transform="1 0 0 0 1 0 0 0 1 {x - lo[0]:.4f} {-lo[1]:.4f} {-lo[2]:.4f}"/>\n')
@@ -80,8 +81,8 @@ def model_xml(objects: list[dict], metadata: dict[str, str]):
 
 
 def _ahead(pieces, depth: int = 2):
-    """The pieces of an iterator, made in a thread ``depth`` pieces ahead: the text of the next chunk is
-    formatted while zlib (which releases the GIL) deflates this one; the same pieces in the same order."""
+    """The pieces of an iterator, made in a thread ``depth`` pieces ahead and encoded: the text of the next
+    chunk is formatted while zlib (which releases the GIL) deflates this one; the same pieces in the same order."""
     box: queue.Queue = queue.Queue(depth)
     stop = threading.Event()
     end = object()
@@ -89,6 +90,7 @@ def _ahead(pieces, depth: int = 2):
     def make():
         try:
             for piece in pieces:
+                piece = piece.encode("utf-8")
                 while not stop.is_set():
                     try:
                         box.put((piece, None), timeout=0.1)
@@ -116,7 +118,7 @@ def _ahead(pieces, depth: int = 2):
         worker.join()
 
 
-def three_mf_bytes(objects: list[dict], metadata: dict[str, str]) -> bytes:
+def three_mf_bytes(objects: Iterable[dict], metadata: dict[str, str]) -> bytes:
     buf = io.BytesIO()
     with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as z:
         for name, pieces in (("[Content_Types].xml", [_CONTENT_TYPES]), ("_rels/.rels", [_RELS]),
@@ -125,8 +127,8 @@ def three_mf_bytes(objects: list[dict], metadata: dict[str, str]) -> bytes:
             info.compress_type = zipfile.ZIP_DEFLATED
             info._compresslevel = DEFLATE_LEVEL            # as ZipFile.open sets it for a member named by a string
             with z.open(info, "w") as member:
-                for data in _ahead(text if isinstance(text, bytes) else text.encode("utf-8") for text in pieces):
-                    member.write(data)
+                for text in pieces:
+                    member.write(text if isinstance(text, bytes) else text.encode("utf-8"))
     return buf.getvalue()
 
 

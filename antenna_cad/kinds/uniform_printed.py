@@ -80,7 +80,6 @@ def revolved_envelope(section_mm: np.ndarray):
     """A body of revolution's meridian section (r, z) (r ≥ 0, closed) as the printed body's envelope."""
     from shapely.geometry import Polygon
 
-    from antenna_cad.export.forked import forked_map
     from antenna_cad.printed.body import Envelope
     return Envelope("revolved", Polygon(section_mm).buffer(0))
 
@@ -104,6 +103,7 @@ def fabricate_printed(spec, env, volume_mm3: float, radius_mm: float, step: str)
     if not with_cad():
         return PrintedFabPlan((), {}, {}, (), (), {}, {}, 0.0, {}, {}, fill=body.fmap, material=body.filament,
                               check_list=tuple(too_many + fill_checks(spec, fab, body.filament, body.fmap)) + checks)
+    from antenna_cad.export.forked import forked_map
     from antenna_cad.printed.body import body_cells, build_lattice_body, reference_volume_mm3
     from antenna_cad.printed.parts import segments
     tol = spec.outputs.mesh_tolerance_mm

@@ -7,6 +7,7 @@ every kind printed as a lattice (antenna_cad.printed).
 from __future__ import annotations
 
 import math
+import mmap
 from dataclasses import dataclass, field
 
 from antenna_cad.fabrication.cutlist import CutRow
@@ -43,7 +44,7 @@ def package(spec, m: Material, fmap: FillMap, lens, too_many: list, extra_checks
     mass, filament length and print time, the figures and the checks (cell, fill clip, meshes, bed,
     slicer) of a lattice lens ``lens`` (:class:`antenna_cad.printed.parts.PrintedLens`)."""
     from antenna_cad.export.forked import forked_map
-    from antenna_cad.printed.export3mf import three_mf_bytes
+    from antenna_cad.printed.export3mf import mesh_rows_bound, stl_size, three_mf_bytes
     fab: PrintedSpec = spec.fabrication
     settings = {"filament": m.name, "filament_eps_r": f"{m.eps_r:g}", "filament_tan_delta": f"{m.tan_delta:g}",
                 "nozzle_mm": f"{fab.nozzle_mm:g}", "layer_height_mm": f"{fab.layer_height_mm:g}",
@@ -64,12 +65,17 @@ def package(spec, m: Material, fmap: FillMap, lens, too_many: list, extra_checks
                                m.name, "", 0.0, 0.0, False, x, y, z, 0.0, mass, order,
                                f"{step}; {vol / 1000:.1f} cm³, filament {vol / area / 1000:.2f} m, "
                                f"~{hours:.1f} h at {fab.flow_mm3_s:g} mm³/s; file printed/{part.label}.stl"))
-    encoded = forked_map(_part_files, [(p.vertices, p.faces, f"{spec.name} {p.label}") for p in lens.parts])
+    shared = [(mmap.mmap(-1, stl_size(len(p.faces))), mmap.mmap(-1, mesh_rows_bound(p.vertices, p.faces)))
+              for p in lens.parts]          # the children write here: no copy through a pipe
+    encoded = forked_map(_part_files, [(p.vertices, p.faces, f"{spec.name} {p.label}", *shared[n])
+                                       for n, p in enumerate(lens.parts)])
 
     def objects():          # each part's files as its child ends: the 3MF deflates it while the others run
-        for part, (stl, mesh_text, closed[part.label]) in zip(lens.parts, encoded):
-            files[f"printed/{part.label}.stl"] = stl
-            yield {"name": part.label, "vertices": part.vertices, "faces": part.faces, "rows": mesh_text,
+        for part, (stl, text), (ends, closed[part.label]) in zip(lens.parts, shared, encoded):
+            files[f"printed/{part.label}.stl"] = stl[:]
+            view = memoryview(text)
+            yield {"name": part.label, "vertices": part.vertices, "faces": part.faces,
+                   "rows": [view[a:b] for a, b in zip([0] + ends[:-1], ends)],
                    "metadata": {"copies": str(part.count), "role": part.role, "volume_mm3": f"{part.volume_mm3:.1f}"}}
     try:
         files[f"printed/{spec.name}.3mf"] = three_mf_bytes(objects(), {"Title": spec.name, "Designer": "make-lens"} |
@@ -118,13 +124,14 @@ def fill_checks(spec, fab, m, fmap: FillMap) -> list[Check]:
     return out
 
 
-def _part_files(vertices, faces, name: str) -> tuple[bytes, list[bytes], bool]:
-    """One part's binary STL, its mesh text of the 3MF (UTF-8) and whether it is closed and oriented:
-    what :func:`package` makes of the parts at once, one child process each."""
-    from antenna_cad.printed.export3mf import mesh_rows, stl_bytes
+def _part_files(vertices, faces, name: str, stl, text) -> tuple[list[int], bool]:
+    """One part's binary STL and its mesh text of the 3MF (UTF-8) written into the buffers ``stl`` and
+    ``text``; the end of each piece of text and whether the mesh is closed and oriented: what
+    :func:`package` makes of the parts at once, one child process each."""
+    from antenna_cad.printed.export3mf import mesh_rows_into, stl_into
     from antenna_cad.printed.parts import closed_and_oriented
-    return (stl_bytes(vertices, faces, name), [text.encode("utf-8") for text in mesh_rows(vertices, faces)],
-            closed_and_oriented(faces))
+    stl_into(stl, vertices, faces, name)
+    return mesh_rows_into(text, vertices, faces), closed_and_oriented(faces)
 
 
 def _mesh_checks(fab, lens, closed: dict[str, bool]) -> list[Check]:

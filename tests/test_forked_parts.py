@@ -1,5 +1,6 @@
-"""forked_map: independent pieces of one computation in child processes, values in the order given,
-the same values as in line, an error and an early stop leave no child behind."""
+"""A printed body's parts in child processes: forked_map keeps the order given, equals in line, and an
+error or an early stop leaves no child behind; what a child writes into shared buffers (the STL, the
+3MF mesh text) is the bytes written in turn."""
 
 import os
 import time
@@ -48,3 +49,25 @@ def test_error_and_early_stop_leave_no_child(monkeypatch):
     next(values)                                            # the consumer stops (an error, Ctrl-C) here
     values.close()
     assert not _children()
+
+
+def test_mesh_text_and_stl_written_into_buffers_are_the_bytes_made_in_turn():
+    """What a child writes for the printed package: the 3MF mesh text fits its bound and reads as
+    mesh_rows; the STL written in place is the binary STL of the mesh (record by record)."""
+    import mmap
+
+    import numpy as np
+
+    from antenna_cad.printed.export3mf import mesh_rows, mesh_rows_bound, mesh_rows_into, stl_bytes, stl_size
+    rng = np.random.default_rng(3)
+    v = rng.uniform(-999.99996, 999.99996, (1000, 3))
+    v[0] = [-999.99996, 0.0, 0.0]                           # rounds to the widest number
+    f = rng.integers(0, len(v), (3000, 3))
+    out = mmap.mmap(-1, mesh_rows_bound(v, f))
+    ends = mesh_rows_into(out, v, f)
+    text = "".join(mesh_rows(v, f)).encode()
+    assert ends[-1] == len(text) <= len(out) and out[:ends[-1]] == text
+    stl = stl_bytes(v, f, "part")
+    assert len(stl) == stl_size(len(f)) and stl[:80].rstrip() == b"part"
+    rec = np.frombuffer(stl, np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")]), offset=84)
+    assert np.array_equal(rec["v"], v[f].astype(np.float32)) and not rec["a"].any()

@@ -35,6 +35,16 @@ def test_in_line_when_serial(monkeypatch):
     assert out == [(os.getpid(), 25), (os.getpid(), 1), (os.getpid(), 4)]
 
 
+def test_in_line_when_no_second_core_is_idle(monkeypatch):
+    import antenna_cad.export.forked as forked
+    monkeypatch.delenv(SERIAL_ENV, raising=False)
+    monkeypatch.setattr(forked, "idle_cores", lambda: 1)
+    assert list(forked_map(_pid_and_square, [(1,), (2,)])) == [(os.getpid(), 1), (os.getpid(), 4)]
+    monkeypatch.setattr(forked, "idle_cores", lambda: 2)
+    assert all(pid != os.getpid() for pid, _ in forked_map(_pid_and_square, [(1,), (2,)]))
+    assert 1 <= forked.idle_cores() <= (os.cpu_count() or 1)
+
+
 def test_error_and_early_stop_leave_no_child(monkeypatch):
     monkeypatch.delenv(SERIAL_ENV, raising=False)
 

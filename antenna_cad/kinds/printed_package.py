@@ -71,8 +71,10 @@ def package(spec, m: Material, fmap: FillMap, lens, too_many: list, extra_checks
                                        for n, p in enumerate(lens.parts)])
 
     def objects():          # each part's files as its child ends: the 3MF deflates it while the others run
-        for part, (stl, text), (ends, closed[part.label]) in zip(lens.parts, shared, encoded):
+        for n, (part, (ends, closed[part.label])) in enumerate(zip(lens.parts, encoded)):
+            (stl, text), shared[n] = shared[n], None        # a part's maps are unmapped once it is written
             files[f"printed/{part.label}.stl"] = stl[:]
+            stl.close()
             view = memoryview(text)
             yield {"name": part.label, "vertices": part.vertices, "faces": part.faces,
                    "rows": [view[a:b] for a, b in zip([0] + ends[:-1], ends)],

@@ -107,8 +107,8 @@ def model_xml(objects: Iterable[dict], metadata: dict[str, str]):
 
 
 def _ahead(pieces, depth: int = 2):
-    """The pieces of an iterator, made in a thread ``depth`` pieces ahead and encoded: the text of the next
-    chunk is formatted while zlib (which releases the GIL) deflates this one; the same pieces in the same order."""
+    """The pieces of an iterator, made in a thread ``depth`` pieces ahead: the text of the next chunk is
+    formatted while zlib (which releases the GIL) deflates this one; the same pieces in the same order."""
     box: queue.Queue = queue.Queue(depth)
     stop = threading.Event()
     end = object()
@@ -116,7 +116,6 @@ def _ahead(pieces, depth: int = 2):
     def make():
         try:
             for piece in pieces:
-                piece = piece.encode("utf-8")
                 while not stop.is_set():
                     try:
                         box.put((piece, None), timeout=0.1)

@@ -11,6 +11,8 @@ errno) or RuntimeError. The report draws report.pdf the same way beside report.h
 A job runs in line (same bytes, one core) when ``ANTENNA_CAD_SERIAL=1``, on a one-core machine, without
 ``os.fork``, or off the main thread: a build in a worker thread (a sweep's dask worker, whose workers
 already fill the cores) must not fork, or a lock held by another thread would be copied into the child.
+:func:`forked_map` runs independent pieces of one computation (a printed body's parts) on the idle
+cores the same way: values in the order of the arguments, whichever child ends first.
 """
 
 from __future__ import annotations
@@ -20,7 +22,8 @@ import os
 import pickle
 import signal
 import threading
-from collections.abc import Callable, Iterable
+from collections import deque
+from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 
 SERIAL_ENV = "ANTENNA_CAD_SERIAL"       # "1": every job in the caller's process (one core, or to compare bytes)
@@ -69,6 +72,44 @@ class Job:
             raise RuntimeError(f"{self.name} failed: {value}")
         self.value = value
         return value
+
+
+def idle_cores() -> int:
+    """Cores that no other runnable task uses now: the cores less the tasks running besides this one
+    (/proc/loadavg); all of them where that cannot be read."""
+    cores = os.cpu_count() or 1
+    try:
+        with open("/proc/loadavg") as f:
+            running = int(f.read().split()[3].split("/")[0])
+    except (OSError, ValueError, IndexError):
+        return cores
+    return max(1, cores - max(running - 1, 0))
+
+
+def forked_map(fn: Callable, arguments: Iterable[tuple], workers: int | None = None) -> Iterator:
+    """``fn(*args)`` for each of ``arguments``, in their order, at most ``workers`` (the idle cores)
+    children at once; the next child starts before a value is handed on, so the caller's work on it
+    overlaps theirs. In line when a :class:`Job` would be, or when fewer than two cores are idle (the
+    children would only share one core and add the cost of the fork). Children left when the caller
+    stops (an error, Ctrl-C) are killed."""
+    workers = workers or idle_cores()
+    if _in_line() or workers < 2:
+        yield from (fn(*args) for args in arguments)
+        return
+    running: deque[Job] = deque()
+    try:
+        for args in arguments:
+            if len(running) >= workers:
+                value = running.popleft().finish()
+                running.append(Job(fn, args))
+                yield value
+            else:
+                running.append(Job(fn, args))
+        while running:
+            yield running.popleft().finish()
+    finally:
+        while running:
+            running.popleft().finish(wait=False)
 
 
 def _run_child(fn: Callable, args: tuple, write_fd: int) -> None:

@@ -77,6 +77,7 @@ def fabricate_printed(spec, design) -> PrintedFabPlan:
     if not with_cad():
         return PrintedFabPlan((), {}, {}, (), (), {}, {}, 0.0, {}, {}, fill=fmap, material=m,
                               check_list=tuple(too_many + fill_checks(spec, fab, m, fmap)))
+    from antenna_cad.export.forked import forked_map
     from antenna_cad.printed.body import Envelope, body_cells, build_lattice_body, reference_volume_mm3
     tol = spec.outputs.mesh_tolerance_mm
     env = Envelope("extruded", sec, spec.design.height_mm)
@@ -87,7 +88,7 @@ def fabricate_printed(spec, design) -> PrintedFabPlan:
     lens = build_lattice_body(env, idx, centre, inner, row_widths(spec, fmap, centre[:, 1], idx[:, 0]), a,
                               skin_mm=fab.skin_mm,
                               bed_mm=(fab.bed.x_mm, fab.bed.y_mm, fab.bed.z_mm), tolerance_mm=tol, segments=0,
-                              reference_volume_mm3=ref, pins=registration_pins(fab))
+                              reference_volume_mm3=ref, pins=registration_pins(fab), map_parts=forked_map)
     return package(spec, m, fmap, lens, too_many, (),
                    step="print on a plate face (the lens axis on the bed)")
 

@@ -7,6 +7,7 @@ every kind printed as a lattice (antenna_cad.printed).
 from __future__ import annotations
 
 import math
+import mmap
 from dataclasses import dataclass, field
 
 from antenna_cad.fabrication.cutlist import CutRow
@@ -42,24 +43,21 @@ def package(spec, m: Material, fmap: FillMap, lens, too_many: list, extra_checks
     """The printed parts as files (3MF of all parts, STL per part, the fill table), cut-list rows with
     mass, filament length and print time, the figures and the checks (cell, fill clip, meshes, bed,
     slicer) of a lattice lens ``lens`` (:class:`antenna_cad.printed.parts.PrintedLens`)."""
-    from antenna_cad.printed.export3mf import stl_bytes, three_mf_bytes
-    from antenna_cad.printed.parts import closed_and_oriented
+    from antenna_cad.export.forked import forked_map
+    from antenna_cad.printed.export3mf import mesh_rows_bound, stl_size, three_mf_bytes
     fab: PrintedSpec = spec.fabrication
     settings = {"filament": m.name, "filament_eps_r": f"{m.eps_r:g}", "filament_tan_delta": f"{m.tan_delta:g}",
                 "nozzle_mm": f"{fab.nozzle_mm:g}", "layer_height_mm": f"{fab.layer_height_mm:g}",
                 "infill_percent": "100 (the lattice is the model: print solid, no extra infill)",
                 "perimeters": "1", "supports": "none", "lattice": f"{fab.lattice}, cell {fab.cell_mm:g} mm",
                 "orientation": fab.orientation}
-    rows, files, objects = [], {}, []
+    rows, files, closed = [], {}, {}
     area = math.pi * (fab.filament_diameter_mm / 2) ** 2
     order = 0
     for part in lens.parts:
         vol = part.volume_mm3
         mass = vol * 1e-9 * m.density_kg_m3
         hours = vol / fab.flow_mm3_s / 3600
-        files[f"printed/{part.label}.stl"] = stl_bytes(part.vertices, part.faces, f"{spec.name} {part.label}")
-        objects.append({"name": part.label, "vertices": part.vertices, "faces": part.faces,
-                        "metadata": {"copies": str(part.count), "role": part.role, "volume_mm3": f"{vol:.1f}"}})
         x, y, z = part.size_mm
         how = step if part.role == "lens" else "print standing on an end (a registration pin, half in each part of a cut)"
         for c in range(part.count):
@@ -68,8 +66,25 @@ def package(spec, m: Material, fmap: FillMap, lens, too_many: list, extra_checks
                                m.name, "", 0.0, 0.0, False, x, y, z, 0.0, mass, order,
                                f"{how}; {vol / 1000:.1f} cm³, filament {vol / area / 1000:.2f} m, "
                                f"~{hours:.1f} h at {fab.flow_mm3_s:g} mm³/s; file printed/{part.label}.stl"))
-    files[f"printed/{spec.name}.3mf"] = three_mf_bytes(objects, {"Title": spec.name, "Designer": "make-lens"} |
-                                                       {f"make-lens:{k}": v for k, v in settings.items()})
+    shared = [(mmap.mmap(-1, stl_size(len(p.faces))), mmap.mmap(-1, mesh_rows_bound(p.vertices, p.faces)))
+              for p in lens.parts]          # the children write here: no copy through a pipe
+    encoded = forked_map(_part_files, [(p.vertices, p.faces, f"{spec.name} {p.label}", *shared[n])
+                                       for n, p in enumerate(lens.parts)])
+
+    def objects():          # each part's files as its child ends: the 3MF deflates it while the others run
+        for n, (part, (ends, closed[part.label])) in enumerate(zip(lens.parts, encoded)):
+            (stl, text), shared[n] = shared[n], None        # a part's maps are unmapped once it is written
+            files[f"printed/{part.label}.stl"] = stl[:]
+            stl.close()
+            view = memoryview(text)
+            yield {"name": part.label, "vertices": part.vertices, "faces": part.faces,
+                   "rows": [view[a:b] for a, b in zip([0] + ends[:-1], ends)],
+                   "metadata": {"copies": str(part.count), "role": part.role, "volume_mm3": f"{part.volume_mm3:.1f}"}}
+    try:
+        files[f"printed/{spec.name}.3mf"] = three_mf_bytes(objects(), {"Title": spec.name, "Designer": "make-lens"} |
+                                                           {f"make-lens:{k}": v for k, v in settings.items()})
+    finally:
+        encoded.close()
     files["printed/fill.csv"] = _fill_csv(fmap)
     total_vol = sum(p.volume_mm3 * p.count for p in lens.parts)
     mass_kg = total_vol * 1e-9 * m.density_kg_m3
@@ -84,7 +99,7 @@ def package(spec, m: Material, fmap: FillMap, lens, too_many: list, extra_checks
     slice_check, slice_figures = _slicer_check(fab, files[f"printed/{spec.name}.3mf"],
                                                sum(p.volume_mm3 for p in lens.parts), area)
     figures |= slice_figures
-    checks = too_many + fill_checks(spec, fab, m, fmap) + _mesh_checks(fab, lens, closed_and_oriented) + \
+    checks = too_many + fill_checks(spec, fab, m, fmap) + _mesh_checks(fab, lens, closed) + \
         list(extra_checks) + [slice_check]
     return PrintedFabPlan((), {}, {}, (), tuple(rows), {m.name: mass_kg, "all": mass_kg}, {}, 0.0, {}, {},
                           files=files, lens=lens, fill=fmap, material=m, check_list=tuple(checks), figures=figures)
@@ -112,10 +127,21 @@ def fill_checks(spec, fab, m, fmap: FillMap) -> list[Check]:
     return out
 
 
-def _mesh_checks(fab, lens, closed) -> list[Check]:
-    """The printed parts' meshes: closed and oriented, their volume, registration pins, the bed."""
+def _part_files(vertices, faces, name: str, stl, text) -> tuple[list[int], bool]:
+    """One part's binary STL and its mesh text of the 3MF (UTF-8) written into the buffers ``stl`` and
+    ``text``; the end of each piece of text and whether the mesh is closed and oriented: what
+    :func:`package` makes of the parts at once, one child process each."""
+    from antenna_cad.printed.export3mf import mesh_rows_into, stl_into
+    from antenna_cad.printed.parts import closed_and_oriented
+    stl_into(stl, vertices, faces, name)
+    return mesh_rows_into(text, vertices, faces), closed_and_oriented(faces)
+
+
+def _mesh_checks(fab, lens, closed: dict[str, bool]) -> list[Check]:
+    """The printed parts' meshes: closed and oriented (``closed``: by label), their volume, registration
+    pins, the bed."""
     out = []
-    bad = [p.label for p in lens.parts if not closed(p.faces)]
+    bad = [p.label for p in lens.parts if not closed[p.label]]
     out.append(Check("printed_parts_closed", "fail" if bad else "pass", float(len(bad)), 0.0, "parts",
                      f"every part's mesh closed and consistently oriented (each directed edge once, its reverse "
                      f"once); {', '.join(bad) or 'none'} failing"))

@@ -104,6 +104,7 @@ def fabricate_printed(spec, section_mm: np.ndarray, volume_mm3: float, radius_mm
     if not with_cad():
         return PrintedFabPlan((), {}, {}, (), (), {}, {}, 0.0, {}, {}, fill=body.fmap, material=body.filament,
                               check_list=tuple(too_many + fill_checks(spec, fab, body.filament, body.fmap)) + checks)
+    from antenna_cad.export.forked import forked_map
     from antenna_cad.printed.body import body_cells, build_lattice_body, reference_volume_mm3
     from antenna_cad.printed.parts import segments
     tol = spec.outputs.mesh_tolerance_mm
@@ -115,7 +116,8 @@ def fabricate_printed(spec, section_mm: np.ndarray, volume_mm3: float, radius_mm
     widths, _ = dithered_widths(np.full(len(idx), body.width_mm), idx[:, 2], *widths_limits(fab), eps)
     lens = build_lattice_body(env, idx, centre, inner, widths, fab.cell_mm,
                               skin_mm=fab.skin_mm, bed_mm=(fab.bed.x_mm, fab.bed.y_mm, fab.bed.z_mm), tolerance_mm=tol,
-                              segments=segments(radius_mm, tol), reference_volume_mm3=ref, pins=registration_pins(fab))
+                              segments=segments(radius_mm, tol), reference_volume_mm3=ref, pins=registration_pins(fab),
+                              map_parts=forked_map)
     return package(spec, body.filament, body.fmap, lens, too_many, checks, step=step)
 
 

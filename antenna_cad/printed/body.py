@@ -24,7 +24,7 @@ from shapely.geometry import Polygon, box
 
 from antenna_cad.printed.lattice_mesh import WELD_BITS, WELD_MM, _square, cross_rows, lattice_triangles, weld
 from antenna_cad.printed.parts import (Pins, PrintedLens, PrintedPart, cut_pin_points, cut_pin_solids, mesh_arrays,
-                                      pin_part, to_manifold)
+                                      mesh_volume, pin_part, to_manifold)
 from antenna_cad.printed.parts import segments as circle_segments
 
 _DIRS = np.array([(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)], np.int64)
@@ -272,6 +272,22 @@ def _part(index, width_mm, inn, bnd, a, origin, trim: Manifold, shell: Manifold 
     return v, f, made
 
 
+def _placed_part(*args):
+    """(lattice triangles made, None or (position key, vertices on the bed, faces, volume, offset)) of one part
+    (:func:`_part`): what a child process hands back."""
+    v, f, made = _part(*args)
+    if not len(f):
+        return made, None
+    lo = v.min(axis=0)
+    placed = v - lo
+    return made, (tuple(np.round(np.r_[lo, v.max(axis=0)], 6)), placed, f, mesh_volume(placed, f),
+                  tuple(float(x) for x in lo))
+
+
+def _in_turn(fn, arguments):
+    return (fn(*args) for args in arguments)
+
+
 def _region_of(centre: np.ndarray, planes: dict[int, list[float]]) -> np.ndarray:
     return np.searchsorted(planes[0], centre[:, 0]) * (len(planes[1]) + 1) + np.searchsorted(planes[1], centre[:, 1])
 
@@ -337,10 +353,13 @@ def _cells_near_pins(centre: np.ndarray, where, pins: Pins, a: float) -> np.ndar
 
 def build_lattice_body(env: Envelope, index: np.ndarray, centre: np.ndarray, inner: np.ndarray, width_mm: np.ndarray,
                        cell_mm: float, *, skin_mm: float, bed_mm: tuple[float, float, float], tolerance_mm: float,
-                       segments: int, reference_volume_mm3: float, pins: Pins | None = None) -> PrintedLens:
+                       segments: int, reference_volume_mm3: float, pins: Pins | None = None,
+                       map_parts=None) -> PrintedLens:
     """The printable parts of the body: cells ``index`` (centres ``centre``, ``inner`` as from
     :func:`body_cells`) with rod widths ``width_mm``; parts on the bed, sorted by position, registered
-    by ``pins`` across every bed cut (two a cut where the body has room; printed as a part of their own)."""
+    by ``pins`` across every bed cut (two a cut where the body has room; printed as a part of their own).
+    The parts are independent: ``map_parts(fn, arguments)`` (values in order; one after the other when
+    None) may mesh them at once, e.g. in child processes; the parts are the same either way."""
     a = cell_mm
     origin = lattice_origin(env, a)
     full = env.full
@@ -366,21 +385,23 @@ def build_lattice_body(env: Envelope, index: np.ndarray, centre: np.ndarray, inn
             inner = inner & ~_cells_near_pins(centre, where, pins, a)
     region = _region_of(centre, planes)
     xs, ys = [-1e6] + planes[0] + [1e6], [-1e6] + planes[1] + [1e6]
-    meshes, tri_count = [], 0
+    jobs = []
     for r in range(len(xs) - 1):
         for q in range(len(ys) - 1):
             mine = region == r * (len(ys) - 1) + q
             if not mine.any():
                 continue
             cut = Manifold.cube([xs[r + 1] - xs[r], ys[q + 1] - ys[q], 4e6]).translate([xs[r], ys[q], -2e6])
-            v, f, made = _part(index, width_mm, mine & inner, mine & ~inner, a, origin, trim,
-                               None if shell is None else shell ^ cut, None if bosses is None else (bosses ^ cut, holes))
-            tri_count += made
-            if len(f):
-                meshes.append((v, f))
-    meshes.sort(key=lambda vf: tuple(np.round(np.r_[vf[0].min(axis=0), vf[0].max(axis=0)], 6)))
-    out = tuple(PrintedPart(f"lens-{n + 1:02d}" if len(meshes) > 1 else "lens", "lens", 1, v - v.min(axis=0), f,
-                            tuple(float(x) for x in v.min(axis=0))) for n, (v, f) in enumerate(meshes))
+            jobs.append((index, width_mm, mine & inner, mine & ~inner, a, origin, trim, None if shell is None else shell ^ cut,
+                         None if bosses is None else (bosses ^ cut, holes)))
+    meshes, tri_count = [], 0
+    for made, placed in (map_parts or _in_turn)(_placed_part, jobs):
+        tri_count += made
+        if placed is not None:
+            meshes.append(placed)
+    meshes.sort(key=lambda placed: placed[0])
+    out = tuple(PrintedPart(f"lens-{n + 1:02d}" if len(meshes) > 1 else "lens", "lens", 1, v, f, volume, offset)
+                for n, (_, v, f, volume, offset) in enumerate(meshes))
     cuts = len(planes[0]) + len(planes[1])
     volume = sum(p.volume_mm3 for p in out)
     if pin_count:

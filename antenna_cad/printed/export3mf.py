@@ -12,6 +12,7 @@ import io
 import queue
 import threading
 import zipfile
+from collections.abc import Iterable
 from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
@@ -43,9 +44,43 @@ def _rows(fmt: str, array: np.ndarray):
         yield (fmt * len(part)) % tuple(part.ravel().tolist())
 
 
-def model_xml(objects: list[dict], metadata: dict[str, str]):
+_VERTEX = '<vertex x="%.4f" y="%.4f" z="%.4f"/>\n'
+_TRIANGLE = '<triangle v1="%d" v2="%d" v3="%d"/>\n'
+_BETWEEN = "</vertices><triangles>\n"
+
+
+def mesh_rows(vertices: np.ndarray, faces: np.ndarray):
+    """An object's vertices and triangles as 3dmodel.model text, in pieces (``rows`` of :func:`model_xml`)."""
+    yield from _rows(_VERTEX, np.asarray(vertices, float))
+    yield _BETWEEN
+    yield from _rows(_TRIANGLE, np.asarray(faces))
+
+
+def mesh_rows_bound(vertices: np.ndarray, faces: np.ndarray) -> int:
+    """Bytes :func:`mesh_rows` takes at most (numbers as wide as the widest coordinate and index)."""
+    v, f = np.asarray(vertices, float), np.asarray(faces)
+    wide = len(f"{-float(np.abs(v).max(initial=0.0)):.4f}")
+    index = len(str(-int(f.max(initial=0))))
+    return (len(v) * (len(_VERTEX % (0, 0, 0)) + 3 * (wide - 6)) + len(_BETWEEN)
+            + len(f) * (len(_TRIANGLE % (0, 0, 0)) + 3 * (index - 1)))
+
+
+def mesh_rows_into(out, vertices: np.ndarray, faces: np.ndarray) -> list[int]:
+    """:func:`mesh_rows` as UTF-8 written one piece after the other into the buffer ``out`` (of
+    :func:`mesh_rows_bound` bytes); the end of each piece."""
+    ends, at = [], 0
+    for text in mesh_rows(vertices, faces):
+        data = text.encode("utf-8")
+        out[at:at + len(data)] = data
+        at += len(data)
+        ends.append(at)
+    return ends
+
+
+def model_xml(objects: Iterable[dict], metadata: dict[str, str]):
     """The 3dmodel.model text, in pieces: ``objects`` are dicts with name, vertices (n, 3), faces (m, 3)
-    and their own metadata; build items in a row along x, each on the bed."""
+    and their own metadata, and may carry ``rows``, their mesh text made beforehand (:func:`mesh_rows`,
+    str or UTF-8 bytes-like); build items in a row along x, each on the bed."""
     out = [f'<?xml version="1.0" encoding="UTF-8"?>\n<model unit="millimeter" xml:lang="en-US" xmlns="{_NS}">\n']
     out += [f'<metadata name={quoteattr(k)}>{escape(str(v))}</metadata>\n' for k, v in sorted(metadata.items())]
     out.append("<resources>\n")
@@ -60,9 +95,7 @@ def model_xml(objects: list[dict], metadata: dict[str, str]):
             out.append(f'<metadata name={quoteattr(key)}>{escape(str(value))}</metadata>\n')
         out.append("<mesh><vertices>\n")
         yield "".join(out)
-        yield from _rows('<vertex x="%.4f" y="%.4f" z="%.4f"/>\n', v)
-        yield "</vertices><triangles>\n"
-        yield from _rows('<triangle v1="%d" v2="%d" v3="%d"/>\n', f)
+        yield from obj["rows"] if "rows" in obj else _ahead(mesh_rows(v, f))
         out = ["</triangles></mesh></object>\n"]
         lo = v.min(axis=0)
         items.append(f'<item objectid="{oid}" transform="1 0 0 0 1 0 0 0 1 {x - lo[0]:.4f} {-lo[1]:.4f} {-lo[2]:.4f}"/>\n')
@@ -110,7 +143,7 @@ def _ahead(pieces, depth: int = 2):
         worker.join()
 
 
-def three_mf_bytes(objects: list[dict], metadata: dict[str, str]) -> bytes:
+def three_mf_bytes(objects: Iterable[dict], metadata: dict[str, str]) -> bytes:
     buf = io.BytesIO()
     with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as z:
         for name, pieces in (("[Content_Types].xml", [_CONTENT_TYPES]), ("_rels/.rels", [_RELS]),
@@ -119,18 +152,33 @@ def three_mf_bytes(objects: list[dict], metadata: dict[str, str]) -> bytes:
             info.compress_type = zipfile.ZIP_DEFLATED
             info._compresslevel = DEFLATE_LEVEL            # as ZipFile.open sets it for a member named by a string
             with z.open(info, "w") as member:
-                for data in _ahead(text.encode("utf-8") for text in pieces):
-                    member.write(data)
+                for text in pieces:
+                    member.write(text.encode("utf-8") if isinstance(text, str) else text)
     return buf.getvalue()
 
 
-def stl_bytes(vertices: np.ndarray, faces: np.ndarray, name: str) -> bytes:
-    """Binary STL of a triangle mesh (normals from the counter-clockwise winding)."""
+_STL_RECORD = np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("attr", "<u2")])
+
+
+def stl_size(triangles: int) -> int:
+    """Bytes of a binary STL of ``triangles``."""
+    return 84 + _STL_RECORD.itemsize * triangles
+
+
+def stl_into(out, vertices: np.ndarray, faces: np.ndarray, name: str) -> None:
+    """Binary STL of a triangle mesh (normals from the counter-clockwise winding) written into the
+    writable buffer ``out`` of :func:`stl_size` bytes."""
     t = np.asarray(vertices, np.float64)[np.asarray(faces, np.int64)]
     n = cross_rows(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
     length = np.linalg.norm(n, axis=1, keepdims=True)
     n = np.divide(n, length, out=np.zeros_like(n), where=length > 0)
-    rec = np.zeros(len(t), dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("attr", "<u2")])
-    rec["n"], rec["v"] = n, t
-    header = name.encode("ascii", "replace")[:80].ljust(80, b" ")
-    return header + np.uint32(len(t)).tobytes() + rec.tobytes()
+    rec = np.frombuffer(out, _STL_RECORD, len(t), 84)
+    rec["n"], rec["v"], rec["attr"] = n, t, 0
+    out[:84] = name.encode("ascii", "replace")[:80].ljust(80, b" ") + np.uint32(len(t)).tobytes()
+
+
+def stl_bytes(vertices: np.ndarray, faces: np.ndarray, name: str) -> bytes:
+    """Binary STL of a triangle mesh (:func:`stl_into`)."""
+    out = bytearray(stl_size(len(faces)))
+    stl_into(out, vertices, faces, name)
+    return bytes(out)

@@ -14,7 +14,6 @@ import ctypes
 import ctypes.util
 import math
 from dataclasses import dataclass
-from functools import cached_property
 
 import numpy as np
 from manifold3d import Manifold, Mesh, Mesh64, OpType
@@ -55,16 +54,17 @@ class PrintedPart:
     count: int                  # copies to print
     vertices: np.ndarray        # placed on the bed: bounding box from the origin
     faces: np.ndarray
+    volume_mm3: float | None = None     # the mesh's (:func:`mesh_volume`): computed when not given
+
+    def __post_init__(self):
+        if self.volume_mm3 is None:
+            object.__setattr__(self, "volume_mm3", mesh_volume(self.vertices, self.faces))
     offset_mm: tuple[float, float, float] = (0.0, 0.0, 0.0)   # vertices + offset_mm: the part in the lens frame
 
     @property
     def size_mm(self) -> tuple[float, float, float]:
         ext = self.vertices.max(axis=0) - self.vertices.min(axis=0)
         return float(ext[0]), float(ext[1]), float(ext[2])
-
-    @cached_property
-    def volume_mm3(self) -> float:
-        return mesh_volume(self.vertices, self.faces)
 
 
 @dataclass(frozen=True)
@@ -290,7 +290,7 @@ def build_printed_lens(shape: str, radius_mm: float, height_mm: float | None, fm
         pieces[q] = None                                          # one copy of each part at a time
         label = f"lens-{q + 1:02d}" if len(pieces) > 1 or shape == "sphere" else "lens"
         lo = pv.min(axis=0)
-        parts.append(PrintedPart(label, "lens", copies, pv - lo, pf, tuple(float(x) for x in lo)))
+        parts.append(PrintedPart(label, "lens", copies, pv - lo, pf, offset_mm=tuple(float(x) for x in lo)))
     if pin_count:
         parts.append(pin_part(pins, pin_count, tolerance_mm))
     return PrintedLens(tuple(parts), cells * copies, triangles * copies, body_volume, reference_volume_mm3,

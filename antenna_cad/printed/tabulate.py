@@ -1,10 +1,17 @@
 """Regenerate the homogenization table ``data/lattice_eps.csv`` from full-wave unit-cell runs.
 
-``python -m antenna_cad.printed.tabulate [--resolution 16] [--jobs 1]``: for each lattice, filament
-permittivity and fill, one deck for :mod:`antenna_cad.fullwave.unitcell` (a slab of ``CELLS`` cells at
-a/λ = ``A_OVER_LAMBDA``), run by Debian's Meep interpreter; the retrieved n, z, εr, μr are written
-with a provenance header (Meep version, resolution, a/λ, cells, date). Both polarizations are run at
-three fills per lattice to measure the anisotropy. Takes about 10 CPU-minutes at 16 px per cell.
+``python -m antenna_cad.printed.tabulate [--jobs 1]``: for each lattice, filament permittivity and
+fill, one deck for :mod:`antenna_cad.fullwave.unitcell` (a slab of ``CELLS`` cells at a/λ =
+``A_OVER_LAMBDA``) per resolution of ``RESOLUTIONS``, run by Debian's Meep interpreter; the retrieved n,
+z, εr, μr are written with a provenance header (Meep version, resolutions, a/λ, cells, date). Both
+polarizations are run at three fills per lattice to measure the anisotropy.
+
+The cubic rods are Meep blocks, whose interfaces Meep smooths (anisotropic subpixel averaging: second
+order in the pixel): 16 px per cell is converged (32 px moves n² by 0.003 at fill 0.4). The gyroid is a
+``MaterialGrid``, staircased: its error is first order in the pixel (Farjadpour et al., Opt. Lett. 31,
+2972, 2006), so it runs at 16 and 32 px per cell and the table holds the Richardson extrapolation
+2·v(32) − v(16) of n and z (a run at 24 px lies on that line: the docs give the figures). About 10
+CPU-minutes for the cubic rows, 3 CPU-hours for the gyroid's.
 """
 
 from __future__ import annotations
@@ -29,14 +36,15 @@ A_OVER_LAMBDA = 0.12     # cell = λ/8.3: inside the λ/(4√εf) limit for εf 
 CELLS = 2                # slab thickness in cells: n k0 d < π, so the phase branch is never in doubt
 FILLS = (0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8)
 BOTH_POLARIZATIONS = (0.1, 0.4, 0.7)
+RESOLUTIONS = {"cubic": (16,), "gyroid": (16, 32)}   # px per cell; two: first-order Richardson extrapolation
 FILAMENTS = (2.7, 4.0)   # PLA; a ceramic-filled filament
 COLUMNS = ("lattice", "eps_f", "fill", "parameter", "polarization", "eps_index", "eps_r", "mu_r", "n", "z_real",
            "maxwell_garnett")
 
 
-def decks(resolution: int) -> list[dict]:
+def decks(resolution: int, lattices=LATTICES) -> list[dict]:
     out = []
-    for lattice in LATTICES:
+    for lattice in lattices:
         for eps_f in FILAMENTS:
             for fill in FILLS:
                 for pol in ("x", "y") if fill in BOTH_POLARIZATIONS else ("x",):
@@ -55,12 +63,26 @@ def run_deck(python: str, deck: dict) -> dict:
         return json.loads(out.read_text(encoding="utf-8"))
 
 
-def row(deck: dict, fields: dict) -> dict:
+def retrieved(deck: dict, fields: dict) -> tuple[complex, complex]:
+    """(n, z) of a deck's slab from its fields (the S-parameter retrieval)."""
     k0 = 2 * np.pi * deck["a_over_lambda"]
     fill = float(fill_fraction(deck["lattice"], deck["parameter"]))
     guess = float(np.sqrt(maxwell_garnett(deck["lattice"], fill, deck["eps_r"])))
     r, t = slab_coefficients(fields, k0, deck["cells"], fields["gap"])
-    n, z = retrieve(r, t, k0 * deck["cells"], guess)
+    return retrieve(r, t, k0 * deck["cells"], guess)
+
+
+def extrapolated(coarse: tuple[complex, complex], fine: tuple[complex, complex]) -> tuple[complex, complex]:
+    """(n, z) at zero pixel size from runs at a pixel and at half of it, the error first order in the
+    pixel (a staircased interface): 2·fine − coarse."""
+    return 2 * fine[0] - coarse[0], 2 * fine[1] - coarse[1]
+
+
+def row(deck: dict, fields: dict | None = None, nz: tuple[complex, complex] | None = None) -> dict:
+    """A table row of a deck: from its ``fields``, or from its retrieved (or extrapolated) ``nz``."""
+    n, z = nz if nz is not None else retrieved(deck, fields)
+    fill = float(fill_fraction(deck["lattice"], deck["parameter"]))
+    guess = float(np.sqrt(maxwell_garnett(deck["lattice"], fill, deck["eps_r"])))
     return {"lattice": deck["lattice"], "eps_f": deck["eps_r"], "fill": round(fill, 4), "parameter": deck["parameter"],
             "polarization": deck["polarization"], "eps_index": f"{(n * n).real:.5f}", "eps_r": f"{(n / z).real:.5f}",
             "mu_r": f"{(n * z).real:.5f}", "n": f"{n.real:.5f}", "z_real": f"{z.real:.5f}",
@@ -69,7 +91,6 @@ def row(deck: dict, fields: dict) -> dict:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--resolution", type=int, default=16)
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("-o", "--output", type=Path, default=Path(__file__).parent / "data" / TABLE)
     args = ap.parse_args(argv)
@@ -79,12 +100,23 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     version = subprocess.run([python, "-c", "import meep, sys; sys.stderr.write(meep.__version__)"],
                              capture_output=True, text=True).stderr.strip().splitlines()[-1]
-    todo = decks(args.resolution)
+    runs = [d for lattice, px in RESOLUTIONS.items() for res in px for d in decks(res, (lattice,))]
     with ThreadPoolExecutor(args.jobs) as pool:
-        rows = [row(d, f) for d, f in zip(todo, pool.map(lambda d: run_deck(python, d), todo))]
+        nz = [retrieved(d, f) for d, f in zip(runs, pool.map(lambda d: run_deck(python, d), runs))]
+    rows = []
+    for lattice, px in RESOLUTIONS.items():
+        by_px = {res: [(d, v) for d, v in zip(runs, nz) if d["lattice"] == lattice and d["resolution"] == res]
+                 for res in px}
+        if len(px) == 1:
+            rows += [row(d, nz=v) for d, v in by_px[px[0]]]
+        else:
+            rows += [row(d, nz=extrapolated(c, f)) for (d, c), (_, f) in zip(by_px[px[0]], by_px[px[1]])]
+    resolutions = "; ".join(f"{lat} {' and '.join(map(str, px))} px per cell" + (" (Richardson, first order)" if len(px) > 1 else "")
+                            for lat, px in RESOLUTIONS.items())
     header = [f"# Effective permittivity of printed lattices: full-wave unit-cell slabs (antenna_cad.fullwave.unitcell),",
-              f"# MIT Meep {version}, {args.resolution} px per cell, a/lambda = {A_OVER_LAMBDA}, {CELLS} cells thick,",
-              "# normal incidence, zeroth Floquet order; S-parameter retrieval (Smith et al. 2002).",
+              f"# MIT Meep {version}, {resolutions},",
+              f"# a/lambda = {A_OVER_LAMBDA}, {CELLS} cells thick, normal incidence, zeroth Floquet order; S-parameter",
+              "# retrieval (Smith et al. 2002).",
               "# eps_index = n^2 (what a lens law uses), eps_r = n/z, mu_r = n z; maxwell_garnett: the shape-aware",
               f"# mixing rule of antenna_cad.printed.homogenization. Generated {dt.date.today().isoformat()} by",
               "# python -m antenna_cad.printed.tabulate"]

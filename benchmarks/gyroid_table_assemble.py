@@ -1,5 +1,5 @@
 """Rebuild data/lattice_eps.csv with the gyroid rows extrapolated from the shipped 16 px rows and the
-32 px runs (/work/wt/gyroid-32px.jsonl), exactly as tabulate.main computes them."""
+32 px runs (benchmarks/gyroid-32px-runs.jsonl), exactly as tabulate.main computes them."""
 import csv, json, sys, datetime as dt
 from pathlib import Path
 from antenna_cad.printed import tabulate as t
@@ -9,7 +9,7 @@ lines = path.read_text().splitlines()
 header = [l for l in lines if l.startswith("#")]
 rows = list(csv.DictReader([l for l in lines if not l.startswith("#")]))
 fine = {}
-for l in open("/work/wt/gyroid-32px.jsonl"):
+for l in open("benchmarks/gyroid-32px-runs.jsonl"):
     r = json.loads(l)
     fine[(float(r["eps_f"]), float(r["parameter"]), r["polarization"])] = (float(r["n"]), float(r["z_real"]))
 out = []

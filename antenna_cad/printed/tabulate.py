@@ -89,6 +89,28 @@ def row(deck: dict, fields: dict | None = None, nz: tuple[complex, complex] | No
             "maxwell_garnett": f"{guess**2:.5f}"}
 
 
+def meep_version(python: str) -> str:
+    return subprocess.run([python, "-c", "import meep, sys; sys.stderr.write(meep.__version__)"],
+                          capture_output=True, text=True).stderr.strip().splitlines()[-1]
+
+
+def write_table(path: Path, rows: list[dict], version: str) -> None:
+    """The table at ``path``: the provenance header (Meep ``version``, resolutions, a/λ, cells, date), then
+    ``rows``."""
+    resolutions = "; ".join(f"{lat} {' and '.join(map(str, px))} px per cell"
+                            + (" (Richardson, first order)" if len(px) > 1 else "")
+                            for lat, px in RESOLUTIONS.items())
+    header = ["# Effective permittivity of printed lattices: full-wave unit-cell slabs (antenna_cad.fullwave.unitcell),",
+              f"# MIT Meep {version}, {resolutions},",
+              f"# a/lambda = {A_OVER_LAMBDA}, {CELLS} cells thick, normal incidence, zeroth Floquet order; S-parameter",
+              "# retrieval (Smith et al. 2002).",
+              "# eps_index = n^2 (what a lens law uses), eps_r = n/z, mu_r = n z; maxwell_garnett: the shape-aware",
+              f"# mixing rule of antenna_cad.printed.homogenization. Generated {dt.date.today().isoformat()} by",
+              "# python -m antenna_cad.printed.tabulate"]
+    lines = header + [",".join(COLUMNS)] + [",".join(str(r[c]) for c in COLUMNS) for r in rows]
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--jobs", type=int, default=1)
@@ -98,8 +120,7 @@ def main(argv: list[str] | None = None) -> int:
     if python is None:
         print("Meep not found, install python3-meep", file=sys.stderr)
         return 2
-    version = subprocess.run([python, "-c", "import meep, sys; sys.stderr.write(meep.__version__)"],
-                             capture_output=True, text=True).stderr.strip().splitlines()[-1]
+    version = meep_version(python)
     runs = [d for lattice, px in RESOLUTIONS.items() for res in px for d in decks(res, (lattice,))]
     with ThreadPoolExecutor(args.jobs) as pool:
         nz = [retrieved(d, f) for d, f in zip(runs, pool.map(lambda d: run_deck(python, d), runs))]
@@ -111,17 +132,7 @@ def main(argv: list[str] | None = None) -> int:
             rows += [row(d, nz=v) for d, v in by_px[px[0]]]
         else:
             rows += [row(d, nz=extrapolated(c, f)) for (d, c), (_, f) in zip(by_px[px[0]], by_px[px[1]])]
-    resolutions = "; ".join(f"{lat} {' and '.join(map(str, px))} px per cell" + (" (Richardson, first order)" if len(px) > 1 else "")
-                            for lat, px in RESOLUTIONS.items())
-    header = [f"# Effective permittivity of printed lattices: full-wave unit-cell slabs (antenna_cad.fullwave.unitcell),",
-              f"# MIT Meep {version}, {resolutions},",
-              f"# a/lambda = {A_OVER_LAMBDA}, {CELLS} cells thick, normal incidence, zeroth Floquet order; S-parameter",
-              "# retrieval (Smith et al. 2002).",
-              "# eps_index = n^2 (what a lens law uses), eps_r = n/z, mu_r = n z; maxwell_garnett: the shape-aware",
-              f"# mixing rule of antenna_cad.printed.homogenization. Generated {dt.date.today().isoformat()} by",
-              "# python -m antenna_cad.printed.tabulate"]
-    lines = header + [",".join(COLUMNS)] + [",".join(str(r[c]) for c in COLUMNS) for r in rows]
-    args.output.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    write_table(args.output, rows, version)
     return 0
 
 

@@ -90,8 +90,9 @@ def tolerance_budget(lens: Lens, section: Slabs | Taper | None, tol: TolerancesS
                "tolerance_single_plane_ruze_rss_p2p_deg": old_p2p, "tolerance_single_plane_ruze_rss_rms_deg": old_rms,
                "tolerance_single_plane_ruze_gain_loss_db": ruze_loss_db(old_rms)}
     unsure = undecided(p2p, lens.budget_deg, own_error_deg)
+    own_name = "stack's own" if layup is not None else "lens as made"      # a machined or printed lens has no stack
     check = Check("tolerance_budget", "warn" if p2p > lens.budget_deg or unsure else "pass", p2p, lens.budget_deg,
-                  "deg", (f"{UNCERTAIN}: " if unsure else "") + "as built with every tolerance (the stack's own "
+                  "deg", (f"{UNCERTAIN}: " if unsure else "") + f"as built with every tolerance (the {own_name} "
                   f"{own[0]:.1f}° p-p ⊕ each tolerance's change of the smooth lens, RSS): {p2p:.1f}° p-p, "
                   f"{rms:.1f}° RMS vs budget {lens.budget_deg:g}°; dominant: {dominant} (+{added[dominant][1]:.2f}° "
                   f"RMS); gain loss {loss:.3f} dB (aperture efficiency, every tolerance at its worse end); the old "
@@ -99,7 +100,7 @@ def tolerance_budget(lens: Lens, section: Slabs | Taper | None, tol: TolerancesS
     table = Table("sensitivity", "Phase error each build tolerance adds (nominal feed)",
                   ("tolerance", "deviation", "added p-p deg", "added RMS deg", "old: GO through the steps p-p deg",
                    "old: GO RMS deg"),
-                  (("stack's own (quiet zone)", "", cell(own[0]), cell(own[1]), cell(go_base.p2p_deg), cell(go_base.rms_deg)),
+                  ((f"{own_name} (quiet zone)", "", cell(own[0]), cell(own[1]), cell(go_base.p2p_deg), cell(go_base.rms_deg)),
                    *rows),
                   caption=f"added: the change of the smooth lens (εr, thickness to first order along its rays; the "
                   f"feed retraced), tilt and piston removed, area-weighted over the disc; dominant: {dominant}; RSS "

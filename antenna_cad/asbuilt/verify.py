@@ -24,6 +24,9 @@ from antenna_cad.synthesis.checks import Check
 from antenna_cad.verification import Plot, Series, Table, Verification, cell
 
 
+VARIANT_CAPTIONS = {"ideal": "ideal lens", "stepped": "stepped stack as cut", "fabricated": "stack as fabricated"}
+
+
 def verify_lens(lens: Lens, feeds: tuple[tuple[str, float, float], ...], tolerances: TolerancesSpec,
                 layup: LayupPlan | None = None, fab=None, study: tuple[Candidate, ...] = (),
                 settings: VerificationSpec = VerificationSpec()) -> tuple[Verification, FullWave]:
@@ -54,7 +57,7 @@ def verify_lens(lens: Lens, feeds: tuple[tuple[str, float, float], ...], toleran
                     f"{name}_refocused_rms_deg": refocused.rms_deg}
         plots.append(Plot(f"aperture-phase-{name.replace('_', '-')}", f"Aperture phase, feed {name} "
                           f"(z {z:.1f}, y {y:.1f} mm)", "y on the antenna plane (mm)", "phase, tilt removed (deg)",
-                          tuple(series), caption="ideal lens, stepped stack as cut, stack as fabricated"))
+                          tuple(series), caption=", ".join(VARIANT_CAPTIONS[v] for v, _ in variants)))
     tables = [Table("aperture", "Aperture phase and amplitude per feed",
                     ("feed", "lens", "p-p deg", "RMS deg", "taper dB", "gain loss dB"), tuple(rows))]
     rl = revolved(lens, layup, fab)

@@ -118,6 +118,15 @@ def test_table_states_anisotropy_and_maps_fill_both_ways():
         assert np.allclose(h.fill_for(h.eps_at(f)), f, atol=1e-9)
 
 
+def test_richardson_removes_a_first_order_pixel_error():
+    """Runs at a pixel h and h/2 with an error c·h (a staircased interface) extrapolate to the exact value."""
+    from antenna_cad.printed.tabulate import extrapolated
+    exact, c = (1.25 + 0.01j, 0.8 - 0.002j), (0.5, -0.3)
+    run = lambda h: tuple(v + k * h for v, k in zip(exact, c))     # noqa: E731
+    n, z = extrapolated(run(1 / 16), run(1 / 32))
+    assert abs(n - exact[0]) < 1e-12 and abs(z - exact[1]) < 1e-12
+
+
 @pytest.mark.slow
 def test_unit_cell_runner_retrieves_a_solid_slab(meep):
     """The unit-cell runner with rods filling the whole cell is a homogeneous slab: the retrieval gives

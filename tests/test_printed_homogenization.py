@@ -101,18 +101,28 @@ def test_table_rows_within_wiener_bounds():
 def test_cubic_rows_near_maxwell_garnett_at_low_fill():
     """At fill 0.1 the rods' εeff is within 10 % of (εMG − 1) of Maxwell Garnett (measured 6 % at εf 2.7,
     9.8 % at 4.0; at 0.05, 13–19 %: the rods' crossings, a tenth of the solid there, are outside the dilute
-    model and the rods are 2 px wide). The gyroid rows are not held to it: at 16 px per cell a sheet of fill ≤ 0.2 is thinner
-    than a pixel, and the averaged grid puts it at the Wiener upper bound (docs: printed lattices)."""
+    model and the rods are 2 px wide)."""
     for r in hz.table_rows():
         if r["lattice"] == "cubic" and r["fill"] == 0.1:
             mg = hz.maxwell_garnett("cubic", r["fill"], r["eps_f"])
             assert abs(r["eps_index"] - mg) <= 0.1 * (mg - 1), r
 
 
+def test_gyroid_rows_near_maxwell_garnett_at_low_fill():
+    """At fills 0.1–0.4 the gyroid (extrapolated to zero pixel from 16 and 32 px per cell) is within 3 % of
+    (εMG − 1) of Maxwell Garnett with plates of every orientation (measured −2.6 % to +1.2 %; the 16 px
+    runs alone were 11–23 % high at fill 0.1). Above, the connected sheet is up to 5 % denser."""
+    rows = [r for r in hz.table_rows() if r["lattice"] == "gyroid" and 0.1 <= r["fill"] <= 0.4]
+    assert len(rows) == 12
+    for r in rows:
+        mg = hz.maxwell_garnett("gyroid", r["fill"], r["eps_f"])
+        assert abs(r["eps_index"] - mg) <= 0.03 * (mg - 1), r
+
+
 def test_table_states_anisotropy_and_maps_fill_both_ways():
     for lattice in ("cubic", "gyroid"):
         h = hz.homogenized(lattice, 2.7)
-        assert h.anisotropy < 0.01          # both lattices have cubic symmetry: x and y alike (gyroid: 7e-3)
+        assert h.anisotropy < 0.01          # both lattices have cubic symmetry: x and y alike (gyroid: 1.1e-3)
         assert np.all(np.diff(h.eps) > 0)
         f = np.linspace(0.05, 0.9, 20)
         assert np.allclose(h.fill_for(h.eps_at(f)), f, atol=1e-9)

@@ -111,7 +111,7 @@ def test_cubic_rows_near_maxwell_garnett_at_low_fill():
 def test_gyroid_rows_near_maxwell_garnett_at_low_fill():
     """At fills 0.1–0.4 the gyroid (extrapolated to zero pixel from 16 and 32 px per cell) is within 3 % of
     (εMG − 1) of Maxwell Garnett with plates of every orientation (measured −2.6 % to +1.2 %; the 16 px
-    runs alone were 11–23 % high at fill 0.1). Above, the connected sheet is up to 5 % denser."""
+    runs alone were 11–24 % high). Above, the connected sheet is up to 5 % denser."""
     rows = [r for r in hz.table_rows() if r["lattice"] == "gyroid" and 0.1 <= r["fill"] <= 0.4]
     assert len(rows) == 12
     for r in rows:

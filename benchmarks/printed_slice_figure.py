@@ -1,8 +1,9 @@
-"""Slicer preview of a printed lens for the docs: a small printed Luneburg sphere (the 120 mm recipe at
-another diameter) built with its slicer check, its 3MF sliced by PrusaSlicer, the G-code's extrusion
-moves drawn as one layer (the lattice's rods cut by the layer) and a stack of layers.
+"""Slicer preview of a printed lens for the docs: a small printed Luneburg sphere (by default the 120 mm
+cubic recipe at another diameter) built with its slicer check, its 3MF sliced by PrusaSlicer, the G-code's
+extrusion moves drawn as one layer (the lattice cut by the layer) and a stack of layers.
 
-    PYTHONPATH=. python benchmarks/printed_slice_figure.py [--diameter 40] [-o docs/images/printed-slice.png]
+    PYTHONPATH=. python benchmarks/printed_slice_figure.py [--recipe luneburg-printed-120mm-pla]
+        [--diameter 40] [-o docs/images/printed-slice.png]
 """
 
 from __future__ import annotations
@@ -22,15 +23,15 @@ from antenna_cad.printed.slicer import extrusion_layers, slice_3mf  # noqa: E402
 from antenna_cad.spec import load_spec, parse_spec  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
-RECIPE = ROOT / "recipes" / "luneburg-printed-120mm-pla.yaml"
 
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--recipe", default="luneburg-printed-120mm-pla", help="a printed Luneburg sphere recipe")
     ap.add_argument("--diameter", type=float, default=40.0)
     ap.add_argument("-o", "--output", default=str(ROOT / "docs" / "images" / "printed-slice.png"))
     args = ap.parse_args(argv)
-    data = load_spec(RECIPE).model_dump(mode="json")
+    data = load_spec(ROOT / "recipes" / f"{args.recipe}.yaml").model_dump(mode="json")
     data["design"]["diameter_mm"] = args.diameter
     data["fabrication"]["slicer_check"] = True
     spec = parse_spec(data)
@@ -66,7 +67,7 @@ def main(argv: list[str] | None = None) -> int:
     ax3.set_box_aspect((1, 1, hemi[-1] / (hi[0] - lo[0])))
     ax3.view_init(elev=28, azim=-60)
     ax3.set_title(f"every {every}th of {len(hemi)} layers of the hemisphere")
-    fig.suptitle(f"{sliced.slicer}: Ø{args.diameter:g} mm printed Luneburg sphere, one hemisphere + pin, "
+    fig.suptitle(f"{sliced.slicer}: Ø{args.diameter:g} mm printed Luneburg sphere ({f.lattice} lattice), one hemisphere + pin, "
                  f"{sliced.filament_cm3:.2f} cm³ filament, {sliced.time_s / 3600:.2f} h")
     fig.tight_layout()
     Path(args.output).parent.mkdir(parents=True, exist_ok=True)

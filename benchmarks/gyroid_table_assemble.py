@@ -34,7 +34,8 @@ def main() -> int:
     for key in sorted(coarse):
         deck = {"lattice": "gyroid", "parameter": key[1], "eps_r": key[0], "polarization": key[2]}
         rows.append(tabulate.row(deck, nz=tabulate.extrapolated(coarse[key], fine[key])))
-    tabulate.write_table(path, rows, tabulate.meep_version(meep_python()))
+    tabulate.write_table(path, rows, tabulate.meep_version(meep_python()),
+                         by="benchmarks/gyroid_table_assemble.py from the runs recorded beside it")
     print(f"{path}: {len(rows)} rows")
     return 0
 

@@ -94,9 +94,9 @@ def meep_version(python: str) -> str:
                           capture_output=True, text=True).stderr.strip().splitlines()[-1]
 
 
-def write_table(path: Path, rows: list[dict], version: str) -> None:
-    """The table at ``path``: the provenance header (Meep ``version``, resolutions, a/λ, cells, date), then
-    ``rows``."""
+def write_table(path: Path, rows: list[dict], version: str, by: str = "python -m antenna_cad.printed.tabulate") -> None:
+    """The table at ``path``: the provenance header (Meep ``version``, resolutions, a/λ, cells, date, the
+    command ``by`` which it was made), then ``rows``."""
     resolutions = "; ".join(f"{lat} {' and '.join(map(str, px))} px per cell"
                             + (" (Richardson, first order)" if len(px) > 1 else "")
                             for lat, px in RESOLUTIONS.items())
@@ -106,7 +106,7 @@ def write_table(path: Path, rows: list[dict], version: str) -> None:
               "# retrieval (Smith et al. 2002).",
               "# eps_index = n^2 (what a lens law uses), eps_r = n/z, mu_r = n z; maxwell_garnett: the shape-aware",
               f"# mixing rule of antenna_cad.printed.homogenization. Generated {dt.date.today().isoformat()} by",
-              "# python -m antenna_cad.printed.tabulate"]
+              f"# {by}"]
     lines = header + [",".join(COLUMNS)] + [",".join(str(r[c]) for c in COLUMNS) for r in rows]
     path.write_text("\n".join(lines) + "\n", encoding="utf-8")
 

@@ -33,7 +33,7 @@ def main() -> int:
     rows = [r for r in shipped if r["lattice"] != "gyroid"]
     for key in sorted(coarse):
         deck = {"lattice": "gyroid", "parameter": key[1], "eps_r": key[0], "polarization": key[2]}
-        rows.append(tabulate.row(deck, nz=tabulate.extrapolated(coarse[key], fine[key])))
+        rows.append(tabulate.row(deck, tabulate.extrapolated(coarse[key], fine[key])))
     tabulate.write_table(path, rows, tabulate.meep_version(meep_python()),
                          by="benchmarks/gyroid_table_assemble.py from the runs recorded beside it")
     print(f"{path}: {len(rows)} rows")

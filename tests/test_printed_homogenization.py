@@ -137,13 +137,44 @@ def test_richardson_removes_a_first_order_pixel_error():
     assert abs(n - exact[0]) < 1e-12 and abs(z - exact[1]) < 1e-12
 
 
+def test_tabulate_pairs_each_gyroid_deck_with_its_finer_run(monkeypatch, tmp_path):
+    """``python -m antenna_cad.printed.tabulate`` with a stand-in solver whose (n, z) carry an error c/px:
+    every gyroid row is its deck's exact value (16 and 32 px paired deck by deck and extrapolated), every
+    cubic row its 16 px run, in the order and with the provenance of the shipped table."""
+    from antenna_cad.printed import tabulate
+
+    def exact(d):
+        n = 1.0 + 0.3 * d["parameter"] + 0.1 * (d["eps_r"] - 2.7) + (0.01 if d["polarization"] == "y" else 0.0)
+        return complex(n), complex(1 / n)
+
+    def solved(d, _fields):
+        n, z = exact(d)
+        return n + 0.5 / d["resolution"], z - 0.2 / d["resolution"]
+
+    monkeypatch.setattr(tabulate, "meep_python", lambda: "meep-python")
+    monkeypatch.setattr(tabulate, "meep_version", lambda _python: "0.0-test")
+    monkeypatch.setattr(tabulate, "run_deck", lambda _python, d: d)
+    monkeypatch.setattr(tabulate, "retrieved", solved)
+    out = tmp_path / "table.csv"
+    assert tabulate.main(["-o", str(out)]) == 0
+    text = out.read_text(encoding="utf-8")
+    assert "MIT Meep 0.0-test, cubic 16 px per cell; gyroid 16 and 32 px per cell (Richardson" in text
+    rows = [line.split(",") for line in text.splitlines() if not line.startswith("#")][1:]
+    shipped = [(r["lattice"], r["eps_f"], r["parameter"], r["polarization"]) for r in hz.table_rows()]
+    assert [(r[0], float(r[1]), float(r[3]), r[4]) for r in rows] == shipped
+    for (lattice, eps_f, parameter, pol), r in zip(shipped, rows):
+        n, z = exact({"parameter": parameter, "eps_r": eps_f, "polarization": pol})
+        expected = n.real + (0.5 / 16 if lattice == "cubic" else 0.0)
+        assert float(r[8]) == pytest.approx(expected, abs=1e-5), r
+
+
 @pytest.mark.slow
 def test_unit_cell_runner_retrieves_a_solid_slab(meep):
     """The unit-cell runner with rods filling the whole cell is a homogeneous slab: the retrieval gives
     the filament's εr and μr = 1 to 1 % (the runner, the face referencing and the retrieval end to end)."""
-    from antenna_cad.printed.tabulate import row, run_deck
+    from antenna_cad.printed.tabulate import retrieved, row, run_deck
     deck = {"lattice": "cubic", "parameter": 1.0, "eps_r": 2.7, "cells": 2, "resolution": 12,
             "a_over_lambda": 0.12, "polarization": "x"}
-    out = row(deck, run_deck(meep, deck))
+    out = row(deck, retrieved(deck, run_deck(meep, deck)))
     assert float(out["eps_r"]) == pytest.approx(2.7, rel=0.01)
     assert float(out["mu_r"]) == pytest.approx(1.0, abs=0.01)

@@ -63,13 +63,17 @@ def run_deck(python: str, deck: dict) -> dict:
         return json.loads(out.read_text(encoding="utf-8"))
 
 
+def _fill_and_mixing_rule(deck: dict) -> tuple[float, float]:
+    """A deck's fill and its Maxwell Garnett εeff (the retrieval's branch guess and the table's column)."""
+    fill = float(fill_fraction(deck["lattice"], deck["parameter"]))
+    return fill, float(maxwell_garnett(deck["lattice"], fill, deck["eps_r"]))
+
+
 def retrieved(deck: dict, fields: dict) -> tuple[complex, complex]:
     """(n, z) of a deck's slab from its fields (the S-parameter retrieval)."""
     k0 = 2 * np.pi * deck["a_over_lambda"]
-    fill = float(fill_fraction(deck["lattice"], deck["parameter"]))
-    guess = float(np.sqrt(maxwell_garnett(deck["lattice"], fill, deck["eps_r"])))
     r, t = slab_coefficients(fields, k0, deck["cells"], fields["gap"])
-    return retrieve(r, t, k0 * deck["cells"], guess)
+    return retrieve(r, t, k0 * deck["cells"], np.sqrt(_fill_and_mixing_rule(deck)[1]))
 
 
 def extrapolated(coarse: tuple[complex, complex], fine: tuple[complex, complex]) -> tuple[complex, complex]:
@@ -78,18 +82,18 @@ def extrapolated(coarse: tuple[complex, complex], fine: tuple[complex, complex])
     return 2 * fine[0] - coarse[0], 2 * fine[1] - coarse[1]
 
 
-def row(deck: dict, fields: dict | None = None, nz: tuple[complex, complex] | None = None) -> dict:
-    """A table row of a deck: from its ``fields``, or from its retrieved (or extrapolated) ``nz``."""
-    n, z = nz if nz is not None else retrieved(deck, fields)
-    fill = float(fill_fraction(deck["lattice"], deck["parameter"]))
-    guess = float(np.sqrt(maxwell_garnett(deck["lattice"], fill, deck["eps_r"])))
+def row(deck: dict, nz: tuple[complex, complex]) -> dict:
+    """A table row of a deck from its retrieved (or extrapolated) n and z."""
+    n, z = nz
+    fill, mixing_rule = _fill_and_mixing_rule(deck)
     return {"lattice": deck["lattice"], "eps_f": deck["eps_r"], "fill": round(fill, 4), "parameter": deck["parameter"],
             "polarization": deck["polarization"], "eps_index": f"{(n * n).real:.5f}", "eps_r": f"{(n / z).real:.5f}",
             "mu_r": f"{(n * z).real:.5f}", "n": f"{n.real:.5f}", "z_real": f"{z.real:.5f}",
-            "maxwell_garnett": f"{guess**2:.5f}"}
+            "maxwell_garnett": f"{mixing_rule:.5f}"}
 
 
 def meep_version(python: str) -> str:
+    """The version of the Meep that ``python`` imports."""
     return subprocess.run([python, "-c", "import meep, sys; sys.stderr.write(meep.__version__)"],
                           capture_output=True, text=True).stderr.strip().splitlines()[-1]
 
@@ -126,12 +130,9 @@ def main(argv: list[str] | None = None) -> int:
         nz = [retrieved(d, f) for d, f in zip(runs, pool.map(lambda d: run_deck(python, d), runs))]
     rows = []
     for lattice, px in RESOLUTIONS.items():
-        by_px = {res: [(d, v) for d, v in zip(runs, nz) if d["lattice"] == lattice and d["resolution"] == res]
-                 for res in px}
-        if len(px) == 1:
-            rows += [row(d, nz=v) for d, v in by_px[px[0]]]
-        else:
-            rows += [row(d, nz=extrapolated(c, f)) for (d, c), (_, f) in zip(by_px[px[0]], by_px[px[1]])]
+        per_px = [[v for d, v in zip(runs, nz) if d["lattice"] == lattice and d["resolution"] == res] for res in px]
+        values = per_px[0] if len(px) == 1 else [extrapolated(c, f) for c, f in zip(*per_px)]
+        rows += [row(d, v) for d, v in zip(decks(px[0], (lattice,)), values)]
     write_table(args.output, rows, version)
     return 0
 
